@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# One command: system packages, a virtual environment with everything, then a shader for the sample document.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/system-packages.sh
+[ -x .venv/bin/python ] || python3 -m venv .venv
+.venv/bin/pip install -q --upgrade pip
+.venv/bin/pip install -q -e ".[render,service]"
+.venv/bin/shadergen generate examples/marble_checker.mtlx --out out/marble_checker
+echo "shader written to out/marble_checker; start the service with: .venv/bin/shadergen serve"
