@@ -1,0 +1,210 @@
+"""The library's front door: documents in, contract records out.
+
+    gen = Generator()                                   # loads the libraries once per process
+    for p in gen.prepare_all(text, target="glsl"):      # graphs built, hashes known, nothing emitted
+        record = p.emit()                               # the JSON record of ../DESIGN.md
+
+`prepare` is separate from `emit` so a cache can be asked by hash before any code is written.
+Errors are ShaderGenError everywhere; `records` turns them into error records for the CLI.
+"""
+import os
+import time
+from dataclasses import dataclass, field
+
+from .document import Document, parse_document, read_document
+from .element import Element
+from .errors import ShaderGenError
+from .generator import EmitContext, Options, emit_shader, prepare
+from .graph import GraphBuilder, Output
+from .hashing import graph_hash
+from .library import Library, Scope, default_library
+from .targets import syntax_for
+
+INTERFACES = ("complete", "reduced")
+SHADER_CATEGORIES_SKIPPED = ("nodedef", "implementation", "nodegraph", "input", "output", "typedef", "geompropdef",
+                             "unitdef", "unittypedef", "targetdef", "look", "collection", "geominfo", "propertyset",
+                             "variantset", "backdrop", "token", "attributedef", "materialassign", "lookgroup")
+
+
+def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
+    """MaterialX's findRenderableElements: material nodes; else shader nodes; else graph outputs."""
+    nodes = [e for e in doc.root.children if e.category not in SHADER_CATEGORIES_SKIPPED]
+
+    def output_type(e: Element) -> str:
+        return e.get("type", "")
+
+    materials = [e for e in nodes if output_type(e) == "material"]
+    if materials:
+        return materials
+    shaders = [e for e in nodes if output_type(e) in ("surfaceshader", "volumeshader")]
+    if shaders:
+        return shaders
+    outputs = []
+    for e in doc.root.children:
+        if e.category == "output":
+            outputs.append(e)
+        elif e.category == "nodegraph" and not e.get("nodedef"):
+            outputs.extend(o for o in e.children_of("output") if o.get("type") not in ("BSDF", "EDF", "VDF"))
+    return outputs
+
+
+@dataclass
+class Prepared:
+    """One renderable element with its graph built and its hash known; `emit` writes the code."""
+    generator: "Generator"
+    document: Document
+    element: str
+    target: str
+    interface: str
+    hash: str
+    graph: object
+    scope: Scope
+    warnings: list[str] = field(default_factory=list)
+    prepare_ms: float = 0.0
+
+    def emit(self, source: bool = True) -> dict:
+        t0 = time.perf_counter()
+        ctx = EmitContext(syntax_for(self.target), self.scope, "genglsl" if self.target == "glsl" else self.target,
+                          Options(interface=self.interface))
+        stages = emit_shader(ctx, self.graph)
+        ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
+        return {
+            "document": self.document.path, "element": self.element, "target": self.target,
+            "interface": self.interface, "hash": self.hash, "cached": False,
+            "stages": stages if source else {k: None for k in stages},
+            "blocks": {name: st.listing() for name, st in ctx.stages.items()},
+            "timings_ms": {"generate": round(ms, 3)}, "warnings": self.warnings,
+        }
+
+
+class Generator:
+    def __init__(self, library: Library | None = None):
+        self.library = library or default_library()
+
+    @property
+    def library_hash(self) -> str:
+        return self.library.content_hash
+
+    # -- documents ----------------------------------------------------------------------------
+    def load(self, source: str | bytes | os.PathLike, *, base_dir: str | None = None,
+             allow_includes: bool = True) -> Document:
+        if isinstance(source, os.PathLike) or (isinstance(source, str) and not source.lstrip().startswith("<")):
+            return read_document(os.fspath(source), allow_includes=allow_includes)
+        return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
+
+    def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
+                    interface: str = "complete", base_dir: str | None = None,
+                    allow_includes: bool = True) -> list["Prepared | ShaderGenError"]:
+        """Prepare every renderable element (or the named one). Element failures are returned in
+        place, so one bad material does not hide the others."""
+        syntax_for(target)  # unknown targets fail before any work
+        if interface not in INTERFACES:
+            raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'", interface)
+        doc = source if isinstance(source, Document) else self.load(source, base_dir=base_dir,
+                                                                     allow_includes=allow_includes)
+        scope = Scope(self.library, doc.root)
+        elems = renderable_elements(doc, scope)
+        if element:
+            elems = [e for e in elems if e.path == element or e.name == element] or self._named(doc, element)
+        elif not all:
+            elems = elems[:1]
+        out = []
+        for e in elems:
+            try:
+                out.append(self._prepare(doc, scope, e, target, interface))
+            except ShaderGenError as err:
+                err.element = e.path
+                out.append(err)
+        return out
+
+    def prepare(self, source, **kw) -> Prepared:
+        """The first (or the named) renderable element; raises its error."""
+        kw.setdefault("all", False)
+        results = self.prepare_all(source, **kw)
+        if not results:
+            raise ShaderGenError("no_renderable_element", "the document has no renderable element", None)
+        if isinstance(results[0], ShaderGenError):
+            raise results[0]
+        return results[0]
+
+    def records(self, source, **kw):
+        """Contract records (or error records) for each element: what the CLI prints."""
+        target, interface = kw.get("target", "glsl"), kw.get("interface", "complete")
+        path = os.fspath(source) if isinstance(source, (str, os.PathLike)) and not str(source).lstrip().startswith(
+            "<") else None
+        base = {"document": path, "target": target, "interface": interface}
+        try:
+            prepared = self.prepare_all(source, **kw)
+        except ShaderGenError as e:
+            yield dict(base, element=None, error=e.to_dict())
+            return
+        for p in prepared:
+            if isinstance(p, ShaderGenError):
+                yield dict(base, element=getattr(p, "element", None), error=p.to_dict())
+                continue
+            try:
+                yield p.emit()
+            except ShaderGenError as e:
+                yield dict(base, element=p.element, error=e.to_dict())
+
+    def nodedefs(self) -> list[dict]:
+        out = []
+        for nd in self.library.nodedefs.values():
+            out.append({
+                "name": nd.name, "node": nd.get("node"), "nodegroup": nd.get("nodegroup"),
+                "inputs": [{k: v for k, v in i.attrs.items()} for i in nd.children_of("input")],
+                "outputs": [{k: v for k, v in o.attrs.items()} for o in nd.children_of("output")],
+            })
+        return out
+
+    # -- internals -----------------------------------------------------------------------------
+    @staticmethod
+    def _named(doc: Document, element: str) -> list[Element]:
+        e = doc.root
+        for part in element.split("/"):
+            e = e.child(part) if e is not None else None
+        if e is None:
+            raise ShaderGenError("unknown_element", f"no element '{element}' in the document", element)
+        return [e]
+
+    def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, interface: str) -> Prepared:
+        t0 = time.perf_counter()
+        lib_target = "genglsl" if target == "glsl" else target
+        builder = GraphBuilder(scope, lib_target, doc.root)
+        root = None
+        if elem.category == "output":
+            src = builder.follow(elem, elem.get("type"))
+            if not isinstance(src, Output):
+                raise ShaderGenError("invalid_document", f"output '{elem.name}' is not connected", elem.path)
+            outputs = {elem.name: src}
+        elif elem.category in ("nodegraph",):
+            outputs = {}
+            for o in elem.children_of("output"):
+                src = builder.follow(o, o.get("type"))
+                if isinstance(src, Output):
+                    outputs[o.name] = src
+        else:
+            root = builder.node_for(elem)
+            outputs = {name: out for name, out in root.outputs.items()}
+        graph = prepare(builder, outputs, root)
+        local = {id(i) for impls in scope.local.implementations.values() for i in impls}
+        h = graph_hash(graph, target=target, interface=interface, library_hash=self.library.content_hash,
+                       local_ids=local)
+        return Prepared(self, doc, elem.path, target, interface, h, graph, scope,
+                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
+
+
+_default: Generator | None = None
+
+
+def default_generator() -> Generator:
+    global _default
+    if _default is None:
+        _default = Generator()
+    return _default
+
+
+def generate_file(path: str, *, target: str = "glsl", element: str | None = None, all: bool = False,
+                  interface: str = "complete") -> list[dict]:
+    """Records for a document file (used by the renderer's CLI)."""
+    return list(default_generator().records(path, target=target, element=element, all=all, interface=interface))

@@ -1,0 +1,113 @@
+"""MaterialX XML -> Document: a tree of elements with name paths, safely parsed.
+
+The parser refuses DTDs (so no entity expansion and no external entities), resolves
+`xi:include` relative to the including file (or refuses it, for untrusted uploads), and
+upgrades the older syntax that real documents still use (see upgrade.py).
+"""
+import os
+from dataclasses import dataclass, field
+
+from defusedxml import DefusedXmlException
+from defusedxml.ElementTree import ParseError, fromstring
+
+from .element import Element
+from .errors import ShaderGenError
+from .upgrade import upgrade
+
+XINCLUDE = "{http://www.w3.org/2001/XInclude}include"
+MAX_DOCUMENT_BYTES = 64 * 1024 * 1024
+MAX_INCLUDE_DEPTH = 16
+
+
+@dataclass
+class Document:
+    root: Element
+    path: str | None = None  # file path, when read from a file
+    version: tuple[int, int] = (1, 39)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def directory(self) -> str | None:
+        return os.path.dirname(os.path.abspath(self.path)) if self.path else None
+
+    @property
+    def colorspace(self) -> str | None:
+        return self.root.get("colorspace")
+
+    def elements(self, category: str) -> list[Element]:
+        return self.root.children_of(category)
+
+
+def _convert(xml_elem, parent: Element | None, source: str | None) -> Element:
+    elem = Element(xml_elem.tag, dict(xml_elem.attrib), parent, source)
+    for sub in xml_elem:
+        if isinstance(sub.tag, str):  # skip comments and processing instructions
+            elem.children.append(_convert(sub, elem, source))
+    return elem
+
+
+def _parse_text(text: str | bytes, where: str) -> "object":
+    if len(text) > MAX_DOCUMENT_BYTES:
+        raise ShaderGenError("too_large", f"document is larger than {MAX_DOCUMENT_BYTES} bytes", where)
+    try:
+        return fromstring(text, forbid_dtd=True, forbid_entities=True, forbid_external=True)
+    except DefusedXmlException as e:
+        raise ShaderGenError("unsafe_xml", f"refused unsafe XML ({type(e).__name__}): DTDs and entities are not allowed",
+                             where) from None
+    except ParseError as e:
+        line, col = e.position if hasattr(e, "position") else (0, 0)
+        raise ShaderGenError("invalid_document", f"malformed XML: {e}", f"{where}:{line}:{col}") from None
+
+
+def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tuple[str, ...]) -> None:
+    for inc in [c for c in root.children if c.category == XINCLUDE]:
+        href = inc.get("href", "")
+        if not allow or base_dir is None:
+            raise ShaderGenError("include_refused", f"xi:include of '{href}' is not allowed here", href)
+        path = os.path.normpath(os.path.join(base_dir, href))
+        if path in seen or len(seen) > MAX_INCLUDE_DEPTH:
+            raise ShaderGenError("invalid_document", f"recursive xi:include of '{href}'", href)
+        try:
+            with open(path, "rb") as f:
+                text = f.read()
+        except OSError as e:
+            raise ShaderGenError("invalid_document", f"cannot read included file '{href}': {e.strerror}", href) from None
+        included = _convert(_parse_text(text, path), None, path)
+        _expand_includes(included, os.path.dirname(path), allow, seen + (path,))
+        index = root.children.index(inc)
+        root.remove_child(inc)
+        for offset, child in enumerate(included.children):
+            root.add_child(child, index + offset)
+
+
+def parse_document(text: str | bytes, *, path: str | None = None, base_dir: str | None = None,
+                   allow_includes: bool = True) -> Document:
+    """Parse MaterialX XML text. `base_dir` resolves includes (defaults to the file's folder)."""
+    where = path or "<document>"
+    xml_root = _parse_text(text, where)
+    if xml_root.tag != "materialx":
+        raise ShaderGenError("invalid_document", f"root element is <{xml_root.tag}>, expected <materialx>", where)
+    root = _convert(xml_root, None, path)
+    if base_dir is None and path:
+        base_dir = os.path.dirname(os.path.abspath(path))
+    _expand_includes(root, base_dir, allow_includes, (os.path.abspath(path),) if path else ())
+    doc = Document(root=root, path=path, version=_version(root.get("version", "1.39")))
+    upgrade(doc)
+    return doc
+
+
+def read_document(path: str, *, allow_includes: bool = True) -> Document:
+    try:
+        with open(path, "rb") as f:
+            text = f.read()
+    except OSError as e:
+        raise ShaderGenError("invalid_document", f"cannot read document: {e.strerror}", path) from None
+    return parse_document(text, path=path, allow_includes=allow_includes)
+
+
+def _version(text: str) -> tuple[int, int]:
+    try:
+        major, minor = text.split(".")[:2]
+        return int(major), int(minor)
+    except ValueError:
+        return (1, 39)

@@ -1,0 +1,356 @@
+"""The shader generator: from a prepared ShaderGraph to a hardware Shader (seed 2.4, emit steps).
+
+Steps, in order, for a graph: publish the interface (which inputs become uniforms), let every
+implementation create its variables, emit function definitions (each once, by a stable key), emit
+the node calls in topological order (nodes scoped to a conditional branch inside that branch),
+assign the shader outputs, then assemble each stage's text: header, type definitions, variable
+blocks, functions, main. Node graph implementations reuse the same steps to emit a function body.
+"""
+import re
+from dataclasses import dataclass
+
+from .element import Element
+from .errors import ShaderGenError
+from .graph import BRANCH_INPUTS, Graph, GraphBuilder, Input, Node, Output, Socket, assign_scopes, \
+    elide_passthrough_nodes, topological_order
+from .library import Scope
+from .nodes import implementation_for
+from .nodes.base import expand_includes
+from .shader import PIXEL, VERTEX, Stage, Variable, Writer
+from .targets.glsl import STRUCTS, Syntax
+
+CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}
+NOT_PUBLISHED = {"BSDF", "EDF", "VDF", "lightshader", "none"}
+
+
+class Namer:
+    """One namer per shader: valid identifiers, no reserved words or gl_ prefix, no clashes."""
+
+    def __init__(self, reserved: set[str]):
+        self.reserved = reserved
+        self.used: set[str] = set()
+
+    def __call__(self, wanted: str) -> str:
+        name = re.sub(r"\W", "_", wanted) or "v"
+        if name[0].isdigit() or name.startswith("gl_") or name.startswith("__"):
+            name = "v_" + name
+        base, n = name, 1
+        while name in self.used or name in self.reserved:
+            name = f"{base}{n}"
+            n += 1
+        self.used.add(name)
+        return name
+
+
+@dataclass
+class Options:
+    interface: str = "complete"  # complete | reduced
+
+
+class EmitContext:
+    """Shared state of one generation; node implementations write through it."""
+
+    def __init__(self, syntax: Syntax, scope: Scope, target: str, options: Options):
+        self.syntax = syntax
+        self.scope = scope
+        self.target = target
+        self.options = options
+        self.stages = {VERTEX: Stage(VERTEX), PIXEL: Stage(PIXEL)}
+        self.namer = Namer(syntax.reserved)
+        self.closure = None  # shading context for BSDF nodes (see nodes/base.py)
+        self.vars: dict[int, str] = {}  # id(Output | Input | Socket) -> expression naming its value
+        self.used_types: set[str] = set()
+        self.body: Writer = self.pixel.main
+        self.graph_functions: dict[int, str] = {}
+        self.vertex_main: list[str] = []
+
+    @property
+    def pixel(self) -> Stage:
+        return self.stages[PIXEL]
+
+    @property
+    def vertex(self) -> Stage:
+        return self.stages[VERTEX]
+
+    # -- values ----------------------------------------------------------------------------
+    def value(self, inp: Input) -> str:
+        if inp.connection is not None:
+            return self.vars[id(inp.connection)]
+        if inp.socket is not None:
+            return self.vars[id(inp.socket)]
+        if id(inp) in self.vars:
+            return self.vars[id(inp)]
+        return self.syntax.literal(inp.type, inp.value, inp.meta)
+
+    def output_name(self, out: Output) -> str:
+        if id(out) not in self.vars:
+            self.vars[id(out)] = self.namer(f"{out.node.name}_{out.name}")
+            self.used_types.add(out.type)
+        return self.vars[id(out)]
+
+    def assign(self, out: Output, expression: str) -> None:
+        self.body.line(f"{self.syntax.type_name(out.type)} {self.output_name(out)} = {expression};")
+
+    def declare(self, out: Output) -> str:
+        name = self.output_name(out)
+        self.body.line(f"{self.syntax.type_name(out.type)} {name};")
+        return name
+
+    def call(self, function: str, node: Node) -> None:
+        outs = [self.declare(o) for o in node.outputs.values()]
+        args = [self.value(i) for i in node.inputs.values()] + outs
+        self.body.line(f"{function}({', '.join(args)});")
+
+    # -- variables ---------------------------------------------------------------------------
+    def add_variable(self, stage: str, block: str, var: Variable) -> Variable:
+        self.used_types.add(var.type)
+        return self.stages[stage].blocks[block].add(var)
+
+    def private_uniform(self, name: str, type_name: str, stages=(PIXEL,)) -> str:
+        for s in stages:
+            self.add_variable(s, "PrivateUniforms", Variable(name, type_name))
+        return name
+
+    def app_data(self, name: str, type_name: str) -> str:
+        self.add_variable(VERTEX, "AppData", Variable(name, type_name))
+        return name
+
+    def vertex_data(self, name: str, type_name: str, vertex_expression: str) -> str:
+        """A value computed per vertex and interpolated: declared in both stages, assigned once in
+        the vertex stage's main. Returns how the pixel stage reads it."""
+        for s in (VERTEX, PIXEL):
+            self.add_variable(s, "VertexData", Variable(name, type_name))
+        if name not in self.vertex.calculated:
+            self.vertex.calculated.add(name)
+            self.vertex_main.append(f"{self.syntax.vertex_data_member(name)} = {vertex_expression};")
+        return self.syntax.vertex_data_member(name)
+
+    # -- functions -------------------------------------------------------------------------------
+    def emit_source_file(self, path: str) -> None:
+        for dep_path, text in expand_includes(path, set()):
+            if self.pixel.once(("file", dep_path)):
+                self.pixel.functions.extend(text)
+                self.pixel.functions.line()
+
+    def graph_function_name(self, elem: Element) -> str:
+        return self.graph_functions[id(elem)]
+
+    def emit_graph_function(self, elem: Element, node: Node) -> None:
+        if not self.pixel.once(("graph", id(elem))):
+            return
+        self.graph_functions[id(elem)] = fname = self.namer(elem.name)
+        sockets = {}
+        for inp in node.inputs.values():
+            sockets[inp.name] = Socket(inp.name, inp.type, inp.value, None, dict(inp.meta))
+        builder = GraphBuilder(self.scope, self.target, elem.parent if elem.parent is not None else elem, sockets)
+        outputs = {}
+        for out_elem in elem.children_of("output"):
+            src = builder.follow(out_elem, out_elem.get("type"))
+            if not isinstance(src, Output):
+                raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
+                                     out_elem.path)
+            outputs[out_elem.name] = src
+        graph = prepare(builder, outputs, None)
+        saved_body, saved_vars = self.body, self.vars
+        self.body, self.vars = Writer(), dict(saved_vars)
+        params = []
+        for s in sockets.values():
+            self.vars[id(s)] = pname = self.namer(f"{fname}_{s.name}")
+            params.append(f"{self.syntax.type_name(s.type)} {pname}")
+            self.used_types.add(s.type)
+        out_params = []
+        for name, out in graph.outputs.items():
+            decl = next((o for o in node.outputs.values() if o.name == name), None)
+            out_type = decl.type if decl is not None else out.type
+            out_params.append((self.namer(f"{fname}_{name}"), out_type, out))
+        params += [f"out {self.syntax.type_name(t)} {p}" for p, t, _ in out_params]
+        try:
+            self.define_functions(graph)
+            with self.body.block(f"void {fname}({', '.join(params)})"):
+                self.emit_nodes(graph, ())
+                for p, _, out in out_params:
+                    self.body.line(f"{p} = {self.vars[id(out)]};")
+            self.pixel.functions.extend(self.body.text())
+            self.pixel.functions.line()
+        finally:
+            self.body, self.vars = saved_body, saved_vars
+
+    def define_functions(self, graph: Graph) -> None:
+        for node in graph.nodes:
+            node.impl.create_variables(node, self)
+        for node in graph.nodes:
+            node.impl.emit_function_definition(node, self)
+
+    # -- calls -------------------------------------------------------------------------------
+    def emit_nodes(self, graph: Graph, scope: tuple) -> None:
+        for node in graph.nodes:
+            if node.scope == scope:
+                if any(n.scope[len(scope):len(scope) + 1] and n.scope[len(scope)][0] is node for n in graph.nodes):
+                    self.emit_branches(graph, node)
+                else:
+                    node.impl.emit_function_call(node, self)
+
+    def emit_branches(self, graph: Graph, node: Node) -> None:
+        """A conditional whose branches have nodes of their own: if/else, each branch computing
+        only what it needs (seed 2.4 step 5)."""
+        out = next(iter(node.outputs.values()))
+        result = self.declare(out)
+        branches = self.branch_conditions(node)
+        for i, (branch, condition) in enumerate(branches):
+            opener = ("if" if i == 0 else "else if") + f" ({condition})" if condition else "else"
+            with self.body.block(opener):
+                self.emit_nodes(graph, node.scope + ((node, branch),))
+                self.body.line(f"{result} = {self.value(node.inputs[branch])};")
+
+    def branch_conditions(self, node: Node) -> list[tuple[str, str | None]]:
+        if node.category in CONDITIONS:
+            op = CONDITIONS[node.category]
+            v1, v2 = self.value(node.inputs["value1"]), self.value(node.inputs["value2"])
+            return [("in1", f"{v1} {op} {v2}"), ("in2", None)]
+        which = node.inputs["which"]
+        w = self.value(which)
+        one = "1" if which.type == "integer" else "1.0"
+        names = [n for n in BRANCH_INPUTS["switch"] if n in node.inputs]
+        conds = [(n, f"{w} < {str(k + 1) if one == '1' else f'{k + 1}.0'}") for k, n in enumerate(names[:-1])]
+        return conds + [(names[-1], None)]
+
+
+def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None) -> Graph:
+    """Graph passes in their fixed order; returns the graph ready to emit."""
+    elide_passthrough_nodes(outputs)
+    nodes = topological_order(outputs)
+    assign_scopes(nodes)
+    for node in nodes:
+        node.impl = implementation_for(node.implementation)
+    return Graph(builder.doc_root.name, nodes, outputs, builder.interface or {}, root, builder.warnings)
+
+
+def publish_interface(ctx: EmitContext, graph: Graph) -> None:
+    """Seed 2.4 step 4: decide which unconnected inputs are public uniforms. `complete` publishes
+    every editable input; `reduced` only filenames and inputs bound to an interface; the rest
+    are written as constants."""
+    reduced = ctx.options.interface == "reduced"
+    for node in graph.nodes:
+        for inp in node.inputs.values():
+            if inp.connection is not None or inp.socket is not None or inp.type in NOT_PUBLISHED:
+                continue
+            if not node.impl.is_editable(inp.name) and inp.type != "filename":
+                continue
+            if reduced and not (inp.type == "filename" or inp.meta.get("interface") or node is graph.root):
+                continue
+            path = inp.path
+            if node is graph.root and not inp.authored:
+                path = f"{node.nodedef.name}/{inp.name}"
+            listing_type, value = inp.type, inp.value
+            if inp.type == "string":
+                if inp.meta.get("enum"):
+                    listing_type, value = "integer", ctx.syntax.enum_index(inp.value, inp.meta)
+                elif value == "":
+                    value = None
+            name = ctx.namer(f"{node.name}_{inp.name}")
+            ctx.vars[id(inp)] = name
+            ctx.add_variable(PIXEL, "PublicUniforms", Variable(
+                name, listing_type, value, path, unit=inp.meta.get("unit"), colorspace=inp.meta.get("colorspace"),
+                ui=inp.meta.get("ui")))
+
+
+def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
+    for name, out in graph.outputs.items():
+        var = ctx.namer(name)
+        ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
+        ctx.body.line(f"{var} = {display_value(out.type, ctx.vars[id(out)])};")
+
+
+def display_value(type_name: str, v: str) -> str:
+    """Every pixel output is a vec4 colour."""
+    if type_name in ("float", "integer", "boolean"):
+        s = v if type_name == "float" else f"float({v})"
+        return f"vec4({s}, {s}, {s}, 1.0)"
+    if type_name == "vector2":
+        return f"vec4({v}, 0.0, 1.0)"
+    if type_name in ("vector3", "color3"):
+        return f"vec4({v}, 1.0)"
+    if type_name in ("vector4", "color4"):
+        return v
+    if type_name in ("surfaceshader", "material", "volumeshader"):
+        return f"vec4({v}.color, 1.0)"
+    return "vec4(0.0, 0.0, 0.0, 1.0)"
+
+
+def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
+    ctx.private_uniform("u_worldMatrix", "matrix44", (VERTEX,))
+    ctx.private_uniform("u_viewProjectionMatrix", "matrix44", (VERTEX,))
+    ctx.app_data("i_position", "vector3")
+    publish_interface(ctx, graph)
+    ctx.define_functions(graph)
+    ctx.emit_nodes(graph, ())
+    assign_outputs(ctx, graph)
+    return {VERTEX: assemble_vertex(ctx), PIXEL: assemble_pixel(ctx)}
+
+
+def _declarations(ctx: EmitContext, stage: Stage, w: Writer) -> None:
+    syntax = ctx.syntax
+    for block in ("PrivateUniforms", "PublicUniforms"):
+        variables = list(stage.blocks[block])
+        if variables:
+            w.line(f"// Uniform block: {block}")
+            for v in variables:
+                meta = {"enum": ""}  # listing values of enums are already indices
+                w.line(syntax.uniform_declaration(v.type, v.name, v.value, meta))
+            w.line()
+
+
+def _vertex_data(ctx: EmitContext, stage: Stage, w: Writer, direction: str) -> None:
+    members = list(stage.blocks["VertexData"])
+    if not members:
+        return
+    if ctx.syntax.vertex_data_block:
+        w.line(f"{direction} VertexData")
+        w.line("{")
+        for v in members:
+            w.line(f"    {ctx.syntax.type_name(v.type)} {v.name};")
+        w.line("} vd;")
+    else:
+        for v in members:
+            w.line(f"{direction} {ctx.syntax.type_name(v.type)} {ctx.syntax.vertex_data_member(v.name)};")
+    w.line()
+
+
+def assemble_pixel(ctx: EmitContext) -> str:
+    w = Writer()
+    for line in ctx.syntax.header():
+        w.line(line)
+    w.line()
+    structs = ctx.syntax.struct_definitions({t for t in ctx.used_types if t in STRUCTS})
+    if structs:
+        for s in structs:
+            w.line(s)
+        w.line()
+    _declarations(ctx, ctx.pixel, w)
+    _vertex_data(ctx, ctx.pixel, w, "in")
+    for v in ctx.pixel.blocks["Outputs"]:
+        w.line(f"out vec4 {v.name};")
+    w.line()
+    if ctx.pixel.functions.lines:
+        w.lines.extend(ctx.pixel.functions.lines)
+    with w.block("void main()"):
+        w.lines.extend("    " + ln if ln else "" for ln in ctx.pixel.main.lines)
+    return w.text()
+
+
+def assemble_vertex(ctx: EmitContext) -> str:
+    w = Writer()
+    for line in ctx.syntax.header():
+        w.line(line)
+    w.line()
+    _declarations(ctx, ctx.vertex, w)
+    for v in ctx.vertex.blocks["AppData"]:
+        w.line(f"in {ctx.syntax.type_name(v.type)} {v.name};")
+    w.line()
+    _vertex_data(ctx, ctx.vertex, w, "out")
+    with w.block("void main()"):
+        w.line("vec4 hPositionWorld = u_worldMatrix * vec4(i_position, 1.0);")
+        w.line("gl_Position = u_viewProjectionMatrix * hPositionWorld;")
+        for line in ctx.vertex_main:
+            w.line(line)
+    return w.text()

@@ -1,0 +1,486 @@
+"""ShaderGraph: the one IR every target sees (seed 2.4, initialisation steps).
+
+`build_graph` turns a renderable element into a graph of resolved nodes. The passes run in a
+fixed order, each its own function: resolve nodedefs and implementations while walking upstream
+from the outputs (so unused paths never enter the graph), connect default geometric nodes,
+insert colour-space and unit transforms, elide constant and dot nodes, topologically sort (a
+cycle is an error naming its nodes), and compute conditional scopes. Publishing the interface
+(which inputs become uniforms) is the emitter's job, from the `Input.binding` facts set here.
+"""
+from dataclasses import dataclass, field
+
+from . import types as T
+from .element import Element
+from .errors import ShaderGenError
+from .library import Scope
+
+# Conditional nodes and their branch inputs (seed 2.4 step 5): a node feeding only one branch
+# of a varying conditional is computed inside that branch.
+BRANCH_INPUTS = {
+    "ifgreater": ("in1", "in2"), "ifgreatereq": ("in1", "in2"), "ifequal": ("in1", "in2"),
+    "switch": tuple(f"in{i}" for i in range(1, 11)),
+}
+WORKING_COLORSPACE = "lin_rec709"
+TARGET_UNITS = {"distance": "meter"}
+
+
+@dataclass(eq=False)
+class Socket:
+    """A graph interface input: a published uniform of the shader, or a parameter of a
+    nodegraph function."""
+    name: str
+    type: str
+    value: object = None
+    path: str | None = None
+    meta: dict = field(default_factory=dict)  # enum, enumvalues, uniform, colorspace, unit, ui...
+    consumers: list["Input"] = field(default_factory=list)
+
+
+@dataclass(eq=False)
+class Output:
+    name: str
+    type: str
+    node: "Node"
+
+
+@dataclass(eq=False)
+class Input:
+    name: str
+    type: str
+    node: "Node"
+    value: object = None
+    path: str | None = None  # element path of the document input it binds to (listings)
+    connection: Output | None = None
+    socket: Socket | None = None
+    meta: dict = field(default_factory=dict)
+    authored: bool = False  # set in the document (not a nodedef default)
+
+    def bind_socket(self, socket: Socket) -> None:
+        self.socket = socket
+        socket.consumers.append(self)
+
+
+@dataclass(eq=False)
+class Node:
+    name: str
+    category: str
+    type: str
+    nodedef: Element
+    implementation: Element | None
+    path: str
+    inputs: dict[str, Input] = field(default_factory=dict)
+    outputs: dict[str, Output] = field(default_factory=dict)
+    scope: tuple = ()  # ((conditional node, branch input name), ...) outermost first; () is global
+    impl: object = None  # the NodeImpl writing its code, chosen when the graph is prepared
+
+    def input_value(self, name: str, default=None):
+        inp = self.inputs.get(name)
+        return default if inp is None or inp.value is None else inp.value
+
+    def upstream(self):
+        for inp in self.inputs.values():
+            if inp.connection is not None:
+                yield inp.connection.node
+
+
+@dataclass(eq=False)
+class Graph:
+    name: str
+    nodes: list[Node]
+    outputs: dict[str, Output]
+    sockets: dict[str, Socket]  # interface inputs, in nodedef (or discovery) order
+    root: Node | None = None  # the node a shader was generated from, when it is a node
+    warnings: list[str] = field(default_factory=list)
+
+
+def input_meta(decl: Element) -> dict:
+    """What listings and the syntax need from a nodedef input: enums, uniform flag, ui metadata."""
+    meta = {}
+    for key in ("enum", "enumvalues", "uniform", "defaultgeomprop", "unittype"):
+        if decl.get(key) is not None:
+            meta[key] = decl.get(key)
+    ui = {}
+    for src, dst in (("uiname", "name"), ("uifolder", "folder"), ("uimin", "min"), ("uimax", "max"),
+                     ("uisoftmin", "softmin"), ("uisoftmax", "softmax"), ("uistep", "step"),
+                     ("uiadvanced", "advanced"), ("doc", "doc"), ("enum", "enum"), ("enumvalues", "enumvalues")):
+        if decl.get(src) is not None:
+            ui[dst] = decl.get(src)
+    if ui:
+        meta["ui"] = ui
+    return meta
+
+
+class GraphBuilder:
+    """Walks a document upstream from one renderable element and builds its ShaderGraph."""
+
+    def __init__(self, scope: Scope, target: str, doc_root: Element, interface: dict[str, Socket] | None = None):
+        self.scope = scope
+        self.interface = interface  # nodedef inputs, when building a nodegraph implementation
+        self.target = target
+        self.doc_root = doc_root
+        self.nodes: dict[int, Node] = {}  # id(element) -> node
+        self.visiting: list[Element] = []
+        self.names: set[str] = set()
+        self.geom_nodes: dict[str, Node] = {}
+        self.redirect: dict[int, Output] = {}  # id(output) -> the transform node output that replaces it
+        self.warnings: list[str] = []
+
+    # -- naming ---------------------------------------------------------------------------
+    def unique(self, name: str) -> str:
+        base, n = name, 1
+        while name in self.names:
+            name = f"{base}{n}"
+            n += 1
+        self.names.add(name)
+        return name
+
+    # -- nodedef resolution ----------------------------------------------------------------
+    def resolve_nodedef(self, elem: Element) -> Element:
+        name = elem.get("nodedef")
+        if name:
+            nd = self.scope.nodedef(name)
+            if nd is None:
+                raise ShaderGenError("unknown_nodedef", f"nodedef '{name}' not found", elem.path)
+            return nd
+        candidates = self.scope.nodedefs_for(elem.category)
+        if not candidates:
+            raise ShaderGenError("unknown_node", f"no node definition for <{elem.category}>", elem.path)
+        out_type = elem.get("type")
+        authored = {i.name: i.get("type") for i in elem.children_of("input", "parameter")}
+        version = elem.get("version")
+        matches = []
+        for nd in candidates:
+            outputs = nd.children_of("output")
+            if out_type and out_type != "multioutput":
+                if not outputs or outputs[0].get("type", nd.get("type")) != out_type:
+                    if not (not outputs and nd.get("type") == out_type):
+                        continue
+            elif out_type == "multioutput" and len(outputs) < 2:
+                continue
+            decls = {i.name: i.get("type") for i in self.scope.nodedef_inputs(nd)}
+            if any(n in decls and t and decls[n] != t for n, t in authored.items()):
+                continue
+            matches.append(nd)
+        if not matches:
+            raise ShaderGenError(
+                "type_mismatch",
+                f"no <{elem.category}> definition matches output type '{out_type}' and inputs "
+                + ", ".join(f"{n}:{t}" for n, t in authored.items()), elem.path)
+        if version:
+            versioned = [nd for nd in matches if nd.get("version") == version]
+            if not versioned:
+                raise ShaderGenError("unknown_nodedef", f"<{elem.category}> has no version '{version}'", elem.path)
+            return versioned[0]
+        defaults = [nd for nd in matches if nd.get("isdefaultversion") == "true"]
+        return (defaults or matches)[0]
+
+    # -- building ----------------------------------------------------------------------------
+    def node_for(self, elem: Element) -> Node:
+        key = id(elem)
+        if key in self.nodes:
+            return self.nodes[key]
+        if elem in self.visiting:
+            cycle = self.visiting[self.visiting.index(elem):] + [elem]
+            raise ShaderGenError("cycle", "cycle in the graph: " + " -> ".join(e.path for e in cycle), elem.path)
+        self.visiting.append(elem)
+        try:
+            node = self._make_node(elem)
+        finally:
+            self.visiting.pop()
+        self.nodes[key] = node
+        return node
+
+    def _make_node(self, elem: Element) -> Node:
+        nodedef = self.resolve_nodedef(elem)
+        impl = self.scope.implementation(nodedef, self.target)
+        if impl is None:
+            raise ShaderGenError("unknown_node",
+                                 f"no {self.target} implementation of '{nodedef.name}' for <{elem.category}>", elem.path)
+        node = Node(self.unique(elem.name), elem.category, elem.get("type") or "", nodedef, impl, elem.path)
+        for out in nodedef.children_of("output"):
+            node.outputs[out.name] = Output(out.name, out.get("type"), node)
+        if not node.outputs:
+            node.outputs["out"] = Output("out", nodedef.get("type"), node)
+        for decl in self.scope.nodedef_inputs(nodedef) + impl.children_of("input"):
+            if decl.category == "token":
+                continue
+            t = decl.get("type")
+            inp = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path), None,
+                        meta=input_meta(decl))
+            inp.path = f"{elem.path}/{decl.name}" if decl.parent is nodedef else None
+            node.inputs[decl.name] = inp
+        for authored in elem.children_of("input", "parameter"):
+            inp = node.inputs.get(authored.name)
+            if inp is None:
+                self.warnings.append(f"{authored.path}: input '{authored.name}' is not on {nodedef.name}; ignored")
+                continue
+            self.bind(inp, authored)
+        for inp in list(node.inputs.values()):
+            geomprop = inp.meta.get("defaultgeomprop")
+            if geomprop and not inp.authored:
+                inp.connection = self.geomprop_output(geomprop, elem)
+            elif inp.authored and inp.type != "filename":
+                self.convert_units(inp)
+                self.convert_colorspace(inp)
+        self.convert_file_colorspace(node)
+        return node
+
+    # -- colour-space and unit transforms (seed 3.3, 3.4) --------------------------------------
+    def transform_node(self, name: str, nodedef_name: str, where: str) -> Node | None:
+        nodedef = self.scope.nodedef(nodedef_name)
+        impl = self.scope.implementation(nodedef, self.target) if nodedef is not None else None
+        if impl is None:
+            self.warnings.append(f"{where}: no {self.target} transform '{nodedef_name}'; value used as is")
+            return None
+        node = Node(self.unique(name), nodedef.get("node"), "", nodedef, impl, where)
+        for out in nodedef.children_of("output"):
+            node.outputs[out.name] = Output(out.name, out.get("type"), node)
+        for decl in self.scope.nodedef_inputs(nodedef):
+            t = decl.get("type")
+            node.inputs[decl.name] = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path),
+                                           None, meta=input_meta(decl))
+        return node
+
+    def insert_before(self, inp: Input, node: Node) -> Input:
+        """Route an input's binding through `node`: its first input takes the binding, and the
+        original input reads the node's output. Returns the node's first input."""
+        first = next(iter(node.inputs.values()))
+        first.value, first.path, first.connection, first.authored = inp.value, inp.path, inp.connection, True
+        first.meta.update({k: v for k, v in inp.meta.items() if k in ("unit", "unittype", "colorspace")})
+        if inp.socket is not None:
+            first.bind_socket(inp.socket)
+            inp.socket.consumers.remove(inp)
+            inp.socket = None
+        inp.connection = next(iter(node.outputs.values()))
+        return first
+
+    def convert_units(self, inp: Input) -> None:
+        unit, unittype = inp.meta.get("unit"), inp.meta.get("unittype")
+        decl_unit = input_meta_unit(inp)
+        if not unit or not unittype or inp.type not in ("float", "vector2", "vector3", "vector4"):
+            return
+        target = TARGET_UNITS.get(unittype) or decl_unit
+        src_scale, dst_scale = self.scope.unit_scale(unittype, unit), self.scope.unit_scale(unittype, target or "")
+        if src_scale is None or dst_scale is None:
+            return
+        suffix = "" if inp.type == "float" else "FA"
+        node = self.transform_node(f"{inp.node.name}_{inp.name}_unit", f"ND_multiply_{inp.type}{suffix}", inp.path)
+        if node is not None:
+            self.insert_before(inp, node)
+            factor = node.inputs["in2"]
+            factor.value, factor.path, factor.authored = src_scale / dst_scale, None, True
+
+    def colorspace_node(self, name: str, source: str | None, type_name: str, where: str) -> Node | None:
+        if not source or source in (WORKING_COLORSPACE, "raw") or type_name not in ("color3", "color4"):
+            return None
+        return self.transform_node(name, f"ND_{source}_to_{WORKING_COLORSPACE}_{type_name}", where)
+
+    def convert_colorspace(self, inp: Input) -> None:
+        if inp.connection is not None or inp.socket is not None:
+            return
+        node = self.colorspace_node(f"{inp.node.name}_{inp.name}_cm", inp.meta.get("colorspace"), inp.type, inp.path)
+        if node is not None:
+            self.insert_before(inp, node)
+
+    def convert_file_colorspace(self, node: Node) -> None:
+        """A texture in another colour space is transformed after sampling, on the node's output."""
+        file = next((i for i in node.inputs.values() if i.type == "filename"), None)
+        out = next(iter(node.outputs.values()))
+        if file is None or len(node.outputs) != 1:
+            return
+        cm = self.colorspace_node(f"{node.name}_{out.name}_cm", file.meta.get("colorspace"), out.type, file.path)
+        if cm is not None:
+            next(iter(cm.inputs.values())).connection = out
+            self.redirect[id(out)] = next(iter(cm.outputs.values()))
+
+    def bind(self, inp: Input, authored: Element) -> None:
+        """Bind a node input to what the document says: a connection, an interface input, or a value."""
+        inp.authored = True
+        if authored.get("type") and authored.get("type") != inp.type:
+            raise ShaderGenError("type_mismatch", f"input '{inp.name}' is {inp.type}, document says "
+                                 f"{authored.get('type')}", authored.path)
+        for key in ("colorspace", "unit", "unittype"):
+            if authored.get(key):
+                inp.meta[key] = authored.get(key)
+        if authored.get("colorspace") is None and inp.type in ("color3", "color4", "filename"):
+            cs = authored.inherited("colorspace")
+            if cs:
+                inp.meta["colorspace"] = cs
+        source = self.follow(authored, inp.type)
+        if isinstance(source, Socket):
+            inp.bind_socket(source)
+        elif isinstance(source, Output):
+            inp.connection = source
+        elif isinstance(source, Element):  # a value, possibly on an interface input
+            inp.value = T.parse_value(inp.type, source.get("value"), source.path) if source.get("value") is not None \
+                else inp.value
+            inp.path = source.path
+            if inp.type == "filename" and inp.value:
+                inp.value = (source.inherited("fileprefix") or "") + inp.value
+            for key in ("colorspace", "unit", "unittype"):
+                if source.get(key) and key not in inp.meta:
+                    inp.meta[key] = source.get(key)
+
+    def follow(self, port: Element, type_name: str):
+        """Where a port's data comes from: an upstream node Output, an interface Socket of the
+        nodegraph being implemented, or the Element holding its value."""
+        for _ in range(256):
+            graph = _graph_of(port)
+            if port.get("nodename"):
+                target = graph.child(port.get("nodename")) if graph is not None else None
+                if target is None or target.category in ("input", "output", "nodedef", "nodegraph"):
+                    raise ShaderGenError("dangling_connection", f"'{port.get('nodename')}' is not a node here",
+                                         port.path)
+                return self.output_of(target, port.get("output"), port.path)
+            if port.get("nodegraph"):
+                ng = self.doc_root.child(port.get("nodegraph"))
+                if ng is None or ng.category != "nodegraph":
+                    raise ShaderGenError("dangling_connection", f"nodegraph '{port.get('nodegraph')}' not found",
+                                         port.path)
+                outs = ng.children_of("output")
+                out = ng.child(port.get("output")) if port.get("output") else (outs[0] if outs else None)
+                if out is None or out.category != "output":
+                    raise ShaderGenError("dangling_connection",
+                                         f"nodegraph '{ng.name}' has no output '{port.get('output')}'", port.path)
+                port = out
+                continue
+            name = port.get("interfacename")
+            if name:
+                if self.interface is not None and name in self.interface:
+                    return self.interface[name]
+                iface = graph.child(name) if graph is not None else None
+                if iface is None or iface.category != "input":
+                    raise ShaderGenError("dangling_connection", f"interface input '{name}' not found", port.path)
+                port = iface
+                continue
+            return port if port.category != "output" else None
+        raise ShaderGenError("cycle", "interface connections loop", port.path)
+
+    def output_of(self, node_elem: Element, output: str | None, where: str) -> Output:
+        node = self.node_for(node_elem)
+        out = node.outputs.get(output) if output else next(iter(node.outputs.values()))
+        if out is None:
+            raise ShaderGenError("dangling_connection", f"node '{node_elem.name}' has no output '{output}'", where)
+        return self.redirect.get(id(out), out)
+
+    def geomprop_output(self, name: str, where_elem: Element) -> Output:
+        """One shared geometric node per geompropdef (UV0, Nworld, ...), as the seed's default connections."""
+        if name in self.geom_nodes:
+            return next(iter(self.geom_nodes[name].outputs.values()))
+        gdef = self.scope.geompropdef(name)
+        if gdef is None:
+            raise ShaderGenError("unknown_geomprop", f"unknown default geomprop '{name}'", where_elem.path)
+        attrs = {"name": f"geomprop_{name}", "type": gdef.get("type")}
+        elem = Element(gdef.get("geomprop"), attrs, self.doc_root)
+        for key in ("space", "index", "geomprop"):
+            if gdef.get(key) is not None and key != "geomprop":
+                elem.children.append(Element("input", {"name": key, "type": "integer" if key == "index" else "string",
+                                                       "value": gdef.get(key)}, elem))
+        node = self.node_for(elem)
+        for inp in node.inputs.values():  # published under the geompropdef's name
+            if inp.authored:
+                inp.path = name
+        self.geom_nodes[name] = node
+        return next(iter(node.outputs.values()))
+
+
+def input_meta_unit(inp: Input) -> str | None:
+    """The unit the nodedef declares for an input (what the implementation expects)."""
+    for decl in inp.node.nodedef.children_of("input"):
+        if decl.name == inp.name:
+            return decl.get("unit")
+    return None
+
+
+def _graph_of(port: Element) -> Element | None:
+    """The graph (nodegraph or document) whose nodes a port's `nodename` and `interfacename` name."""
+    if port.category == "output":
+        return port.parent
+    owner = port.parent
+    if owner is None or owner.category == "materialx":
+        return owner
+    return owner.parent
+
+
+# -- passes over a built graph --------------------------------------------------------------
+
+
+def elide_passthrough_nodes(outputs: dict[str, Output]) -> int:
+    """Constant and dot nodes disappear: consumers take over their value input's binding.
+    Returns the number of nodes elided."""
+    count = 0
+    for node in topological_order(outputs):
+        for inp in node.inputs.values():
+            while inp.connection is not None and inp.connection.node.category in ("constant", "dot"):
+                src = inp.connection.node.inputs["value" if inp.connection.node.category == "constant" else "in"]
+                inp.connection = src.connection
+                inp.value, inp.path = src.value, src.path
+                if src.socket is not None:
+                    inp.bind_socket(src.socket)
+                count += 1
+    for name, out in list(outputs.items()):
+        if out.node.category in ("constant", "dot") and out.node.inputs:
+            src = out.node.inputs["value" if out.node.category == "constant" else "in"]
+            if src.connection is not None:
+                outputs[name] = src.connection
+    return count
+
+
+def topological_order(outputs: dict[str, Output]) -> list[Node]:
+    """Depth-first post-order from the outputs: every node after the nodes it reads."""
+    order: list[Node] = []
+    state: dict[int, int] = {}  # 1 visiting, 2 done
+    for out in outputs.values():
+        stack = [(out.node, iter(list(out.node.upstream())))]
+        if state.get(id(out.node)) == 2:
+            continue
+        state[id(out.node)] = 1
+        while stack:
+            node, it = stack[-1]
+            nxt = next(it, None)
+            if nxt is None:
+                stack.pop()
+                state[id(node)] = 2
+                order.append(node)
+                continue
+            s = state.get(id(nxt))
+            if s == 1:
+                names = [n.path for n, _ in stack[[n for n, _ in stack].index(nxt):]] + [nxt.path]
+                raise ShaderGenError("cycle", "cycle in the graph: " + " -> ".join(names), nxt.path)
+            if s is None:
+                state[id(nxt)] = 1
+                stack.append((nxt, iter(list(nxt.upstream()))))
+    return order
+
+
+def assign_scopes(nodes: list[Node]) -> None:
+    """Seed 2.4 step 5: a node read only through one branch input of a conditional (directly or
+    through nodes of that branch) gets that branch as its scope; anything else is global."""
+    consumers: dict[int, list[tuple[Node, str]]] = {}
+    for node in nodes:
+        for inp in node.inputs.values():
+            if inp.connection is not None:
+                consumers.setdefault(id(inp.connection.node), []).append((node, inp.name))
+    for node in reversed(nodes):  # consumers before producers
+        uses = consumers.get(id(node))
+        if not uses:
+            node.scope = ()
+            continue
+        scopes = set()
+        for consumer, input_name in uses:
+            if input_name in BRANCH_INPUTS.get(consumer.category, ()):
+                scopes.add(consumer.scope + ((consumer, input_name),))
+            else:
+                scopes.add(consumer.scope)
+        node.scope = scopes.pop() if len(scopes) == 1 else _common_prefix(scopes)
+
+
+def _common_prefix(scopes: set[tuple]) -> tuple:
+    items = list(scopes)
+    prefix = items[0]
+    for s in items[1:]:
+        n = 0
+        while n < min(len(prefix), len(s)) and prefix[n] == s[n]:
+            n += 1
+        prefix = prefix[:n]
+    return prefix

@@ -1,0 +1,46 @@
+"""The canonical graph hash: the cache key of a generated shader.
+
+It covers everything the output depends on and nothing else: the prepared graph (nodes in
+topological order with their definitions, implementations, bound values, listing paths and
+connections), the target, the interface mode, the generator version and the library content
+hash. XML formatting, element order and unused nodes never reach the prepared graph, so they
+cannot change the key. Document-local definitions are hashed by content.
+"""
+import hashlib
+import json
+
+from . import __version__
+from .element import Element
+from .graph import Graph
+
+
+def _element_digest(e: Element) -> list:
+    return [e.category, sorted(e.attrs.items()), [_element_digest(c) for c in e.children]]
+
+
+def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int]) -> str:
+    """`local_ids`: ids of the implementation elements the document itself declares."""
+    index = {id(n): i for i, n in enumerate(graph.nodes)}
+    nodes = []
+    for n in graph.nodes:
+        inputs = []
+        for inp in n.inputs.values():
+            conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
+            meta = {k: inp.meta[k] for k in sorted(inp.meta) if k != "ui"}
+            inputs.append([inp.name, inp.type, _jsonable(inp.value), inp.path, conn, inp.authored, meta])
+        impl = n.implementation
+        impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
+        nodedef_key = _element_digest(n.nodedef) if id(impl) in local_ids else n.nodedef.name
+        scope = [[index[id(cond)], branch] for cond, branch in n.scope]
+        nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
+    outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
+    payload = json.dumps(
+        {"v": __version__, "target": target, "interface": interface, "library": library_hash,
+         "root": index.get(id(graph.root)) if graph.root is not None else None,
+         "nodes": nodes, "outputs": outputs},
+        sort_keys=True, separators=(",", ":"), default=str)
+    return hashlib.sha256(payload.encode()).hexdigest()
+
+
+def _jsonable(v):
+    return list(v) if isinstance(v, tuple) else v

@@ -1,0 +1,202 @@
+"""Data libraries: node definitions, implementations and their source files, indexed for resolution.
+
+Everything a generator knows about nodes comes from `.mtlx` files (seed 1.3.2). A process loads
+them once; the parsed tree is kept in an on-disk cache named by the content hash of every library
+file, so a cold process reads one JSON file instead of parsing XML. Documents may declare their own
+nodedefs, implementations and nodegraph implementations: `Scope` layers a document over a library.
+"""
+import hashlib
+import json
+import os
+from functools import lru_cache
+from pathlib import Path
+
+from .document import parse_document
+from .element import Element
+from .errors import ShaderGenError
+
+CACHE_FORMAT = 1
+DEFAULT_LIBRARY_ROOT = Path(__file__).resolve().parent.parent / "libraries"
+
+
+def library_root() -> Path:
+    return Path(os.environ.get("SHADERGEN_LIBRARIES", DEFAULT_LIBRARY_ROOT))
+
+
+def cache_dir() -> Path:
+    return Path(os.environ.get("SHADERGEN_CACHE_DIR", Path.home() / ".cache" / "shadergen"))
+
+
+class Index:
+    """Definitions found in one set of elements (a library, or one document)."""
+
+    def __init__(self):
+        self.nodedefs: dict[str, Element] = {}
+        self.nodedefs_by_node: dict[str, list[Element]] = {}
+        self.implementations: dict[str, list[Element]] = {}  # nodedef name -> implementation / nodegraph
+        self.geompropdefs: dict[str, Element] = {}
+        self.typedefs: dict[str, Element] = {}
+        self.units: dict[str, dict[str, float]] = {}  # unittype -> unit -> scale
+        self.targets: dict[str, str | None] = {}  # target -> inherited target
+
+    def add(self, root: Element) -> None:
+        for e in root.children:
+            cat = e.category
+            if cat == "nodedef":
+                self.nodedefs[e.name] = e
+                self.nodedefs_by_node.setdefault(e.get("node"), []).append(e)
+            elif cat == "implementation" or (cat == "nodegraph" and e.get("nodedef")):
+                self.implementations.setdefault(e.get("nodedef"), []).append(e)
+            elif cat == "geompropdef":
+                self.geompropdefs[e.name] = e
+            elif cat == "typedef":
+                self.typedefs[e.name] = e
+            elif cat == "unitdef":
+                units = self.units.setdefault(e.get("unittype"), {})
+                for u in e.children_of("unit"):
+                    units[u.name] = float(u.get("scale", "1"))
+            elif cat == "targetdef":
+                self.targets[e.name] = e.get("inherit")
+
+
+class Library(Index):
+    """The loaded data libraries of a process, with the hash that names their content."""
+
+    def __init__(self, root: Path, files: list[Path], content_hash: str, roots: list[Element]):
+        super().__init__()
+        self.root = root
+        self.files = files
+        self.content_hash = content_hash
+        for r in roots:
+            self.add(r)
+
+    @classmethod
+    def load(cls, root: Path | None = None) -> "Library":
+        root = Path(root or library_root())
+        files = sorted(p for p in root.rglob("*.mtlx"))
+        h = hashlib.sha256(f"shadergen-library-{CACHE_FORMAT}".encode())
+        for p in files:
+            h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
+        content_hash = h.hexdigest()
+        cached = cache_dir() / f"library-{content_hash[:24]}.json"
+        roots = _read_cache(cached)
+        if roots is None:
+            roots = [parse_document(p.read_bytes(), path=str(p)).root for p in files]
+            _write_cache(cached, roots)
+        return cls(root, files, content_hash, roots)
+
+    def target_chain(self, target: str) -> list[str]:
+        chain = []
+        while target and target not in chain:
+            chain.append(target)
+            target = self.targets.get(target)
+        return chain
+
+
+def _to_json(e: Element) -> list:
+    return [e.category, e.attrs, [_to_json(c) for c in e.children]]
+
+
+def _from_json(data: list, parent: Element | None, source: str | None) -> Element:
+    category, attrs, children = data
+    e = Element(category, attrs, parent, source)
+    e.children = [_from_json(c, e, source) for c in children]
+    return e
+
+
+def _read_cache(path: Path) -> list[Element] | None:
+    try:
+        with open(path, "rb") as f:
+            data = json.loads(f.read())
+        return [_from_json(d, None, src) for src, d in data]
+    except (OSError, ValueError, TypeError):
+        return None  # missing or corrupt: rebuilt from the .mtlx files
+
+
+def _write_cache(path: Path, roots: list[Element]) -> None:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(json.dumps([[r.source, _to_json(r)] for r in roots], separators=(",", ":")))
+        os.replace(tmp, path)  # atomic: concurrent processes never read half a file
+    except OSError:
+        pass  # a read-only home is not fatal: the next process parses again
+
+
+@lru_cache(maxsize=None)
+def default_library() -> Library:
+    return Library.load()
+
+
+@lru_cache(maxsize=4096)
+def read_source(path: str) -> str:
+    with open(path, encoding="utf-8") as f:
+        return f.read()
+
+
+class Scope:
+    """Definitions visible while generating one document: the document's own first, then the library's."""
+
+    def __init__(self, library: Library, document_root: Element | None):
+        self.library = library
+        self.local = Index()
+        if document_root is not None:
+            self.local.add(document_root)
+        self.layers = (self.local, library)
+
+    def nodedef(self, name: str) -> Element | None:
+        for layer in self.layers:
+            if name in layer.nodedefs:
+                return layer.nodedefs[name]
+        return None
+
+    def nodedefs_for(self, node: str) -> list[Element]:
+        out = []
+        for layer in self.layers:
+            out.extend(layer.nodedefs_by_node.get(node, ()))
+        return out
+
+    def geompropdef(self, name: str) -> Element | None:
+        for layer in self.layers:
+            if name in layer.geompropdefs:
+                return layer.geompropdefs[name]
+        return None
+
+    def unit_scale(self, unittype: str, unit: str) -> float | None:
+        for layer in self.layers:
+            scale = layer.units.get(unittype, {}).get(unit)
+            if scale is not None:
+                return scale
+        return None
+
+    def implementation(self, nodedef: Element, target: str) -> Element | None:
+        """The implementation of a nodedef for a target (or a target it inherits from); a nodegraph
+        implementation serves every target. Follows nodedef inheritance when the nodedef has none."""
+        chain = self.library.target_chain(target)
+        nd = nodedef
+        while nd is not None:
+            for t in chain:
+                for layer in self.layers:
+                    for impl in layer.implementations.get(nd.name, ()):
+                        if impl.category == "implementation" and impl.get("target", t) == t:
+                            return impl
+            for layer in self.layers:
+                for impl in layer.implementations.get(nd.name, ()):
+                    if impl.category == "nodegraph":
+                        return impl
+            parent = nd.get("inherit")
+            nd = self.nodedef(parent) if parent else None
+        return None
+
+    def nodedef_inputs(self, nodedef: Element) -> list[Element]:
+        """Inputs of a nodedef including inherited ones (the child's override the parent's)."""
+        parent_name = nodedef.get("inherit")
+        own = nodedef.children_of("input", "parameter", "token")
+        if not parent_name:
+            return own
+        parent = self.nodedef(parent_name)
+        if parent is None:
+            raise ShaderGenError("unknown_nodedef", f"nodedef '{nodedef.name}' inherits unknown '{parent_name}'",
+                                 nodedef.name)
+        names = {i.name for i in own}
+        return [i for i in self.nodedef_inputs(parent) if i.name not in names] + own

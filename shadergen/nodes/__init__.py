@@ -1,0 +1,29 @@
+"""Node implementations: the three data-driven kinds and the registry of dynamic ones (seed 2.3).
+
+`implementation_for` turns an <implementation> (or nodegraph) element into the object that
+writes its code. Dynamic implementations are Python classes registered by implementation name;
+their modules are imported here so that registering them is part of importing the package.
+"""
+from ..element import Element
+from ..errors import ShaderGenError
+from .base import REGISTRY, InlineImpl, NodeGraphImpl, NodeImpl, SourceFunctionImpl
+from . import application, convolution, geometric, material, transform  # noqa: F401  (registration)
+
+__all__ = ["NodeImpl", "implementation_for", "REGISTRY"]
+
+
+def implementation_for(elem: Element) -> NodeImpl:
+    if elem.category == "nodegraph":
+        return NodeGraphImpl(elem)
+    if elem.get("sourcecode") is not None:
+        return InlineImpl(elem.get("sourcecode"))
+    file = elem.get("file")
+    if file:
+        if file.endswith(".inline"):
+            return InlineImpl.from_file(elem)
+        return SourceFunctionImpl(elem)
+    cls = REGISTRY.get(elem.name)
+    if cls is None:
+        raise ShaderGenError("unknown_implementation",
+                             f"implementation '{elem.name}' has no source and no registered class", elem.name)
+    return cls()

@@ -1,0 +1,115 @@
+"""The implementation interface (seed's SgImplementation) and the data-driven kinds.
+
+Every implementation answers three questions for a node: which shader variables it needs
+(`create_variables`), which function definitions it needs (`emit_function_definition`, written
+once per stage by a stable key), and what code computes its outputs (`emit_function_call`). Calls
+receive the EmitContext: it knows the stages, the syntax, and how to spell an input's value.
+`ctx.closure` carries the shading context (reflection, transmission, indirect, emission) for BSDF
+nodes that are called once per context; it is None for ordinary data nodes.
+"""
+import os
+import re
+
+from ..element import Element
+from ..errors import ShaderGenError
+from ..library import read_source
+
+REGISTRY: dict[str, type["NodeImpl"]] = {}
+PLACEHOLDER = re.compile(r"\{\{\s*(\w+)\s*\}\}")
+INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$', re.M)
+
+
+def register(*names: str):
+    """Register a dynamic implementation class under one or more implementation names."""
+    def deco(cls):
+        for n in names:
+            REGISTRY[n] = cls
+        return cls
+    return deco
+
+
+class NodeImpl:
+    # Inputs that are settings of the implementation rather than values (never published).
+    fixed_inputs: frozenset[str] = frozenset()
+
+    def is_editable(self, input_name: str) -> bool:
+        return input_name not in self.fixed_inputs
+
+    def create_variables(self, node, ctx) -> None:
+        pass
+
+    def emit_function_definition(self, node, ctx) -> None:
+        pass
+
+    def emit_function_call(self, node, ctx) -> None:
+        raise NotImplementedError
+
+
+class InlineImpl(NodeImpl):
+    def __init__(self, expression: str):
+        self.expression = expression.strip()
+
+    @classmethod
+    def from_file(cls, elem: Element) -> "InlineImpl":
+        return cls(read_source(_source_path(elem, elem.get("file"))))
+
+    def emit_function_call(self, node, ctx) -> None:
+        def value(m):
+            name = m.group(1)
+            if name not in node.inputs:
+                raise ShaderGenError("invalid_implementation", f"inline expression names unknown input '{name}'",
+                                     node.path)
+            return ctx.syntax.negative_safe(ctx.value(node.inputs[name]))
+
+        out = next(iter(node.outputs.values()))
+        ctx.assign(out, PLACEHOLDER.sub(value, self.expression))
+
+
+class SourceFunctionImpl(NodeImpl):
+    def __init__(self, elem: Element):
+        self.path = _source_path(elem, elem.get("file"))
+        self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
+
+    def emit_function_definition(self, node, ctx) -> None:
+        ctx.emit_source_file(self.path)
+
+    def emit_function_call(self, node, ctx) -> None:
+        ctx.call(self.function, node)
+
+
+class NodeGraphImpl(NodeImpl):
+    """A nodegraph emitted as one function whose parameters are the nodedef's inputs (seed 2.3.3)."""
+
+    def __init__(self, elem: Element):
+        self.graph_elem = elem
+
+    def emit_function_definition(self, node, ctx) -> None:
+        ctx.emit_graph_function(self.graph_elem, node)
+
+    def emit_function_call(self, node, ctx) -> None:
+        ctx.call(ctx.graph_function_name(self.graph_elem), node)
+
+
+def _source_path(elem: Element, file: str) -> str:
+    """Source files are named relative to the .mtlx file that declares the implementation."""
+    base = os.path.dirname(elem.source) if elem.source else ""
+    path = os.path.normpath(os.path.join(base, file))
+    if not os.path.exists(path):
+        raise ShaderGenError("missing_source", f"implementation source '{file}' not found", elem.name)
+    return path
+
+
+def expand_includes(path: str, seen: set[str]) -> list[tuple[str, str]]:
+    """A source file and the files it #includes, dependencies first, each once (by path)."""
+    if path in seen:
+        return []
+    seen.add(path)
+    text = read_source(path)
+    out = []
+    for inc in INCLUDE.findall(text):
+        inc_path = os.path.normpath(os.path.join(os.path.dirname(path), inc))
+        if not os.path.exists(inc_path):
+            raise ShaderGenError("missing_source", f"'{path}' includes missing '{inc}'", path)
+        out.extend(expand_includes(inc_path, seen))
+    out.append((path, INCLUDE.sub("", text).strip("\n")))
+    return out

@@ -1,0 +1,111 @@
+"""Geometric nodes (seed 2.5, figure 6): data from the mesh, carried from the vertex stage.
+
+Each node asks for the app-data stream it reads and the vertex data that carries it to the
+pixel stage; the vertex stage computes the requested space once, however many nodes read it.
+"""
+from .base import NodeImpl, register
+
+WORLD = ("world",)
+
+
+def _space(node) -> str:
+    space = node.input_value("space", "object")
+    return "world" if space in WORLD else "object"
+
+
+class _SpaceVector(NodeImpl):
+    """position, normal, tangent, bitangent in object (= model) or world space."""
+    stream = ""  # app data suffix: position, normal, ...
+    world = ""  # vertex expression for world space
+    normalized = True
+    fixed_inputs = frozenset({"space", "index"})
+
+    def emit_function_call(self, node, ctx):
+        space = _space(node)
+        attr = ctx.app_data(f"i_{self.stream}", "vector3")
+        if space == "world":
+            ctx.private_uniform(self.matrix, "matrix44", ("vertex",))
+            expr = self.world.format(attr=attr, m=self.matrix)
+        else:
+            expr = attr
+        varying = ctx.vertex_data(f"{self.stream}{space.capitalize()}", "vector3", expr)
+        out = next(iter(node.outputs.values()))
+        ctx.assign(out, f"normalize({varying})" if self.normalized else varying)
+
+
+@register("IM_position_vector3_genglsl")
+class Position(_SpaceVector):
+    stream, matrix, normalized = "position", "u_worldMatrix", False
+    world = "hPositionWorld.xyz"
+
+
+@register("IM_normal_vector3_genglsl")
+class Normal(_SpaceVector):
+    stream, matrix = "normal", "u_worldInverseTransposeMatrix"
+    world = "normalize(({m} * vec4({attr}, 0.0)).xyz)"
+
+
+@register("IM_tangent_vector3_genglsl")
+class Tangent(_SpaceVector):
+    stream, matrix = "tangent", "u_worldMatrix"
+    world = "normalize(({m} * vec4({attr}, 0.0)).xyz)"
+
+
+@register("IM_bitangent_vector3_genglsl")
+class Bitangent(_SpaceVector):
+    stream, matrix = "bitangent", "u_worldMatrix"
+    world = "normalize(({m} * vec4({attr}, 0.0)).xyz)"
+
+
+@register("IM_texcoord_vector2_genglsl", "IM_texcoord_vector3_genglsl")
+class TexCoord(NodeImpl):
+    """The index selects the stream when the shader is generated; it stays listed as MaterialX does."""
+
+    def emit_function_call(self, node, ctx):
+        out = next(iter(node.outputs.values()))
+        index = int(node.input_value("index", 0))
+        attr = ctx.app_data(f"i_texcoord_{index}", out.type)
+        ctx.assign(out, ctx.vertex_data(f"texcoord_{index}", out.type, attr))
+
+
+@register("IM_geomcolor_float_genglsl", "IM_geomcolor_color3_genglsl", "IM_geomcolor_color4_genglsl")
+class GeomColor(NodeImpl):
+    SWIZZLE = {"float": ".r", "color3": ".rgb", "color4": ""}
+
+    def emit_function_call(self, node, ctx):
+        out = next(iter(node.outputs.values()))
+        index = int(node.input_value("index", 0))
+        attr = ctx.app_data(f"i_color_{index}", "color4")
+        ctx.assign(out, ctx.vertex_data(f"color_{index}", "color4", attr) + self.SWIZZLE[out.type])
+
+
+GEOMPROP_TYPES = ("integer", "boolean", "float", "color3", "color4", "vector2", "vector3", "vector4")
+
+
+@register(*(f"IM_geompropvalue_{t}_genglsl" for t in GEOMPROP_TYPES))
+class GeomPropValue(NodeImpl):
+    """A named primvar: a vertex stream `i_geomprop_<name>`; booleans cannot be vertex attributes,
+    so they come from a uniform `u_geomprop_<name>` instead."""
+    fixed_inputs = frozenset({"geomprop"})
+
+    def emit_function_call(self, node, ctx):
+        out = next(iter(node.outputs.values()))
+        name = node.input_value("geomprop", "") or node.name
+        if out.type == "boolean":
+            ctx.assign(out, ctx.private_uniform(f"u_geomprop_{name}", out.type))
+            return
+        attr = ctx.app_data(f"i_geomprop_{name}", out.type)
+        if out.type == "integer":  # integer varyings would need `flat`: carry it as a float
+            ctx.assign(out, f"int({ctx.vertex_data(f'geomprop_{name}', 'float', f'float({attr})')})")
+        else:
+            ctx.assign(out, ctx.vertex_data(f"geomprop_{name}", out.type, attr))
+
+
+@register("IM_geompropvalueuniform_string_genglsl", "IM_geompropvalueuniform_filename_genglsl")
+class GeomPropValueUniform(NodeImpl):
+    fixed_inputs = frozenset({"geomprop"})
+
+    def emit_function_call(self, node, ctx):
+        out = next(iter(node.outputs.values()))
+        name = node.input_value("geomprop", "") or node.name
+        ctx.assign(out, ctx.private_uniform(f"u_geomprop_{name}", out.type))

@@ -1,0 +1,13 @@
+"""Material nodes: a material is the surface (or volume) shader connected to it."""
+from .base import NodeImpl, register
+
+
+@register("IM_surfacematerial_genglsl", "IM_volumematerial_genglsl")
+class Material(NodeImpl):
+    def emit_function_call(self, node, ctx):
+        shader_input = node.inputs.get("surfaceshader") or node.inputs.get("volumeshader")
+        out = next(iter(node.outputs.values()))
+        if shader_input is not None and shader_input.connection is not None:
+            ctx.assign(out, ctx.value(shader_input))
+        else:
+            ctx.assign(out, ctx.syntax.literal(out.type, None))

@@ -1,0 +1,96 @@
+"""Images in and out: textures and environments read through OpenImageIO, renders written as PNG
+(sRGB, composited on a grey background), EXR (linear RGBA) or .npy (the raw float32 framebuffer).
+
+Every array here is float32 (height, width, channels) with the top row first. Framebuffer colour
+is treated as premultiplied by alpha, as MaterialX's surface shaders write it (colour is scaled by
+opacity), so supersampling averages it directly and compositing adds the background behind it.
+"""
+import os
+import struct
+import zlib
+
+import numpy as np
+
+from .errors import RenderError
+
+
+def read_image(path: str) -> np.ndarray:
+    """Any format OpenImageIO reads, as float32 (h, w, c) top row first; 8-bit files give
+    value / 255 with no colour conversion (colour spaces are the shader's business)."""
+    import OpenImageIO as oiio
+
+    image = oiio.ImageInput.open(path)
+    if image is None:
+        raise RenderError("invalid_image", f"cannot read image: {oiio.geterror() or path}", path)
+    try:
+        pixels = image.read_image(0, 0, 0, image.spec().nchannels, oiio.FLOAT)
+    finally:
+        image.close()
+    if pixels is None:
+        raise RenderError("invalid_image", f"cannot decode image: {oiio.geterror() or path}", path)
+    pixels = np.asarray(pixels, "f4")
+    return pixels[..., None] if pixels.ndim == 2 else pixels
+
+
+def srgb_encode(linear: np.ndarray) -> np.ndarray:
+    x = np.maximum(linear, 0.0)
+    return np.where(x <= 0.0031308, x * 12.92, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+
+
+def to_srgb8(rgba: np.ndarray, background: float = 0.18) -> np.ndarray:
+    """uint8 (h, w, 3) sRGB of a linear premultiplied RGBA image over a linear grey background.
+    NaN and Inf pixels become black rather than poisoning the conversion."""
+    rgba = np.nan_to_num(np.asarray(rgba, "f4"), nan=0.0, posinf=0.0, neginf=0.0)
+    alpha = np.clip(rgba[..., 3:4], 0.0, 1.0)
+    composite = rgba[..., :3] + background * (1.0 - alpha)
+    return (np.clip(srgb_encode(composite), 0.0, 1.0) * 255.0 + 0.5).astype("u1")
+
+
+def encode_png(rgba: np.ndarray, background: float = 0.18) -> bytes:
+    """PNG file bytes (8-bit sRGB RGB) of a linear RGBA render, composited over `background`."""
+    rgb = to_srgb8(rgba, background)
+    height, width = rgb.shape[:2]
+    # Each scanline is preceded by its filter type; 0 (none) keeps the encoder trivial.
+    raw = np.concatenate([np.zeros((height, 1), "u1"), rgb.reshape(height, width * 3)], 1).tobytes()
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)  # 8-bit truecolour
+    srgb_intent = b"\x00"  # sRGB chunk: perceptual rendering intent
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"sRGB", srgb_intent)
+            + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
+
+
+def write_image(path: str, rgba: np.ndarray, background: float = 0.18) -> None:
+    """Write a linear RGBA render by the file's extension: .png (sRGB over `background`),
+    .exr (linear RGBA float), .npy (the float32 array as is)."""
+    ext = os.path.splitext(path)[1].lower()
+    rgba = np.ascontiguousarray(rgba, "f4")
+    try:
+        if ext == ".png":
+            with open(path, "wb") as f:
+                f.write(encode_png(rgba, background))
+        elif ext == ".npy":
+            np.save(path, rgba)
+        elif ext == ".exr":
+            _write_exr(path, rgba)
+        else:
+            raise RenderError("invalid_output", f"cannot write {ext or 'extensionless'} files: use .png, .exr or .npy", path)
+    except OSError as exc:
+        raise RenderError("invalid_output", f"cannot write {path}: {exc.strerror}", path) from exc
+
+
+def _write_exr(path: str, rgba: np.ndarray) -> None:
+    import OpenImageIO as oiio
+
+    out = oiio.ImageOutput.create(path)
+    if out is None:
+        raise RenderError("invalid_output", f"OpenImageIO cannot write {path}: {oiio.geterror()}", path)
+    spec = oiio.ImageSpec(rgba.shape[1], rgba.shape[0], rgba.shape[2], oiio.FLOAT)
+    spec.channelnames = ("R", "G", "B", "A")[: rgba.shape[2]]
+    ok = out.open(path, spec) and out.write_image(rgba)
+    error = out.geterror()
+    out.close()
+    if not ok:
+        raise RenderError("invalid_output", f"cannot write {path}: {error}", path)

@@ -1,0 +1,110 @@
+"""Shader, stages and variable blocks (seed 2.6-2.7): what generation produces, before it is text.
+
+A Stage owns its variable blocks and a line writer. The writer applies indentation when a line is
+written and offers a `block()` context manager, so an exception can never leave indentation wrong.
+"""
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+
+from .types import value_to_json
+
+VERTEX, PIXEL = "vertex", "pixel"
+
+
+@dataclass(eq=False)
+class Variable:
+    name: str
+    type: str  # MaterialX type name
+    value: object = None
+    path: str | None = None
+    semantic: str | None = None
+    unit: str | None = None
+    colorspace: str | None = None
+    ui: dict | None = None
+    glsl_type: str | None = None  # set when the declaration differs from the type's usual spelling
+
+    def to_json(self) -> dict:
+        d = {"name": self.name, "type": self.type, "value": value_to_json(self.value), "path": self.path,
+             "semantic": self.semantic, "unit": self.unit, "colorspace": self.colorspace}
+        if self.ui:
+            d["ui"] = self.ui
+        return d
+
+
+class VariableBlock:
+    def __init__(self, name: str, instance: str = ""):
+        self.name = name
+        self.instance = instance  # e.g. "vd" for VertexData: members are written vd.member
+        self.variables: dict[str, Variable] = {}
+
+    def add(self, var: Variable) -> Variable:
+        return self.variables.setdefault(var.name, var)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.variables
+
+    def __iter__(self):
+        return iter(self.variables.values())
+
+    def __len__(self) -> int:
+        return len(self.variables)
+
+
+class Writer:
+    """Lines of code with explicit, exception-safe indentation."""
+
+    def __init__(self, indent: str = "    "):
+        self.lines: list[str] = []
+        self.depth = 0
+        self.unit = indent
+
+    def line(self, text: str = "") -> None:
+        self.lines.append(self.unit * self.depth + text if text else "")
+
+    def extend(self, text: str) -> None:
+        for ln in text.rstrip("\n").split("\n"):
+            self.lines.append(self.unit * self.depth + ln if ln.strip() else "")
+
+    @contextmanager
+    def block(self, opener: str, closer: str = "}"):
+        self.line(opener)
+        self.line("{")
+        self.depth += 1
+        try:
+            yield
+        finally:
+            self.depth -= 1
+            self.line(closer)
+
+    def text(self) -> str:
+        return "\n".join(self.lines) + "\n"
+
+
+BLOCKS = {
+    VERTEX: ("PublicUniforms", "PrivateUniforms", "AppData", "VertexData"),
+    PIXEL: ("PublicUniforms", "PrivateUniforms", "VertexData", "LightData", "Outputs"),
+}
+
+
+@dataclass(eq=False)
+class Stage:
+    name: str
+    blocks: dict[str, VariableBlock] = field(default_factory=dict)
+    functions: Writer = field(default_factory=Writer)  # function definitions, in emission order
+    main: Writer = field(default_factory=Writer)  # body of main()
+    emitted: set = field(default_factory=set)  # ids of function definitions and includes already written
+    calculated: set = field(default_factory=set)  # vertex data already assigned in main()
+
+    def __post_init__(self):
+        for b in BLOCKS[self.name]:
+            self.blocks[b] = VariableBlock(b, "vd" if b == "VertexData" else "")
+
+    def once(self, key) -> bool:
+        """True the first time `key` is seen: each function definition is emitted once per stage."""
+        if key in self.emitted:
+            return False
+        self.emitted.add(key)
+        return True
+
+    def listing(self) -> dict:
+        return {name: [v.to_json() for v in block] for name, block in self.blocks.items()}

@@ -1,0 +1,137 @@
+"""Lexical facts of GLSL 4.00 and ESSL 3.00: type names, literals, declarations, reserved words.
+
+A Syntax knows nothing of graphs; the generator asks it how to spell things.
+"""
+import math
+
+from ..types import TYPES, default_value
+
+# Closure and shader types are structs in the hardware targets (the PBR library fills them in).
+STRUCTS = {
+    "surfaceshader": "struct surfaceshader { vec3 color; vec3 transparency; };",
+    "volumeshader": "struct volumeshader { vec3 color; vec3 transparency; };",
+    "displacementshader": "struct displacementshader { vec3 offset; float scale; };",
+    "lightshader": "struct lightshader { vec3 intensity; vec3 direction; };",
+    "BSDF": "struct BSDF { vec3 response; vec3 throughput; };",
+    "EDF": "#define EDF vec3",
+    "VDF": "struct VDF { vec3 response; vec3 throughput; };",
+    "material": "#define material surfaceshader",
+}
+STRUCT_DEPENDENCIES = {"material": ("surfaceshader",)}
+STRUCT_ZERO = {
+    "surfaceshader": "surfaceshader(vec3(0.0), vec3(0.0))",
+    "volumeshader": "volumeshader(vec3(0.0), vec3(0.0))",
+    "displacementshader": "displacementshader(vec3(0.0), 1.0)",
+    "lightshader": "lightshader(vec3(0.0), vec3(0.0))",
+    "BSDF": "BSDF(vec3(0.0), vec3(1.0))",
+    "EDF": "EDF(0.0)",
+    "VDF": "VDF(vec3(0.0), vec3(1.0))",
+    "material": "material(vec3(0.0), vec3(0.0))",
+}
+TYPE_NAMES = {
+    "float": "float", "integer": "int", "boolean": "bool", "color3": "vec3", "color4": "vec4",
+    "vector2": "vec2", "vector3": "vec3", "vector4": "vec4", "matrix33": "mat3", "matrix44": "mat4",
+    "string": "int", "filename": "sampler2D", "geomname": "int",
+}
+RESERVED = set("""
+attribute const uniform varying buffer shared coherent volatile restrict readonly writeonly layout centroid flat
+smooth noperspective patch sample break continue do for while switch case default if else subroutine in out inout
+float double int void bool true false invariant precise discard return mat2 mat3 mat4 mat2x2 mat2x3 mat2x4 mat3x2
+mat3x3 mat3x4 mat4x2 mat4x3 mat4x4 vec2 vec3 vec4 ivec2 ivec3 ivec4 bvec2 bvec3 bvec4 dvec2 dvec3 dvec4 uint uvec2
+uvec3 uvec4 lowp mediump highp precision sampler1D sampler2D sampler3D samplerCube sampler2DShadow struct common
+partition active asm class union enum typedef template this resource goto inline noinline public static extern
+external interface long short half fixed unsigned superp input output filter sizeof cast namespace using main
+texture sample output input
+""".split())
+
+
+def _float(x: float) -> str:
+    if math.isnan(x):
+        return "0.0"
+    if math.isinf(x):
+        return "3.402823e38" if x > 0 else "-3.402823e38"
+    text = repr(float(x))
+    if "e" in text or "E" in text:
+        mantissa, exp = text.lower().split("e")
+        if "." not in mantissa:
+            mantissa += ".0"
+        return f"{mantissa}e{int(exp)}"
+    return text
+
+
+class Syntax:
+    name = "glsl"
+    version = "#version 400"
+    precision: tuple[str, ...] = ()
+    uniform_initializers = True
+    vertex_data_block = True  # interface blocks for vertex -> pixel data
+    reserved = RESERVED
+
+    def type_name(self, type_name: str) -> str:
+        return TYPE_NAMES.get(type_name, type_name)
+
+    def enum_index(self, value, meta: dict) -> int:
+        """String inputs become integers: the index of the value in `enum` (or the matching
+        `enumvalues` entry), as MaterialX's hardware generators do."""
+        enum = [e.strip() for e in meta.get("enum", "").split(",")] if meta.get("enum") else []
+        if not isinstance(value, str) or value not in enum:
+            return 0
+        i = enum.index(value)
+        values = [v.strip() for v in meta.get("enumvalues", "").split(",")] if meta.get("enumvalues") else []
+        if values and i < len(values):
+            try:
+                return int(float(values[i]))
+            except ValueError:
+                return i
+        return i
+
+    def literal(self, type_name: str, value, meta: dict | None = None) -> str:
+        if type_name in STRUCT_ZERO:
+            return STRUCT_ZERO[type_name]
+        if value is None:
+            value = default_value(type_name) if type_name in TYPES else 0.0
+        if type_name in ("string", "geomname"):
+            return str(self.enum_index(value, meta or {}))
+        if type_name == "boolean":
+            return "true" if value else "false"
+        if type_name == "integer":
+            return str(int(value))
+        if type_name == "float":
+            return _float(value)
+        if isinstance(value, tuple):
+            return f"{self.type_name(type_name)}({', '.join(_float(v) for v in value)})"
+        return _float(value)
+
+    def negative_safe(self, text: str) -> str:
+        """Inline expressions substitute literals into operators: keep `a - -1.0` unambiguous."""
+        return f"({text})" if text.startswith("-") else text
+
+    def struct_definitions(self, used: set[str]) -> list[str]:
+        needed = set(used)
+        for t in used:
+            needed.update(STRUCT_DEPENDENCIES.get(t, ()))
+        return [STRUCTS[t] for t in STRUCTS if t in needed]
+
+    def uniform_declaration(self, var_type: str, name: str, value, meta: dict | None = None) -> str:
+        glsl = self.type_name(var_type)
+        if self.uniform_initializers and var_type not in ("filename",) and var_type not in STRUCTS and value is not None:
+            return f"uniform {glsl} {name} = {self.literal(var_type, value, meta)};"
+        return f"uniform {glsl} {name};"
+
+    def header(self) -> list[str]:
+        return [self.version, *self.precision]
+
+    def vertex_data_member(self, name: str) -> str:
+        return f"vd.{name}" if self.vertex_data_block else f"vd_{name}"
+
+
+class GlslSyntax(Syntax):
+    pass
+
+
+class EsslSyntax(Syntax):
+    name = "essl"
+    version = "#version 300 es"
+    precision = ("precision highp float;", "precision highp int;")
+    uniform_initializers = False  # ESSL has no uniform initialisers: values come from the listing
+    vertex_data_block = False  # ESSL 3.00 has no in/out interface blocks

@@ -1,0 +1,123 @@
+"""The MaterialX type system: component counts, value parsing, and default values.
+
+Values are plain Python data so they hash, compare and serialise to JSON without help:
+float/int/bool/str for scalars and strings, tuples of floats for vectors, colours and
+matrices (row-major), None for closures and shaders.
+"""
+from dataclasses import dataclass
+
+from .errors import ShaderGenError
+
+
+@dataclass(frozen=True)
+class TypeDesc:
+    name: str
+    size: int  # number of scalar components; 0 for strings, closures and shaders
+    base: str  # "float", "integer", "boolean", "string", "closure"
+    semantic: str = ""  # "color", "shader", "material", "closure"
+
+    @property
+    def is_closure(self) -> bool:
+        return self.base == "closure"
+
+    @property
+    def is_aggregate(self) -> bool:
+        return self.base == "float" and self.size > 1
+
+
+_TYPES = [
+    TypeDesc("float", 1, "float"),
+    TypeDesc("integer", 1, "integer"),
+    TypeDesc("boolean", 1, "boolean"),
+    TypeDesc("color3", 3, "float", "color"),
+    TypeDesc("color4", 4, "float", "color"),
+    TypeDesc("vector2", 2, "float"),
+    TypeDesc("vector3", 3, "float"),
+    TypeDesc("vector4", 4, "float"),
+    TypeDesc("matrix33", 9, "float"),
+    TypeDesc("matrix44", 16, "float"),
+    TypeDesc("string", 0, "string"),
+    TypeDesc("filename", 0, "string"),
+    TypeDesc("geomname", 0, "string"),
+    TypeDesc("integerarray", 0, "integer"),
+    TypeDesc("floatarray", 0, "float"),
+    TypeDesc("BSDF", 0, "closure", "closure"),
+    TypeDesc("EDF", 0, "closure", "closure"),
+    TypeDesc("VDF", 0, "closure", "closure"),
+    TypeDesc("surfaceshader", 0, "closure", "shader"),
+    TypeDesc("volumeshader", 0, "closure", "shader"),
+    TypeDesc("displacementshader", 0, "closure", "shader"),
+    TypeDesc("lightshader", 0, "closure", "shader"),
+    TypeDesc("material", 0, "closure", "material"),
+    TypeDesc("none", 0, "closure"),
+]
+TYPES = {t.name: t for t in _TYPES}
+
+# Component names used by `channels` swizzles, per type.
+CHANNELS = {
+    "float": "r", "color3": "rgb", "color4": "rgba",
+    "vector2": "xy", "vector3": "xyz", "vector4": "xyzw",
+}
+
+
+def type_desc(name: str, where: str | None = None) -> TypeDesc:
+    try:
+        return TYPES[name]
+    except KeyError:
+        raise ShaderGenError("type_mismatch", f"unknown type '{name}'", where) from None
+
+
+def parse_value(type_name: str, text: str | None, where: str | None = None):
+    """Parse a MaterialX value string of the given type; None when there is no value."""
+    if text is None:
+        return None
+    t = type_desc(type_name, where)
+    try:
+        if t.base == "string" and t.size == 0 and not type_name.endswith("array"):
+            return text
+        if t.is_closure:
+            return None
+        if type_name == "boolean":
+            low = text.strip().lower()
+            if low not in ("true", "false", "1", "0"):
+                raise ValueError(text)
+            return low in ("true", "1")
+        if type_name == "integer":
+            return int(text.strip())
+        if type_name == "float":
+            return float(text.strip())
+        if type_name == "integerarray":
+            return tuple(int(p) for p in text.split(",") if p.strip())
+        if type_name == "floatarray":
+            return tuple(float(p) for p in text.split(",") if p.strip())
+        parts = tuple(float(p) for p in text.split(","))
+        if len(parts) != t.size:
+            raise ValueError(text)
+        return parts
+    except ValueError:
+        raise ShaderGenError("invalid_value", f"'{text}' is not a valid {type_name} value", where) from None
+
+
+def default_value(type_name: str):
+    """The zero value of a type (MaterialX's default for an input without a value)."""
+    t = type_desc(type_name)
+    if t.is_closure:
+        return None
+    if t.base == "string":
+        return "" if t.size == 0 and not type_name.endswith("array") else ()
+    if type_name == "boolean":
+        return False
+    if type_name == "integer":
+        return 0
+    if type_name == "float":
+        return 0.0
+    if type_name == "matrix33":
+        return (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+    if type_name == "matrix44":
+        return tuple(1.0 if i % 5 == 0 else 0.0 for i in range(16))
+    return (0.0,) * t.size
+
+
+def value_to_json(value):
+    """Listings carry values as JSON numbers, booleans, strings or arrays."""
+    return list(value) if isinstance(value, tuple) else value
