@@ -1,0 +1,6 @@
+// <convert> vector4 -> surfaceshader: an unlit surface emitting the value as colour (the fourth component is the opacity).
+void mx_convert_vector4_surfaceshader(vec4 v, out surfaceshader result)
+{
+    result.color = v.rgb * v.a;
+    result.transparency = vec3(1.0 - v.a);
+}

@@ -1,0 +1,6 @@
+#include "lib/mx_hsv.glsl"
+
+void mx_hsvtorgb_color3(vec3 c, out vec3 result)
+{
+    result = mx_hsvtorgb(c);
+}

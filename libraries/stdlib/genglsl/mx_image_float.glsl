@@ -1,0 +1,8 @@
+#include "lib/mx_texture.glsl"
+
+// <image> float: texcoord * uv_scale + uv_offset, v flipped, address modes and filter applied in the shader.
+void mx_image_float(sampler2D file, int layer, float dflt, vec2 texcoord, int uaddressmode, int vaddressmode, int filtertype, int framerange, int frameoffset, int frameendaction, vec2 uv_scale, vec2 uv_offset, out float result)
+{
+    vec2 uv = mx_image_uv(texcoord, uv_scale, uv_offset);
+    result = mx_image_fetch(file, vec4(dflt, 0.0, 0.0, 0.0), uv, uaddressmode, vaddressmode, filtertype).r;
+}

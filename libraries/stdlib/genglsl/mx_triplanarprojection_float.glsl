@@ -1,0 +1,7 @@
+#include "lib/mx_triplanar.glsl"
+
+// <triplanarprojection> float: see lib/mx_triplanar.glsl.
+void mx_triplanarprojection_float(sampler2D filex, sampler2D filey, sampler2D filez, int layerx, int layery, int layerz, float dflt, vec3 position, vec3 normal, int upaxis, float blend, int filtertype, int framerange, int frameoffset, int frameendaction, out float result)
+{
+    result = mx_triplanar_fetch(filex, filey, filez, vec4(dflt, 0.0, 0.0, 0.0), position, normal, upaxis, blend, filtertype).r;
+}
