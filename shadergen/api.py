@@ -27,7 +27,8 @@ SHADER_CATEGORIES_SKIPPED = ("nodedef", "implementation", "nodegraph", "input", 
 
 
 def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
-    """MaterialX's findRenderableElements: material nodes; else shader nodes; else graph outputs."""
+    """MaterialX's findRenderableElements: the material nodes; without any, every output of a
+    node graph (definitions' graphs included) and then the document's own outputs."""
     nodes = [e for e in doc.root.children if e.category not in SHADER_CATEGORIES_SKIPPED]
 
     def output_type(e: Element) -> str:
@@ -36,16 +37,16 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
     materials = [e for e in nodes if output_type(e) == "material"]
     if materials:
         return materials
-    shaders = [e for e in nodes if output_type(e) in ("surfaceshader", "volumeshader")]
-    if shaders:
-        return shaders
-    outputs = []
-    for e in doc.root.children:
-        if e.category == "output":
-            outputs.append(e)
-        elif e.category == "nodegraph" and not e.get("nodedef"):
-            outputs.extend(o for o in e.children_of("output") if o.get("type") not in ("BSDF", "EDF", "VDF"))
-    return outputs
+    closures = ("BSDF", "EDF", "VDF")
+    outputs = [o for g in doc.root.children_of("nodegraph") for o in g.children_of("output")
+               if o.get("type") not in closures]
+    return outputs + [o for o in doc.root.children_of("output") if o.get("type") not in closures]
+
+
+def internal_error(bug: Exception, where: str | None) -> ShaderGenError:
+    err = ShaderGenError("internal_error", f"generation failed: {type(bug).__name__}: {bug}", where)
+    err.element = where
+    return err
 
 
 @dataclass
@@ -115,6 +116,9 @@ class Generator:
             except ShaderGenError as err:
                 err.element = e.path
                 out.append(err)
+            except (ValueError, TypeError, KeyError, AttributeError, IndexError, RecursionError) as bug:
+                # A document that reaches a gap in our code still gets a record, never a traceback.
+                out.append(internal_error(bug, e.path))
         return out
 
     def prepare(self, source, **kw) -> Prepared:
@@ -146,6 +150,8 @@ class Generator:
                 yield p.emit()
             except ShaderGenError as e:
                 yield dict(base, element=p.element, error=e.to_dict())
+            except (ValueError, TypeError, KeyError, AttributeError, IndexError, RecursionError) as bug:
+                yield dict(base, element=p.element, error=internal_error(bug, p.element).to_dict())
 
     def nodedefs(self) -> list[dict]:
         out = []

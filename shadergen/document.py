@@ -46,9 +46,18 @@ def _convert(xml_elem, parent: Element | None, source: str | None) -> Element:
     return elem
 
 
+# MaterialX writes the <UDIM> and <UVTILE> filename tokens unescaped inside attribute values; its
+# lenient parser accepts that, expat does not, so they are escaped before parsing.
+FILENAME_TOKENS = ((b"<UDIM>", b"&lt;UDIM&gt;"), (b"<UVTILE>", b"&lt;UVTILE&gt;"))
+
+
 def _parse_text(text: str | bytes, where: str) -> "object":
     if len(text) > MAX_DOCUMENT_BYTES:
         raise ShaderGenError("too_large", f"document is larger than {MAX_DOCUMENT_BYTES} bytes", where)
+    if isinstance(text, str):
+        text = text.encode("utf-8")
+    for raw, escaped in FILENAME_TOKENS:
+        text = text.replace(raw, escaped)
     try:
         return fromstring(text, forbid_dtd=True, forbid_entities=True, forbid_external=True)
     except DefusedXmlException as e:

@@ -18,6 +18,7 @@ from .nodes import implementation_for
 from .nodes.base import expand_includes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.glsl import STRUCTS, Syntax
+from .types import TYPES
 
 CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}
 NOT_PUBLISHED = {"BSDF", "EDF", "VDF", "lightshader", "none"}
@@ -80,7 +81,22 @@ class EmitContext:
             return self.vars[id(inp.socket)]
         if id(inp) in self.vars:
             return self.vars[id(inp)]
+        if inp.type == "filename":  # a texture fixed inside an implementation still needs a sampler
+            return self.publish(inp, inp.path)
         return self.syntax.literal(inp.type, inp.value, inp.meta)
+
+    def publish(self, inp: Input, path: str | None) -> str:
+        listing_type, value = inp.type, inp.value
+        if inp.type == "string":
+            if inp.meta.get("enum"):
+                listing_type, value = "integer", self.syntax.enum_index(inp.value, inp.meta)
+            elif value == "":
+                value = None
+        name = self.vars[id(inp)] = self.namer(f"{inp.node.name}_{inp.name}")
+        self.add_variable(PIXEL, "PublicUniforms", Variable(
+            name, listing_type, value, path, unit=inp.meta.get("unit"), colorspace=inp.meta.get("colorspace"),
+            ui=inp.meta.get("ui")))
+        return name
 
     def output_name(self, out: Output) -> str:
         if id(out) not in self.vars:
@@ -234,6 +250,8 @@ def publish_interface(ctx: EmitContext, graph: Graph) -> None:
         for inp in node.inputs.values():
             if inp.connection is not None or inp.socket is not None or inp.type in NOT_PUBLISHED:
                 continue
+            if TYPES[inp.type].is_closure and node is not graph.root and not inp.meta.get("interface"):
+                continue  # an unconnected shader input inside the graph has nothing to edit
             if not node.impl.is_editable(inp.name) and inp.type != "filename":
                 continue
             if reduced and not (inp.type == "filename" or inp.meta.get("interface") or node is graph.root):
@@ -241,17 +259,7 @@ def publish_interface(ctx: EmitContext, graph: Graph) -> None:
             path = inp.path
             if node is graph.root and not inp.authored:
                 path = f"{node.nodedef.name}/{inp.name}"
-            listing_type, value = inp.type, inp.value
-            if inp.type == "string":
-                if inp.meta.get("enum"):
-                    listing_type, value = "integer", ctx.syntax.enum_index(inp.value, inp.meta)
-                elif value == "":
-                    value = None
-            name = ctx.namer(f"{node.name}_{inp.name}")
-            ctx.vars[id(inp)] = name
-            ctx.add_variable(PIXEL, "PublicUniforms", Variable(
-                name, listing_type, value, path, unit=inp.meta.get("unit"), colorspace=inp.meta.get("colorspace"),
-                ui=inp.meta.get("ui")))
+            ctx.publish(inp, path)
 
 
 def assign_outputs(ctx: EmitContext, graph: Graph) -> None:

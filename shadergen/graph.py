@@ -7,6 +7,7 @@ insert colour-space and unit transforms, elide constant and dot nodes, topologic
 cycle is an error naming its nodes), and compute conditional scopes. Publishing the interface
 (which inputs become uniforms) is the emitter's job, from the `Input.binding` facts set here.
 """
+import re
 from dataclasses import dataclass, field
 
 from . import types as T
@@ -315,8 +316,10 @@ class GraphBuilder:
             inp.value = T.parse_value(inp.type, source.get("value"), source.path) if source.get("value") is not None \
                 else inp.value
             inp.path = source.path
+            if source is not authored:
+                inp.meta["interface"] = True  # bound to a graph or document input: an interface value
             if inp.type == "filename" and inp.value:
-                inp.value = (source.inherited("fileprefix") or "") + inp.value
+                inp.value = (source.inherited("fileprefix") or "") + substitute_tokens(inp.value, source)
             for key in ("colorspace", "unit", "unittype"):
                 if source.get(key) and key not in inp.meta:
                     inp.meta[key] = source.get(key)
@@ -349,6 +352,10 @@ class GraphBuilder:
                 if self.interface is not None and name in self.interface:
                     return self.interface[name]
                 iface = graph.child(name) if graph is not None else None
+                if iface is None and graph is not None and graph.get("nodedef"):
+                    # a definition's graph generated on its own: the nodedef's inputs are its interface
+                    nodedef = self.scope.nodedef(graph.get("nodedef"))
+                    iface = nodedef.child(name) if nodedef is not None else None
                 if iface is None or iface.category != "input":
                     raise ShaderGenError("dangling_connection", f"interface input '{name}' not found", port.path)
                 port = iface
@@ -384,6 +391,23 @@ class GraphBuilder:
         return next(iter(node.outputs.values()))
 
 
+TOKEN = re.compile(r"\[(\w+)\]")
+
+
+def substitute_tokens(text: str, port: Element) -> str:
+    """Filename tokens `[name]` take the value of the nearest <token> on the node, its graph, or
+    the nodedef the graph implements (document-level tokens are not in scope, as in MaterialX)."""
+    if "[" not in text:
+        return text
+    tokens: dict[str, str] = {}
+    e = port.parent
+    while e is not None and e.category != "materialx":
+        for t in e.children_of("token"):
+            tokens.setdefault(t.name, t.get("value", ""))
+        e = e.parent
+    return TOKEN.sub(lambda m: tokens.get(m.group(1), m.group(0)), text)
+
+
 def input_meta_unit(inp: Input) -> str | None:
     """The unit the nodedef declares for an input (what the implementation expects)."""
     for decl in inp.node.nodedef.children_of("input"):
@@ -405,13 +429,19 @@ def _graph_of(port: Element) -> Element | None:
 # -- passes over a built graph --------------------------------------------------------------
 
 
+def _elidable(node: Node) -> bool:
+    """Constant nodes fold into their consumers; a dot is kept (its note is published) unless it
+    passes a texture, which GLSL cannot hold in a local variable."""
+    return node.category == "constant" or (node.category == "dot" and node.type == "filename")
+
+
 def elide_passthrough_nodes(outputs: dict[str, Output]) -> int:
-    """Constant and dot nodes disappear: consumers take over their value input's binding.
-    Returns the number of nodes elided."""
+    """Constant (and texture dot) nodes disappear: consumers take over their value input's
+    binding. Returns the number of nodes elided."""
     count = 0
     for node in topological_order(outputs):
         for inp in node.inputs.values():
-            while inp.connection is not None and inp.connection.node.category in ("constant", "dot"):
+            while inp.connection is not None and _elidable(inp.connection.node):
                 src = inp.connection.node.inputs["value" if inp.connection.node.category == "constant" else "in"]
                 inp.connection = src.connection
                 inp.value, inp.path = src.value, src.path
@@ -419,7 +449,7 @@ def elide_passthrough_nodes(outputs: dict[str, Output]) -> int:
                     inp.bind_socket(src.socket)
                 count += 1
     for name, out in list(outputs.items()):
-        if out.node.category in ("constant", "dot") and out.node.inputs:
+        if _elidable(out.node) and out.node.inputs:
             src = out.node.inputs["value" if out.node.category == "constant" else "in"]
             if src.connection is not None:
                 outputs[name] = src.connection

@@ -87,10 +87,10 @@ def parse_value(type_name: str, text: str | None, where: str | None = None):
         if type_name == "float":
             return float(text.strip())
         if type_name == "integerarray":
-            return tuple(int(p) for p in text.split(",") if p.strip())
+            return tuple(int(p) for p in text.replace(",", " ").split())
         if type_name == "floatarray":
-            return tuple(float(p) for p in text.split(",") if p.strip())
-        parts = tuple(float(p) for p in text.split(","))
+            return tuple(float(p) for p in text.replace(",", " ").split())
+        parts = tuple(float(p) for p in text.replace(",", " ").split())  # some writers separate with spaces
         if len(parts) != t.size:
             raise ValueError(text)
         return parts

@@ -4,8 +4,6 @@ from .base import NodeImpl, register
 
 @register("IM_time_float_genglsl")
 class Time(NodeImpl):
-    fixed_inputs = frozenset({"fps"})
-
     def emit_function_call(self, node, ctx):
         ctx.assign(next(iter(node.outputs.values())), ctx.private_uniform("u_time", "float"))
 

@@ -11,8 +11,6 @@ BLUR_TYPES = ("float", "color3", "color4", "vector2", "vector3", "vector4")
 
 @register(*(f"IM_blur_{t}_genglsl" for t in BLUR_TYPES))
 class Blur(NodeImpl):
-    fixed_inputs = frozenset({"filtertype"})
-
     def emit_function_call(self, node, ctx):
         ctx.assign(next(iter(node.outputs.values())), ctx.value(node.inputs["in"]))
 

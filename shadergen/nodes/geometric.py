@@ -52,9 +52,19 @@ class Tangent(_SpaceVector):
 
 
 @register("IM_bitangent_vector3_genglsl")
-class Bitangent(_SpaceVector):
-    stream, matrix = "bitangent", "u_worldMatrix"
-    world = "normalize(({m} * vec4({attr}, 0.0)).xyz)"
+class Bitangent(NodeImpl):
+    """Meshes carry normals and tangents; the bitangent is their cross product in the vertex stage."""
+    fixed_inputs = frozenset({"space", "index"})
+
+    def emit_function_call(self, node, ctx):
+        space = _space(node)
+        n, t = ctx.app_data("i_normal", "vector3"), ctx.app_data("i_tangent", "vector3")
+        expr = f"cross({n}, {t})"
+        if space == "world":
+            m = ctx.private_uniform("u_worldMatrix", "matrix44", ("vertex",))
+            expr = f"normalize(({m} * vec4({expr}, 0.0)).xyz)"
+        varying = ctx.vertex_data(f"bitangent{space.capitalize()}", "vector3", expr)
+        ctx.assign(next(iter(node.outputs.values())), f"normalize({varying})")
 
 
 @register("IM_texcoord_vector2_genglsl", "IM_texcoord_vector3_genglsl")
@@ -70,6 +80,7 @@ class TexCoord(NodeImpl):
 
 @register("IM_geomcolor_float_genglsl", "IM_geomcolor_color3_genglsl", "IM_geomcolor_color4_genglsl")
 class GeomColor(NodeImpl):
+    fixed_inputs = frozenset({"index"})
     SWIZZLE = {"float": ".r", "color3": ".rgb", "color4": ""}
 
     def emit_function_call(self, node, ctx):
@@ -79,14 +90,15 @@ class GeomColor(NodeImpl):
         ctx.assign(out, ctx.vertex_data(f"color_{index}", "color4", attr) + self.SWIZZLE[out.type])
 
 
-GEOMPROP_TYPES = ("integer", "boolean", "float", "color3", "color4", "vector2", "vector3", "vector4")
+GEOMPROP_TYPES = ("integer", "float", "color3", "color4", "vector2", "vector3", "vector4")
 
 
 @register(*(f"IM_geompropvalue_{t}_genglsl" for t in GEOMPROP_TYPES))
 class GeomPropValue(NodeImpl):
     """A named primvar: a vertex stream `i_geomprop_<name>`; booleans cannot be vertex attributes,
-    so they come from a uniform `u_geomprop_<name>` instead."""
-    fixed_inputs = frozenset({"geomprop"})
+    so they come from a uniform `u_geomprop_<name>` instead (and stay editable, as uniforms are).
+    For streams the primvar name and `default` are fixed when the shader is generated."""
+    fixed_inputs = frozenset({"geomprop", "default"})
 
     def emit_function_call(self, node, ctx):
         out = next(iter(node.outputs.values()))
@@ -99,6 +111,11 @@ class GeomPropValue(NodeImpl):
             ctx.assign(out, f"int({ctx.vertex_data(f'geomprop_{name}', 'float', f'float({attr})')})")
         else:
             ctx.assign(out, ctx.vertex_data(f"geomprop_{name}", out.type, attr))
+
+
+@register("IM_geompropvalue_boolean_genglsl")
+class GeomPropValueBoolean(GeomPropValue):
+    fixed_inputs = frozenset()
 
 
 @register("IM_geompropvalueuniform_string_genglsl", "IM_geompropvalueuniform_filename_genglsl")

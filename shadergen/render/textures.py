@@ -1,0 +1,163 @@
+"""File textures of a shader record: where a filename may be read from, how MaterialX says it is
+sampled, and the GL textures kept between renders.
+
+Images are uploaded top row first, untouched (float32, no colour conversion); the generated code
+flips v (MaterialX's fileTextureVerticalFlip) and converts colour spaces. A one-channel image is
+read as grey (swizzle RRR1), as MaterialX's GL texture handler does.
+"""
+import os
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import numpy as np
+
+from .context import gl_extras
+from .errors import RenderError
+from .imageio import read_image
+
+# MaterialX address modes (image node `uaddressmode`/`vaddressmode`) -> GL wrap modes.
+GL_CLAMP_TO_BORDER, GL_CLAMP_TO_EDGE, GL_REPEAT, GL_MIRRORED_REPEAT = 0x812D, 0x812F, 0x2901, 0x8370
+ADDRESS_MODES = {"constant": GL_CLAMP_TO_BORDER, "clamp": GL_CLAMP_TO_EDGE, "periodic": GL_REPEAT,
+                 "mirror": GL_MIRRORED_REPEAT}
+ADDRESS_MODE_ORDER = ("constant", "clamp", "periodic", "mirror")  # the enum's integer values
+FILTER_TYPE_ORDER = ("closest", "linear", "cubic")
+UNRESOLVABLE_TOKENS = ("<UDIM>", "<UVTILE>")
+_SWIZZLE = {1: "RRR1", 2: "RRRG"}  # grey and grey-alpha images read as grey
+
+
+@dataclass(frozen=True)
+class Sampling:
+    """How one filename uniform is sampled. The default (no sibling inputs) is MaterialX's:
+    periodic in both directions, linear with mipmaps, black border."""
+    wrap_u: int = GL_REPEAT
+    wrap_v: int = GL_REPEAT
+    closest: bool = False
+    border: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
+
+
+def _enum(value, names: tuple[str, ...]) -> str | None:
+    """An enum input's value, given as its string or its integer index."""
+    if isinstance(value, str) and value.strip().lower() in names:
+        return value.strip().lower()
+    try:
+        return names[int(value)]
+    except (TypeError, ValueError, IndexError):
+        return None
+
+
+def default_colour(value) -> tuple[float, float, float, float] | None:
+    """An image node's `default` input as RGBA: a float is grey, missing channels are 0, alpha 1."""
+    if value is None or isinstance(value, bool):
+        return None
+    if isinstance(value, str):
+        try:
+            value = [float(x) for x in value.replace(",", " ").split()]
+        except ValueError:
+            return None
+    values = [float(value)] * 3 if isinstance(value, (int, float)) else [float(x) for x in value][:4]
+    if not values:
+        return None
+    return tuple((values + [0.0, 0.0, 0.0])[:3] + (values[3:4] or [1.0]))
+
+
+def sampling_from(siblings: dict[str, object]) -> Sampling:
+    """Sampling of an image node from its other inputs (`uaddressmode`, `vaddressmode`,
+    `filtertype`, `default`), as MaterialX's renderer sets GL sampler state; inputs absent from
+    the record keep MaterialX's defaults. "closest" samples the nearest texel of the nearest mip
+    level; "linear" and "cubic" filter trilinearly (GL has no cubic filter)."""
+    u = _enum(siblings.get("uaddressmode"), ADDRESS_MODE_ORDER)
+    v = _enum(siblings.get("vaddressmode"), ADDRESS_MODE_ORDER)
+    return Sampling(wrap_u=ADDRESS_MODES[u] if u else GL_REPEAT, wrap_v=ADDRESS_MODES[v] if v else GL_REPEAT,
+                    closest=_enum(siblings.get("filtertype"), FILTER_TYPE_ORDER) == "closest",
+                    border=default_colour(siblings.get("default")) or Sampling.border)
+
+
+def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
+                 texture_roots: list[str]) -> tuple[str | None, str | None]:
+    """(path, None) for a readable file, or (None, why not). A relative name is looked up in the
+    document's folder, then in each search path; whatever it resolves to (symbolic links
+    followed) must lie inside the document's folder, a search path or a texture root, so a
+    document cannot make the renderer read arbitrary files."""
+    if any(token in name for token in UNRESOLVABLE_TOKENS):
+        return None, f"{name}: UDIM/UVTILE file sets are not supported by the thumbnail renderer"
+    bases = [d for d in [document_dir, *search_paths] if d]
+    roots = [os.path.realpath(d) for d in [*bases, *texture_roots]]
+    candidates = [name] if os.path.isabs(name) else [os.path.join(b, name) for b in bases]
+    outside = None
+    for candidate in candidates:
+        try:
+            real = os.path.realpath(candidate)
+            exists = os.path.isfile(real)
+        except (OSError, ValueError):  # e.g. an embedded NUL byte
+            continue
+        if not exists:
+            continue
+        if any(os.path.commonpath([real, root]) == root for root in roots):
+            return real, None
+        outside = real
+    if outside:
+        return None, f"{name}: resolves to {outside}, outside the allowed folders"
+    where = ", ".join(bases) if bases else "no folder (give a document folder or search paths)"
+    return None, f"{name}: not found (looked in {where})"
+
+
+class TextureCache:
+    """GL textures of image files, by resolved path and modification time, least recently used
+    first out when over `budget_bytes` (trimmed between renders, never during one), and 1 x 1
+    textures of constant colours for missing files and unbound samplers."""
+
+    def __init__(self, budget_bytes: int = 512 << 20):
+        self.budget_bytes = budget_bytes
+        self._files: OrderedDict[tuple, object] = OrderedDict()
+        self._constants: dict[tuple, object] = {}
+
+    def file(self, ctx, path: str):
+        stat = os.stat(path)
+        key = (path, stat.st_mtime_ns, stat.st_size)
+        texture = self._files.get(key)
+        if texture is None:
+            texture = upload(ctx, read_image(path))
+            self._files[key] = texture
+        self._files.move_to_end(key)
+        return texture
+
+    def constant(self, ctx, rgba: tuple[float, float, float, float]):
+        texture = self._constants.get(rgba)
+        if texture is None:
+            texture = self._constants[rgba] = upload(ctx, np.array(rgba, "f4").reshape(1, 1, 4))
+        return texture
+
+    def trim(self) -> None:
+        total = sum(t.width * t.height * t.components * 4 for t in self._files.values())
+        while self._files and total > self.budget_bytes:
+            _, texture = self._files.popitem(last=False)
+            total -= texture.width * texture.height * texture.components * 4
+            texture.release()
+
+
+def upload(ctx, image: np.ndarray):
+    """A float32 (h, w, c) image, top row first, as a mipmapped GL texture (rows in the same
+    order: GL's t = 0 is the first row uploaded, which is what the generated code's v flip
+    expects)."""
+    image = np.ascontiguousarray(image, "f4")
+    height, width, channels = image.shape
+    if channels > 4:
+        image, channels = np.ascontiguousarray(image[..., :4]), 4
+    texture = ctx.texture((width, height), channels, image.tobytes(), dtype="f4")
+    if channels in _SWIZZLE:
+        texture.swizzle = _SWIZZLE[channels]
+    texture.build_mipmaps()
+    return texture
+
+
+def bind(texture, unit: int, sampling: Sampling) -> None:
+    """Bind to a texture unit with the sampler state of `sampling` (set on every bind: one cached
+    texture may be sampled differently by different materials)."""
+    import moderngl
+
+    if sampling.closest:
+        texture.filter = (moderngl.NEAREST_MIPMAP_NEAREST, moderngl.NEAREST)
+    else:
+        texture.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+    texture.use(location=unit)  # after `filter`, which binds on a unit of moderngl's own
+    gl_extras().set_wrap(sampling.wrap_u, sampling.wrap_v, sampling.border)  # acts on the active unit
