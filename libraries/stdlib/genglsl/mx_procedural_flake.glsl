@@ -7,8 +7,9 @@
 
 #include "lib/mx_hash_noise.glsl"
 
-// Random rotation of p from three uniform numbers in [0, 1]: rotation about z by 2*pi*r.x,
-// then a Householder reflection, negated, about the direction given by r.y (angle) and r.z.
+// Uniformly random rotation of p from three uniform numbers in [0, 1] (Arvo): a rotation about
+// z by 2*pi*r.x, composed with a reflection through the plane normal to a random direction
+// v (azimuth 2*pi*r.y, |v|^2 = 2, v.z = sqrt(2 - 2*r.z)), negated to keep it a rotation.
 vec3 mx_flake_rotate(vec3 p, vec3 r)
 {
     float theta = 6.283185307179586 * r.x;

@@ -19,10 +19,8 @@ vec4 mx_ramp_interval(float x, float lo, float hi, vec4 c1, vec4 c2, int interpo
     float w = 0.0;
     if (interpolation < 1)
         w = (clamp(x, lo, hi) - lo) / (hi - lo);
-    else if (x >= hi)
-        w = 1.0;
-    else if (x > lo)
-        w = smoothstep(lo, hi, x);
+    else
+        w = (x >= hi) ? 1.0 : smoothstep(lo, hi, x);   // x > lo holds here
     return mix(c1, c2, w);
 }
 

@@ -13,7 +13,7 @@ void mx_wn_search(vec2 p, float jitter, out vec3 dist, out vec2 nearest)
     vec2 fl = floor(p);
     ivec2 base = ivec2(fl);
     vec2 local = p - fl;
-    dist = vec3(1e6);
+    dist = vec3(1.0e6);
     nearest = vec2(0.0);
     for (int i = -1; i <= 1; ++i)
     {
@@ -47,7 +47,7 @@ void mx_wn_search(vec3 p, float jitter, out vec3 dist, out vec3 nearest)
     vec3 fl = floor(p);
     ivec3 base = ivec3(fl);
     vec3 local = p - fl;
-    dist = vec3(1e6);
+    dist = vec3(1.0e6);
     nearest = vec3(0.0);
     for (int i = -1; i <= 1; ++i)
     {
