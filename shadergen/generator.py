@@ -264,6 +264,8 @@ def publish_interface(ctx: EmitContext, graph: Graph) -> None:
 
 def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
     for name, out in graph.outputs.items():
+        if out.type in ("filename", "string"):
+            raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn", name)
         var = ctx.namer(name)
         ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
         ctx.body.line(f"{var} = {display_value(out.type, ctx.vars[id(out)])};")

@@ -1,0 +1,127 @@
+"""`shadergen render`: a material thumbnail from a document (through our generator) or from any
+shader record (--record: ours, the reference oracle's, hand-written). Errors are one line on
+stderr (and a JSON error object on stdout with --json) and exit code 1, never a traceback."""
+import json
+import os
+import sys
+
+from shadergen.errors import ShaderGenError
+
+
+def add_arguments(parser) -> None:
+    parser.add_argument("document", nargs="?", help="MaterialX document (.mtlx) to generate and render")
+    parser.add_argument("--record", metavar="REC.json",
+                        help="render this shader record (JSON, or JSON Lines: first record or --element; - for stdin)")
+    parser.add_argument("--element", metavar="NAMEPATH", help="renderable element (default: the first)")
+    parser.add_argument("-o", "--output", metavar="OUT.png", help="sRGB PNG composited on --background")
+    parser.add_argument("--exr", metavar="OUT.exr", help="linear RGBA EXR")
+    parser.add_argument("--npy", metavar="OUT.npy", help="the linear RGBA float32 framebuffer, top row first")
+    parser.add_argument("--size", type=int, default=256, help="image width and height in pixels (default 256)")
+    parser.add_argument("--ss", type=int, default=1, metavar="N", help="supersample N x N per pixel")
+    parser.add_argument("--mesh", default="sphere", help="sphere (default), plane, or a .obj file")
+    parser.add_argument("--env", metavar="LATLONG", help="lat-long radiance map (.hdr/.exr); default: procedural sky")
+    parser.add_argument("--irr", metavar="LATLONG", help="lat-long irradiance map; default: computed from --env")
+    parser.add_argument("--env-intensity", type=float, default=1.0, help="u_envLightIntensity (default 1)")
+    parser.add_argument("--env-samples", type=int, default=16, help="u_envRadianceSamples (default 16)")
+    parser.add_argument("--lights", metavar="LIGHTS.mtlx", help="light rig: a document of lightshader nodes")
+    parser.add_argument("--search-path", action="append", default=[], metavar="DIR",
+                        help="folder to resolve texture names in after the document's own (repeatable)")
+    parser.add_argument("--texture-root", action="append", default=[], metavar="DIR",
+                        help="further folder textures may be read from (repeatable)")
+    parser.add_argument("--background", type=float, default=0.18, help="linear grey behind the object in the PNG")
+    parser.add_argument("--repeat", type=int, default=1, metavar="N", help="draw N frames to time a steady frame")
+    parser.add_argument("--json", action="store_true", help="print a JSON summary (or error) on stdout")
+
+
+def run(args) -> int:
+    try:
+        return _run(args)
+    except ShaderGenError as exc:
+        return _fail(args, exc.to_dict())
+    except Exception as exc:  # the contract: a message, never a traceback
+        return _fail(args, {"code": "internal_error", "message": f"{type(exc).__name__}: {exc}", "where": None})
+
+
+def _fail(args, error: dict) -> int:
+    where = f" (at {error['where']})" if error.get("where") else ""
+    print(f"shadergen render: {error['code']}: {error['message']}{where}", file=sys.stderr)
+    if args.json:
+        print(json.dumps({"document": args.document, "element": args.element, "error": error}))
+    return 1
+
+
+def _run(args) -> int:
+    from . import Environment, RenderError, Renderer
+    from .imageio import write_image
+
+    outputs = [p for p in (args.output, args.exr, args.npy) if p]
+    if not outputs:
+        raise RenderError("invalid_request", "nothing to write: give -o OUT.png, --exr or --npy")
+    if bool(args.document) == bool(args.record):
+        raise RenderError("invalid_request", "give either a document or --record REC.json")
+    record = _record_from_file(args.record, args.element) if args.record else _record_from_document(args.document, args.element)
+    if args.irr and not args.env:
+        raise RenderError("invalid_request", "--irr needs --env (the procedural sky computes its own)")
+    env = Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
+    document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
+    renderer = Renderer(texture_roots=args.texture_root, search_paths=args.search_path)
+    result = renderer.render(record, size=args.size, mesh=args.mesh, env=env, env_samples=args.env_samples,
+                             lights=args.lights, supersample=args.ss, document_dir=document_dir,
+                             frames=args.repeat)
+    for path in outputs:
+        write_image(path, result.rgba, background=args.background)
+    for warning in result.warnings:
+        print(f"shadergen render: warning: {warning}", file=sys.stderr)
+    t = result.timings_ms
+    print(f"shadergen render: {record.get('element') or 'record'} {args.size}x{args.size}"
+          f"{f' ss{args.ss}' if args.ss > 1 else ''}: compile+link {t['compile_link']:.1f} ms, "
+          f"first frame {t['first_frame']:.1f} ms, frame {t['frame']:.1f} ms", file=sys.stderr)
+    if args.json:
+        print(json.dumps({"document": args.document or record.get("document"), "element": record.get("element"),
+                          "outputs": outputs, "timings_ms": t, "warnings": result.warnings}))
+    return 0
+
+
+def _record_from_file(path: str, element: str | None) -> dict:
+    from . import RenderError
+
+    try:
+        text = sys.stdin.read() if path == "-" else open(path, encoding="utf-8").read()
+    except OSError as exc:
+        raise RenderError("invalid_record", f"cannot read {path}: {exc.strerror}", path) from exc
+    try:
+        records = [json.loads(text)]
+    except json.JSONDecodeError:
+        try:  # JSON Lines, as `generate` and the oracle print
+            records = [json.loads(line) for line in text.splitlines() if line.strip()]
+        except json.JSONDecodeError as exc:
+            raise RenderError("invalid_record", f"{path} is neither JSON nor JSON Lines: {exc}", path) from exc
+    return _choose(records, element, path)
+
+
+def _record_from_document(path: str, element: str | None) -> dict:
+    from . import RenderError
+
+    try:
+        from shadergen.api import generate_file
+    except ImportError as exc:
+        raise RenderError("unavailable", "this build has no generator (shadergen.api); render a record "
+                          "with --record REC.json instead") from exc
+    return _choose(generate_file(path, target="glsl", element=element), element, path)
+
+
+def _choose(records: list, element: str | None, source: str) -> dict:
+    """The record of `element` (its name path), else the first that is not an error."""
+    from . import RenderError
+
+    if element:
+        matching = [r for r in records if isinstance(r, dict) and r.get("element") == element]
+        if not matching:
+            raise RenderError("invalid_request", f"no record for element {element!r} in {source}", element)
+        return matching[0]  # an error record is reported as such by the renderer
+    usable = [r for r in records if isinstance(r, dict) and "error" not in r]
+    if usable:
+        return usable[0]
+    if records and isinstance(records[0], dict):
+        return records[0]
+    raise RenderError("invalid_record", f"{source} holds no shader record", source)

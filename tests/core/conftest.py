@@ -1,0 +1,30 @@
+import shutil
+import subprocess
+import tempfile
+import os
+
+import pytest
+
+from shadergen.api import Generator
+
+
+@pytest.fixture(scope="session")
+def gen() -> Generator:
+    return Generator()
+
+
+def doc(body: str, version: str = "1.39") -> str:
+    return f'<?xml version="1.0"?>\n<materialx version="{version}">\n{body}\n</materialx>\n'
+
+
+def glslang(source: str, stage: str) -> tuple[bool, str]:
+    """Compile with the real reference compiler; stage is 'vertex' or 'pixel'."""
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "s." + ("vert" if stage == "vertex" else "frag"))
+        with open(path, "w") as f:
+            f.write(source)
+        p = subprocess.run(["glslangValidator", path], capture_output=True, text=True)
+    return p.returncode == 0, p.stdout
+
+
+needs_glslang = pytest.mark.skipif(shutil.which("glslangValidator") is None, reason="glslang-tools not installed")

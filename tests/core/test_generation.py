@@ -1,0 +1,175 @@
+"""Each generation mechanism, checked on the code and listings it produces."""
+import pytest
+
+from shadergen.errors import ShaderGenError
+
+from .conftest import doc, glslang, needs_glslang
+
+
+def first(gen, body, **kw):
+    return gen.prepare(doc(body), **kw).emit()
+
+
+def pixel(rec):
+    return rec["stages"]["pixel"]
+
+
+def public(rec):
+    return {v["path"]: v for v in rec["blocks"]["pixel"]["PublicUniforms"]}
+
+
+def test_inline_expression_substitutes_inputs(gen):
+    rec = first(gen, '<add name="a" type="float"><input name="in1" type="float" value="0.25"/>'
+                     '<input name="in2" type="float" value="-0.5"/></add><output name="o" type="float" nodename="a"/>')
+    assert "float a_out = a_in1 + a_in2;" in pixel(rec)
+    assert public(rec)["a/in2"]["value"] == -0.5
+
+
+def test_reduced_interface_writes_constants_and_keeps_negative_literals_safe(gen):
+    rec = first(gen, '<subtract name="s" type="float"><input name="in1" type="float" value="1"/>'
+                     '<input name="in2" type="float" value="-0.5"/></subtract><output name="o" type="float" nodename="s"/>',
+                interface="reduced")
+    assert "float s_out = 1.0 - (-0.5);" in pixel(rec)
+    assert rec["blocks"]["pixel"]["PublicUniforms"] == []
+
+
+def test_source_function_is_emitted_once_with_its_includes(gen):
+    body = ''.join(f'<noise3d name="n{i}" type="float"/>' for i in range(2))
+    body += '<add name="a" type="float"><input name="in1" type="float" nodename="n0"/><input name="in2" type="float" nodename="n1"/></add>'
+    rec = first(gen, body + '<output name="o" type="float" nodename="a"/>')
+    src = pixel(rec)
+    assert src.count("uint mx_hn_final(") == 1
+    assert "n0_out" in src and "n1_out" in src
+
+
+def test_nodegraph_implementation_becomes_a_function(gen):
+    rec = first(gen, '<safepower name="p" type="float"><input name="in1" type="float" value="-2"/></safepower>'
+                     '<output name="o" type="float" nodename="p"/>')
+    assert "void NG_safepower_float(" in pixel(rec)
+    assert "NG_safepower_float(p_in1, p_in2, p_out);" in pixel(rec)
+
+
+def test_dynamic_texcoord_writes_both_stages(gen):
+    rec = first(gen, '<texcoord name="t" type="vector2"><input name="index" type="integer" value="1"/></texcoord>'
+                     '<output name="o" type="vector2" nodename="t"/>')
+    assert "vd.texcoord_1 = i_texcoord_1;" in rec["stages"]["vertex"]
+    assert "vec2 t_out = vd.texcoord_1;" in pixel(rec)
+    assert [v["name"] for v in rec["blocks"]["vertex"]["AppData"]] == ["i_position", "i_texcoord_1"]
+
+
+def test_default_geomprop_is_connected_once(gen):
+    rec = first(gen, '<image name="a" type="color3"/><image name="b" type="color3"/>'
+                     '<add name="s" type="color3"><input name="in1" type="color3" nodename="a"/>'
+                     '<input name="in2" type="color3" nodename="b"/></add><output name="o" type="color3" nodename="s"/>')
+    assert pixel(rec).count("= vd.texcoord_0;") == 1
+    assert public(rec)["UV0"]["name"] == "geomprop_UV0_index"
+
+
+def test_constant_nodes_fold_into_their_consumers(gen):
+    rec = first(gen, '<constant name="c" type="float"><input name="value" type="float" value="3"/></constant>'
+                     '<sin name="s" type="float"><input name="in" type="float" nodename="c"/></sin>'
+                     '<output name="o" type="float" nodename="s"/>')
+    assert "c_out" not in pixel(rec)
+    assert public(rec)["c/value"]["name"] == "s_in"
+
+
+def test_unused_nodes_are_pruned(gen):
+    rec = first(gen, '<sin name="used" type="float"/><cos name="unused" type="float"/>'
+                     '<output name="o" type="float" nodename="used"/>')
+    assert "unused" not in pixel(rec)
+
+
+def test_cycle_is_an_error_naming_the_nodes(gen):
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(doc('<sin name="a" type="float"><input name="in" type="float" nodename="b"/></sin>'
+                        '<cos name="b" type="float"><input name="in" type="float" nodename="a"/></cos>'
+                        '<output name="o" type="float" nodename="a"/>'))
+    assert e.value.code == "cycle" and "a" in e.value.message and "b" in e.value.message
+
+
+def test_branch_only_nodes_are_computed_inside_their_branch(gen):
+    rec = first(gen, '<noise2d name="expensive" type="float"/>'
+                     '<ifgreater name="pick" type="float"><input name="in1" type="float" nodename="expensive"/>'
+                     '<input name="in2" type="float" value="0.5"/></ifgreater><output name="o" type="float" nodename="pick"/>')
+    src = pixel(rec)
+    branch = src[src.index("if (pick_value1 > pick_value2)"):src.index("else")]
+    assert "expensive_out" in branch and "mx_noise2d" in branch
+
+
+def test_unknown_node_and_type_mismatch(gen):
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(doc('<frobnicate name="f" type="float"/><output name="o" type="float" nodename="f"/>'))
+    assert e.value.code == "unknown_node" and e.value.where == "f"
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(doc('<add name="a" type="float"><input name="in1" type="color3" value="1,1,1"/></add>'
+                        '<output name="o" type="float" nodename="a"/>'))
+    assert e.value.code == "type_mismatch"
+
+
+def test_dangling_connection(gen):
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(doc('<sin name="a" type="float"><input name="in" type="float" nodename="nowhere"/></sin>'
+                        '<output name="o" type="float" nodename="a"/>'))
+    assert e.value.code == "dangling_connection" and e.value.where == "a/in"
+
+
+def test_colorspace_inserts_a_transform(gen):
+    rec = first(gen, '<multiply name="m" type="color3"><input name="in1" type="color3" value="0.5,0.5,0.5" '
+                     'colorspace="srgb_texture"/></multiply><output name="o" type="color3" nodename="m"/>')
+    assert "m_in1_cm" in pixel(rec)
+    assert public(rec)["m/in1"]["colorspace"] == "srgb_texture"
+
+
+def test_units_insert_a_conversion(gen):
+    rec = first(gen, '<multiply name="m" type="float"><input name="in1" type="float" value="10" unit="centimeter" '
+                     'unittype="distance"/></multiply><output name="o" type="float" nodename="m"/>')
+    factor = next(v for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["name"] == "m_in1_unit_in2")
+    assert factor["value"] == pytest.approx(0.01)
+
+
+def test_enum_strings_become_integer_uniforms(gen):
+    rec = first(gen, '<image name="i" type="color3"><input name="uaddressmode" type="string" value="mirror"/></image>'
+                     '<output name="o" type="color3" nodename="i"/>')
+    v = public(rec)["i/uaddressmode"]
+    assert (v["type"], v["value"]) == ("integer", 3)
+    assert "uniform int i_uaddressmode = 3;" in pixel(rec)
+
+
+def test_reserved_words_are_renamed(gen):
+    rec = first(gen, '<sin name="out" type="float"/><output name="o" type="float" nodename="out"/>')
+    assert "float out_out" in pixel(rec) or "float out_out1" in pixel(rec)
+
+
+def test_hash_ignores_formatting_order_and_unused_nodes_but_not_values(gen):
+    a = doc('<sin name="s" type="float"><input name="in" type="float" value="0.5"/></sin><output name="o" type="float" nodename="s"/>')
+    b = doc('<output name="o"   type="float" nodename="s"/>\n\n<cos name="spare" type="float"/>'
+            '<sin type="float" name="s"><input value="0.5" name="in" type="float"/></sin>')
+    c = a.replace('0.5', '0.6')
+    ha, hb, hc = (gen.prepare(x).hash for x in (a, b, c))
+    assert ha == hb != hc
+    assert gen.prepare(a).emit()["stages"] == gen.prepare(b).emit()["stages"]
+
+
+def test_generation_is_deterministic(gen):
+    body = '<fractal3d name="f" type="color3"/><output name="o" type="color3" nodename="f"/>'
+    r1, r2 = first(gen, body), first(gen, body)
+    assert r1["stages"] == r2["stages"] and r1["blocks"] == r2["blocks"] and r1["hash"] == r2["hash"]
+
+
+def test_unknown_target(gen):
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(doc('<sin name="s" type="float"/><output name="o" type="float" nodename="s"/>'), target="hlsl")
+    assert e.value.code == "unsupported_target"
+
+
+@needs_glslang
+@pytest.mark.parametrize("target", ["glsl", "essl"])
+def test_generated_shaders_compile(gen, target):
+    body = ('<position name="p" type="vector3"/><noise3d name="n" type="color3"><input name="position" type="vector3" nodename="p"/></noise3d>'
+            '<image name="i" type="color3"/><ifgreater name="c" type="color3"><input name="value1" type="float" value="0.5"/>'
+            '<input name="in1" type="color3" nodename="n"/><input name="in2" type="color3" nodename="i"/></ifgreater>'
+            '<output name="o" type="color3" nodename="c"/>')
+    rec = first(gen, body, target=target)
+    for stage, src in rec["stages"].items():
+        ok, log = glslang(src, stage)
+        assert ok, log
