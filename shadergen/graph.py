@@ -493,7 +493,8 @@ def assign_scopes(nodes: list[Node]) -> None:
                 consumers.setdefault(id(inp.connection.node), []).append((node, inp.name))
     for node in reversed(nodes):  # consumers before producers
         uses = consumers.get(id(node))
-        if not uses:
+        if not uses or any(i.type == "filename" for i in node.inputs.values()):
+            # texture lookups take screen-space derivatives: they stay in uniform control flow
             node.scope = ()
             continue
         scopes = set()
