@@ -4,8 +4,12 @@ stderr (and a JSON error object on stdout with --json) and exit code 1, never a 
 import json
 import os
 import sys
+from pathlib import Path
 
 from shadergen.errors import ShaderGenError
+
+from . import Environment, RenderError, Renderer
+from .imageio import write_image
 
 
 def add_arguments(parser) -> None:
@@ -51,9 +55,6 @@ def _fail(args, error: dict) -> int:
 
 
 def _run(args) -> int:
-    from . import Environment, RenderError, Renderer
-    from .imageio import write_image
-
     outputs = [p for p in (args.output, args.exr, args.npy) if p]
     if not outputs:
         raise RenderError("invalid_request", "nothing to write: give -o OUT.png, --exr or --npy")
@@ -83,12 +84,10 @@ def _run(args) -> int:
 
 
 def _record_from_file(path: str, element: str | None) -> dict:
-    from . import RenderError
-
     try:
-        text = sys.stdin.read() if path == "-" else open(path, encoding="utf-8").read()
-    except OSError as exc:
-        raise RenderError("invalid_record", f"cannot read {path}: {exc.strerror}", path) from exc
+        text = sys.stdin.read() if path == "-" else Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise RenderError("invalid_record", f"cannot read {path}: {getattr(exc, 'strerror', None) or exc}", path) from exc
     try:
         records = [json.loads(text)]
     except json.JSONDecodeError:
@@ -100,8 +99,6 @@ def _record_from_file(path: str, element: str | None) -> dict:
 
 
 def _record_from_document(path: str, element: str | None) -> dict:
-    from . import RenderError
-
     try:
         from shadergen.api import generate_file
     except ImportError as exc:
@@ -112,8 +109,6 @@ def _record_from_document(path: str, element: str | None) -> dict:
 
 def _choose(records: list, element: str | None, source: str) -> dict:
     """The record of `element` (its name path), else the first that is not an error."""
-    from . import RenderError
-
     if element:
         matching = [r for r in records if isinstance(r, dict) and r.get("element") == element]
         if not matching:

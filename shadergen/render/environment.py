@@ -109,7 +109,7 @@ def sh_irradiance(radiance: np.ndarray, rows: int = IRRADIANCE_SIZE[0], columns:
     h, w = radiance.shape[:2]
     direction, lat = map_directions(h, w)
     solid_angle = (np.pi / h) * (2.0 * np.pi / w) * np.cos(lat)
-    coefficients = np.einsum("hwk,hwc,hw->kc", _sh9_basis(direction), radiance, solid_angle)
+    coefficients = _sh9_basis(direction).reshape(-1, 9).T @ (radiance * solid_angle[..., None]).reshape(-1, 3)
     out_direction, _ = map_directions(rows, columns)
     irradiance = _sh9_basis(out_direction) @ (coefficients * _BAND_SCALE[:, None]) / np.pi
     return np.maximum(irradiance, 0.0).astype("f4")

@@ -13,6 +13,8 @@ import numpy as np
 
 from .errors import RenderError
 
+MAX_PIXELS = 8192 * 8192  # a texture or environment larger than this is refused, not read into memory
+
 
 def read_image(path: str) -> np.ndarray:
     """Any format OpenImageIO reads, as float32 (h, w, c) top row first; 8-bit files give
@@ -23,7 +25,11 @@ def read_image(path: str) -> np.ndarray:
     if image is None:
         raise RenderError("invalid_image", f"cannot read image: {oiio.geterror() or path}", path)
     try:
-        pixels = image.read_image(0, 0, 0, image.spec().nchannels, oiio.FLOAT)
+        spec = image.spec()
+        if spec.width * spec.height > MAX_PIXELS:
+            raise RenderError("invalid_image", f"image of {spec.width} x {spec.height} pixels is larger than the "
+                              f"renderer reads ({MAX_PIXELS} pixels)", path)
+        pixels = image.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT)
     finally:
         image.close()
     if pixels is None:

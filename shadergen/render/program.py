@@ -65,12 +65,12 @@ class Program:
         """The program's vertex array for a mesh (cached): every active vertex input from the
         mesh's stream of that name; Mesh.stream raises missing_stream for what it cannot supply."""
         if mesh_key not in self._vertex_arrays:
-            buffers, content = [], []
+            streams = []  # gathered first, so a missing stream leaves no GL buffers behind
             for name, (components, kind) in sorted(self.attributes.items()):
                 data = mesh.stream(name, components)
-                data = np.rint(data).astype("i4") if kind == "i" else data
-                buffers.append(ctx.buffer(data.tobytes()))
-                content.append((buffers[-1], f"{components}{kind}", name))
+                streams.append((np.rint(data).astype("i4") if kind == "i" else data, f"{components}{kind}", name))
+            buffers = [ctx.buffer(data.tobytes()) for data, _, _ in streams]
+            content = [(buffer, layout, name) for buffer, (_, layout, name) in zip(buffers, streams)]
             buffers.append(ctx.buffer(np.ascontiguousarray(mesh.indices, "u4").tobytes()))
             vao = ctx.vertex_array(self.gl, content, index_buffer=buffers[-1], index_element_size=4)
             self._vertex_arrays[mesh_key] = (vao, buffers)

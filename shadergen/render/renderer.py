@@ -63,8 +63,9 @@ class Renderer:
         start = time.perf_counter()
         vertex, pixel = check_record(record)
         element = record.get("element")
-        side = int(size) * int(supersample)
-        if not (1 <= int(size) and 1 <= int(supersample) and side <= MAX_IMAGE_SIDE):
+        size, supersample = int(size), int(supersample)
+        side = size * supersample
+        if not (size >= 1 and supersample >= 1 and side <= MAX_IMAGE_SIDE):
             raise RenderError("invalid_request", f"size x supersample must be within 1..{MAX_IMAGE_SIDE}", element)
         ctx = gl_context(self.lp_threads)
         import moderngl
@@ -76,14 +77,14 @@ class Renderer:
         if document_dir is None and isinstance(record.get("document"), str):
             document_dir = os.path.dirname(os.path.abspath(record["document"]))
 
-        owned = self._bind_lighting(program, environment, env_samples, lights)
+        owned = self._bind_lighting(program, environment, env_samples, lights, warnings)
         warnings += self._bind_record_values(program, record, owned)
         self._textures.trim()
-        units = {}
+        units = {}  # sampler name -> texture unit
         for name, texture in (("u_envRadiance", radiance), ("u_envIrradiance", irradiance)):
             if name in program.samplers:
-                bind(texture, len(units), ENV_SAMPLING)
                 units[name] = len(units)
+                bind(texture, units[name], ENV_SAMPLING)
         warnings += self._bind_file_textures(ctx, program, record, document_dir, units)
 
         framebuffer = self._framebuffer(ctx, side)
@@ -158,7 +159,8 @@ class Renderer:
 
     # -- uniform binding --------------------------------------------------------------------
 
-    def _bind_lighting(self, program: Program, environment: Environment, env_samples: int, lights) -> set[str]:
+    def _bind_lighting(self, program: Program, environment: Environment, env_samples: int, lights,
+                       warnings: list[str]) -> set[str]:
         """Scene, environment and light uniforms; returns their names, which record values never override."""
         values: dict[str, object] = {}
         for name, value in scene_uniforms().items():
@@ -169,11 +171,11 @@ class Renderer:
         values["u_envLightIntensity"] = [float(environment.intensity)]
         rig: list[Light] = load_lights(lights) if isinstance(lights, (str, os.PathLike)) else list(lights or [])
         values.update(light_uniforms(rig) if rig else {"u_numActiveLightSources": [0.0]})
-        for name, value in values.items():
-            program.set_uniform(name, value)
-        owned = set(values) | set(ENV_SAMPLERS)
-        owned |= {name for name in program.uniforms if name.startswith("u_lightData[")}
-        return owned
+        light_data = {name for name in program.uniforms if name.startswith("u_lightData[")}
+        if rig and not light_data:
+            warnings.append("the shader reads no u_lightData (generated without lights?): the light rig has no effect")
+        warnings += filter(None, (program.set_uniform(name, value) for name, value in values.items()))
+        return set(values) | set(ENV_SAMPLERS) | light_data
 
     def _bind_record_values(self, program: Program, record: dict, owned: set[str]) -> list[str]:
         warnings = []

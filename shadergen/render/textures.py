@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .context import gl_extras
-from .errors import RenderError
 from .imageio import read_image
+from .values import numbers
 
 # MaterialX address modes (image node `uaddressmode`/`vaddressmode`) -> GL wrap modes.
 GL_CLAMP_TO_BORDER, GL_CLAMP_TO_EDGE, GL_REPEAT, GL_MIRRORED_REPEAT = 0x812D, 0x812F, 0x2901, 0x8370
@@ -40,23 +40,19 @@ def _enum(value, names: tuple[str, ...]) -> str | None:
     if isinstance(value, str) and value.strip().lower() in names:
         return value.strip().lower()
     try:
-        return names[int(value)]
-    except (TypeError, ValueError, IndexError):
+        index = int(value)
+    except (TypeError, ValueError):
         return None
+    return names[index] if 0 <= index < len(names) else None
 
 
 def default_colour(value) -> tuple[float, float, float, float] | None:
     """An image node's `default` input as RGBA: a float is grey, missing channels are 0, alpha 1."""
-    if value is None or isinstance(value, bool):
-        return None
-    if isinstance(value, str):
-        try:
-            value = [float(x) for x in value.replace(",", " ").split()]
-        except ValueError:
-            return None
-    values = [float(value)] * 3 if isinstance(value, (int, float)) else [float(x) for x in value][:4]
+    values = numbers("color4", value)
     if not values:
         return None
+    if len(values) == 1:
+        values = values * 3
     return tuple((values + [0.0, 0.0, 0.0])[:3] + (values[3:4] or [1.0]))
 
 
