@@ -20,6 +20,7 @@ from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.glsl import STRUCTS, Syntax
 from .types import TYPES
 
+CLOSURES = ("BSDF", "EDF", "VDF")
 CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}
 NOT_PUBLISHED = {"BSDF", "EDF", "VDF", "lightshader", "none"}
 
@@ -64,6 +65,7 @@ class EmitContext:
         self.body: Writer = self.pixel.main
         self.graph_functions: dict[int, str] = {}
         self.vertex_main: list[str] = []
+        self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
 
     @property
     def pixel(self) -> Stage:
@@ -109,12 +111,17 @@ class EmitContext:
 
     def declare(self, out: Output) -> str:
         name = self.output_name(out)
-        self.body.line(f"{self.syntax.type_name(out.type)} {name};")
+        if out.type in CLOSURES:  # closure functions accumulate into their result: start from zero
+            self.body.line(f"{self.syntax.type_name(out.type)} {name} = {self.syntax.literal(out.type, None)};")
+        else:
+            self.body.line(f"{self.syntax.type_name(out.type)} {name};")
         return name
 
     def call(self, function: str, node: Node) -> None:
         outs = [self.declare(o) for o in node.outputs.values()]
         args = [self.value(i) for i in node.inputs.values()] + outs
+        if is_closure_node(node):
+            args.insert(0, "closureData")
         self.body.line(f"{function}({', '.join(args)});")
 
     # -- variables ---------------------------------------------------------------------------
@@ -167,9 +174,10 @@ class EmitContext:
                                      out_elem.path)
             outputs[out_elem.name] = src
         graph = prepare(builder, outputs, None)
-        saved_body, saved_vars = self.body, self.vars
+        saved_body, saved_vars, saved_closure = self.body, self.vars, self.closure
         self.body, self.vars = Writer(), dict(saved_vars)
-        params = []
+        self.closure = "function" if is_closure_node(node) else None
+        params = ["ClosureData closureData"] if is_closure_node(node) else []
         for s in sockets.values():
             self.vars[id(s)] = pname = self.namer(f"{fname}_{s.name}")
             params.append(f"{self.syntax.type_name(s.type)} {pname}")
@@ -189,7 +197,7 @@ class EmitContext:
             self.pixel.functions.extend(self.body.text())
             self.pixel.functions.line()
         finally:
-            self.body, self.vars = saved_body, saved_vars
+            self.body, self.vars, self.closure = saved_body, saved_vars, saved_closure
 
     def define_functions(self, graph: Graph) -> None:
         for node in graph.nodes:
@@ -200,11 +208,38 @@ class EmitContext:
     # -- calls -------------------------------------------------------------------------------
     def emit_nodes(self, graph: Graph, scope: tuple) -> None:
         for node in graph.nodes:
+            if is_closure_node(node) and self.closure is None:
+                continue  # closures are evaluated per shading context by the surface that reads them
             if node.scope == scope:
                 if any(n.scope[len(scope):len(scope) + 1] and n.scope[len(scope)][0] is node for n in graph.nodes):
                     self.emit_branches(graph, node)
                 else:
                     node.impl.emit_function_call(node, self)
+
+    def emit_closures(self, inp: Input, context: str) -> str:
+        """Evaluate the closure nodes upstream of `inp` in one shading context (seed's
+        SgNodeContext): the caller has declared `closureData` for that context. Data nodes feeding
+        the closures were computed once, before. Returns the expression of the result."""
+        nodes: list[Node] = []
+        seen: set[int] = set()
+
+        def visit(out: Output | None):
+            if out is None or id(out.node) in seen or not is_closure_node(out.node):
+                return
+            seen.add(id(out.node))
+            for i in out.node.inputs.values():
+                visit(i.connection)
+            nodes.append(out.node)
+
+        visit(inp.connection)
+        saved = self.closure
+        self.closure = context
+        try:
+            for node in nodes:
+                node.impl.emit_function_call(node, self)
+        finally:
+            self.closure = saved
+        return self.value(inp)
 
     def emit_branches(self, graph: Graph, node: Node) -> None:
         """A conditional whose branches have nodes of their own: if/else, each branch computing
@@ -229,6 +264,10 @@ class EmitContext:
         names = [n for n in BRANCH_INPUTS["switch"] if n in node.inputs]
         conds = [(n, f"{w} < {str(k + 1) if one == '1' else f'{k + 1}.0'}") for k, n in enumerate(names[:-1])]
         return conds + [(names[-1], None)]
+
+
+def is_closure_node(node: Node) -> bool:
+    return any(o.type in CLOSURES for o in node.outputs.values())
 
 
 def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None) -> Graph:

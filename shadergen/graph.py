@@ -272,9 +272,11 @@ class GraphBuilder:
             factor.value, factor.path, factor.authored = src_scale / dst_scale, None, True
 
     def colorspace_node(self, name: str, source: str | None, type_name: str, where: str) -> Node | None:
-        if not source or source in (WORKING_COLORSPACE, "raw") or type_name not in ("color3", "color4"):
+        """The working colour space is the document's own (MaterialX's rule), lin_rec709 by default."""
+        working = self.doc_root.get("colorspace") or WORKING_COLORSPACE
+        if not source or source in (working, "raw") or type_name not in ("color3", "color4"):
             return None
-        return self.transform_node(name, f"ND_{source}_to_{WORKING_COLORSPACE}_{type_name}", where)
+        return self.transform_node(name, f"ND_{source}_to_{working}_{type_name}", where)
 
     def convert_colorspace(self, inp: Input) -> None:
         if inp.connection is not None or inp.socket is not None:
@@ -319,7 +321,7 @@ class GraphBuilder:
             if source is not authored:
                 inp.meta["interface"] = True  # bound to a graph or document input: an interface value
             if inp.type == "filename" and inp.value:
-                inp.value = (source.inherited("fileprefix") or "") + substitute_tokens(inp.value, source)
+                inp.value = (source.inherited("fileprefix") or "") + substitute_tokens(inp.value, source, self.scope)
             for key in ("colorspace", "unit", "unittype"):
                 if source.get(key) and key not in inp.meta:
                     inp.meta[key] = source.get(key)
@@ -394,7 +396,7 @@ class GraphBuilder:
 TOKEN = re.compile(r"\[(\w+)\]")
 
 
-def substitute_tokens(text: str, port: Element) -> str:
+def substitute_tokens(text: str, port: Element, scope: Scope) -> str:
     """Filename tokens `[name]` take the value of the nearest <token> on the node, its graph, or
     the nodedef the graph implements (document-level tokens are not in scope, as in MaterialX)."""
     if "[" not in text:
@@ -402,8 +404,13 @@ def substitute_tokens(text: str, port: Element) -> str:
     tokens: dict[str, str] = {}
     e = port.parent
     while e is not None and e.category != "materialx":
-        for t in e.children_of("token"):
-            tokens.setdefault(t.name, t.get("value", ""))
+        holders = [e]
+        if e.category == "nodegraph" and e.get("nodedef"):
+            nodedef = scope.nodedef(e.get("nodedef"))
+            holders += [nodedef] if nodedef is not None else []
+        for holder in holders:
+            for t in holder.children_of("token"):
+                tokens.setdefault(t.name, t.get("value", ""))
         e = e.parent
     return TOKEN.sub(lambda m: tokens.get(m.group(1), m.group(0)), text)
 

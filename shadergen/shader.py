@@ -76,6 +76,19 @@ class Writer:
             self.depth -= 1
             self.line(closer)
 
+    @contextmanager
+    def scope(self, comment: str | None = None):
+        """A bare `{ }` block: the variables declared inside stay local to it."""
+        if comment:
+            self.line(f"// {comment}")
+        self.line("{")
+        self.depth += 1
+        try:
+            yield
+        finally:
+            self.depth -= 1
+            self.line("}")
+
     def text(self) -> str:
         return "\n".join(self.lines) + "\n"
 

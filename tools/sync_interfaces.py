@@ -17,6 +17,12 @@ FILES = {  # reference file (relative to its libraries folder) -> ours (relative
     "stdlib/stdlib_defs.mtlx": "stdlib/stdlib_defs.mtlx",
     "cmlib/cmlib_defs.mtlx": "cmlib/cmlib_defs.mtlx",
     "pbrlib/pbrlib_defs.mtlx": "pbrlib/pbrlib_defs.mtlx",
+    "lights/lights_defs.mtlx": "lights/lights_defs.mtlx",
+    "bxdf/standard_surface.mtlx": "bxdf/standard_surface_defs.mtlx",
+    "bxdf/usd_preview_surface.mtlx": "bxdf/usd_preview_surface_defs.mtlx",
+    "bxdf/gltf_pbr.mtlx": "bxdf/gltf_pbr_defs.mtlx",
+    "bxdf/open_pbr_surface.mtlx": "bxdf/open_pbr_surface_defs.mtlx",
+    "bxdf/disney_principled.mtlx": "bxdf/disney_principled_defs.mtlx",
 }
 KEEP = {"typedef", "unittypedef", "unitdef", "unit", "geompropdef", "nodedef", "input", "output", "token",
         "member", "attributedef"}

@@ -7,7 +7,7 @@ their modules are imported here so that registering them is part of importing th
 from ..element import Element
 from ..errors import ShaderGenError
 from .base import REGISTRY, InlineImpl, NodeGraphImpl, NodeImpl, SourceFunctionImpl
-from . import application, convolution, geometric, material, transform  # noqa: F401  (registration)
+from . import application, convolution, geometric, material, surface, transform  # noqa: F401  (registration)
 
 __all__ = ["NodeImpl", "implementation_for", "REGISTRY"]
 
@@ -26,4 +26,6 @@ def implementation_for(elem: Element) -> NodeImpl:
     if cls is None:
         raise ShaderGenError("unknown_implementation",
                              f"implementation '{elem.name}' has no source and no registered class", elem.name)
-    return cls()
+    impl = cls()
+    impl.element = elem  # where its library files are (dynamic implementations may include some)
+    return impl

@@ -29,6 +29,7 @@ def register(*names: str):
 
 
 class NodeImpl:
+    element: Element | None = None  # the <implementation> it was made from
     # Inputs that are settings of the implementation rather than values (never published).
     fixed_inputs: frozenset[str] = frozenset()
 

@@ -20,15 +20,19 @@ class _SpaceVector(NodeImpl):
     normalized = True
     fixed_inputs = frozenset({"space", "index"})
 
-    def emit_function_call(self, node, ctx):
-        space = _space(node)
-        attr = ctx.app_data(f"i_{self.stream}", "vector3")
+    @classmethod
+    def varying(cls, ctx, space: str) -> str:
+        """The pixel-stage expression of this vector in `space` (also used by the surface node)."""
+        attr = ctx.app_data(f"i_{cls.stream}", "vector3")
         if space == "world":
-            ctx.private_uniform(self.matrix, "matrix44", ("vertex",))
-            expr = self.world.format(attr=attr, m=self.matrix)
+            ctx.private_uniform(cls.matrix, "matrix44", ("vertex",))
+            expr = cls.world.format(attr=attr, m=cls.matrix)
         else:
             expr = attr
-        varying = ctx.vertex_data(f"{self.stream}{space.capitalize()}", "vector3", expr)
+        return ctx.vertex_data(f"{cls.stream}{space.capitalize()}", "vector3", expr)
+
+    def emit_function_call(self, node, ctx):
+        varying = self.varying(ctx, _space(node))
         out = next(iter(node.outputs.values()))
         ctx.assign(out, f"normalize({varying})" if self.normalized else varying)
 

@@ -16,7 +16,13 @@ STRUCTS = {
     "EDF": "#define EDF vec3",
     "VDF": "struct VDF { vec3 response; vec3 throughput; };",
     "material": "#define material surfaceshader",
+    "LightData": ("#define MAX_LIGHT_SOURCES 3\n"
+                  "struct LightData { int type; vec3 position; vec3 direction; vec3 color; float intensity; "
+                  "float decay_rate; float inner_angle; float outer_angle; };"),
 }
+LIGHT_DATA_MEMBERS = (("type", "integer"), ("position", "vector3"), ("direction", "vector3"), ("color", "color3"),
+                      ("intensity", "float"), ("decay_rate", "float"), ("inner_angle", "float"),
+                      ("outer_angle", "float"))
 STRUCT_DEPENDENCIES = {"material": ("surfaceshader",)}
 STRUCT_ZERO = {
     "surfaceshader": "surfaceshader(vec3(0.0), vec3(0.0))",
@@ -113,6 +119,8 @@ class Syntax:
         return [STRUCTS[t] for t in STRUCTS if t in needed]
 
     def uniform_declaration(self, var_type: str, name: str, value, meta: dict | None = None) -> str:
+        if var_type == "LightData":
+            return f"uniform LightData {name}[MAX_LIGHT_SOURCES];"
         glsl = self.type_name(var_type)
         if self.uniform_initializers and var_type not in ("filename",) and var_type not in STRUCTS and value is not None:
             return f"uniform {glsl} {name} = {self.literal(var_type, value, meta)};"
