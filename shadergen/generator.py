@@ -274,9 +274,9 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     """Graph passes in their fixed order; returns the graph ready to emit."""
     elide_passthrough_nodes(outputs)
     nodes = topological_order(outputs)
-    assign_scopes(nodes)
     for node in nodes:
         node.impl = implementation_for(node.implementation)
+    assign_scopes(nodes, lambda n: n.impl.uses_derivatives or any(i.type == "filename" for i in n.inputs.values()))
     return Graph(builder.doc_root.name, nodes, outputs, builder.interface or {}, root, builder.warnings)
 
 

@@ -490,9 +490,10 @@ def topological_order(outputs: dict[str, Output]) -> list[Node]:
     return order
 
 
-def assign_scopes(nodes: list[Node]) -> None:
+def assign_scopes(nodes: list[Node], uniform_flow=lambda node: False) -> None:
     """Seed 2.4 step 5: a node read only through one branch input of a conditional (directly or
-    through nodes of that branch) gets that branch as its scope; anything else is global."""
+    through nodes of that branch) gets that branch as its scope; anything else is global.
+    `uniform_flow(node)` says a node must stay global (it takes screen-space derivatives)."""
     consumers: dict[int, list[tuple[Node, str]]] = {}
     for node in nodes:
         for inp in node.inputs.values():
@@ -500,8 +501,7 @@ def assign_scopes(nodes: list[Node]) -> None:
                 consumers.setdefault(id(inp.connection.node), []).append((node, inp.name))
     for node in reversed(nodes):  # consumers before producers
         uses = consumers.get(id(node))
-        if not uses or any(i.type == "filename" for i in node.inputs.values()):
-            # texture lookups take screen-space derivatives: they stay in uniform control flow
+        if not uses or uniform_flow(node):
             node.scope = ()
             continue
         scopes = set()

@@ -16,6 +16,7 @@ from ..library import read_source
 
 REGISTRY: dict[str, type["NodeImpl"]] = {}
 PLACEHOLDER = re.compile(r"\{\{\s*(\w+)\s*\}\}")
+DERIVATIVES = re.compile(r"\b(dFdx|dFdy|fwidth|texture)\s*\(")
 INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$', re.M)
 
 
@@ -30,6 +31,9 @@ def register(*names: str):
 
 class NodeImpl:
     element: Element | None = None  # the <implementation> it was made from
+    # Takes screen-space derivatives (explicitly or through implicit-lod texture lookups), so it
+    # must run in uniform control flow, never inside a per-pixel branch.
+    uses_derivatives = False
     # Inputs that are settings of the implementation rather than values (never published).
     fixed_inputs: frozenset[str] = frozenset()
 
@@ -70,6 +74,7 @@ class SourceFunctionImpl(NodeImpl):
     def __init__(self, elem: Element):
         self.path = _source_path(elem, elem.get("file"))
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
+        self.uses_derivatives = any(DERIVATIVES.search(text) for _, text in expand_includes(self.path, set()))
 
     def emit_function_definition(self, node, ctx) -> None:
         ctx.emit_source_file(self.path)

@@ -1,8 +1,7 @@
-"""Convolution nodes (blur, heighttonormal).
-
-A convolution needs its input at neighbouring texture coordinates. When the input is not read
-from a texture there is nothing to convolve: all samples are equal, so blur returns its input and
-heighttonormal the flat normal, which is what the kernels give for equal samples.
+"""blur: a convolution needs its input at neighbouring texture coordinates, which a value
+computed once per pixel does not have; all samples are equal, so the kernel returns the input
+(MaterialX's hardware generators do the same). heighttonormal, which can work from screen-space
+derivatives instead, is a source function (mx_heighttonormal.glsl).
 """
 from .base import NodeImpl, register
 
@@ -13,9 +12,3 @@ BLUR_TYPES = ("float", "color3", "color4", "vector2", "vector3", "vector4")
 class Blur(NodeImpl):
     def emit_function_call(self, node, ctx):
         ctx.assign(next(iter(node.outputs.values())), ctx.value(node.inputs["in"]))
-
-
-@register("IM_heighttonormal_vector3_genglsl")
-class HeightToNormal(NodeImpl):
-    def emit_function_call(self, node, ctx):
-        ctx.assign(next(iter(node.outputs.values())), "vec3(0.5, 0.5, 1.0)")

@@ -173,3 +173,12 @@ def test_generated_shaders_compile(gen, target):
     for stage, src in rec["stages"].items():
         ok, log = glslang(src, stage)
         assert ok, log
+
+
+def test_derivative_nodes_stay_in_uniform_control_flow(gen):
+    rec = first(gen, '<heighttonormal name="h" type="vector3"><input name="in" type="float" value="0.5"/></heighttonormal>'
+                     '<ifgreater name="pick" type="vector3"><input name="in1" type="vector3" nodename="h"/>'
+                     '</ifgreater><output name="o" type="vector3" nodename="pick"/>')
+    src = pixel(rec)
+    assert src.index("mx_heighttonormal_vector3(") < src.index("pick_out")
+    assert "if (" not in src[src.index("void main()"):]
