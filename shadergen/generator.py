@@ -286,6 +286,8 @@ def publish_interface(ctx: EmitContext, graph: Graph) -> None:
     are written as constants."""
     reduced = ctx.options.interface == "reduced"
     for node in graph.nodes:
+        if node.category == "constant":
+            continue  # only a constant drawn directly is left after folding: it stays a literal, as in MaterialX
         for inp in node.inputs.values():
             if inp.connection is not None or inp.socket is not None or inp.type in NOT_PUBLISHED:
                 continue
