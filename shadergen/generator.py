@@ -158,14 +158,11 @@ class EmitContext:
     def graph_function_name(self, elem: Element) -> str:
         return self.graph_functions[id(elem)]
 
-    def emit_graph_function(self, elem: Element, node: Node) -> None:
-        if not self.pixel.once(("graph", id(elem))):
-            return
-        self.graph_functions[id(elem)] = fname = self.namer(elem.name)
-        sockets = {}
-        for inp in node.inputs.values():
-            sockets[inp.name] = Socket(inp.name, inp.type, inp.value, None, dict(inp.meta))
-        builder = GraphBuilder(self.scope, self.target, elem.parent if elem.parent is not None else elem, sockets)
+    def implementation_graph(self, elem: Element, node: Node, prefix: str = "") -> tuple[Graph, dict[str, Socket]]:
+        """The prepared graph of a nodegraph implementation, its interface as sockets."""
+        sockets = {inp.name: Socket(inp.name, inp.type, inp.value, None, dict(inp.meta)) for inp in node.inputs.values()}
+        builder = GraphBuilder(self.scope, self.target, elem.parent if elem.parent is not None else elem, sockets,
+                               prefix)
         outputs = {}
         for out_elem in elem.children_of("output"):
             src = builder.follow(out_elem, out_elem.get("type"))
@@ -173,7 +170,25 @@ class EmitContext:
                 raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
                                      out_elem.path)
             outputs[out_elem.name] = src
-        graph = prepare(builder, outputs, None)
+        return prepare(builder, outputs, None), sockets
+
+    def inline_graph(self, elem: Element, node: Node) -> None:
+        """A nodegraph used once is written in place (smaller than a function and its call): its
+        sockets read the node's input values, the node's outputs name the graph's results."""
+        graph, sockets = self.implementation_graph(elem, node, f"{node.name}_")
+        for name, socket in sockets.items():
+            self.vars[id(socket)] = self.value(node.inputs[name])
+        self.define_functions(graph)
+        self.emit_nodes(graph, ())
+        for name, out in graph.outputs.items():
+            if name in node.outputs:
+                self.vars[id(node.outputs[name])] = self.vars[id(out)]
+
+    def emit_graph_function(self, elem: Element, node: Node) -> None:
+        if not self.pixel.once(("graph", id(elem))):
+            return
+        self.graph_functions[id(elem)] = fname = self.namer(elem.name)
+        graph, sockets = self.implementation_graph(elem, node)
         saved_body, saved_vars, saved_closure = self.body, self.vars, self.closure
         self.body, self.vars = Writer(), dict(saved_vars)
         self.closure = "function" if is_closure_node(node) else None

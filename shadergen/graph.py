@@ -114,8 +114,10 @@ def input_meta(decl: Element) -> dict:
 class GraphBuilder:
     """Walks a document upstream from one renderable element and builds its ShaderGraph."""
 
-    def __init__(self, scope: Scope, target: str, doc_root: Element, interface: dict[str, Socket] | None = None):
+    def __init__(self, scope: Scope, target: str, doc_root: Element, interface: dict[str, Socket] | None = None,
+                 prefix: str = ""):
         self.scope = scope
+        self.prefix = prefix  # for the nodes of a nodegraph written in place: named after the node it implements
         self.interface = interface  # nodedef inputs, when building a nodegraph implementation
         self.target = target
         self.doc_root = doc_root
@@ -197,7 +199,7 @@ class GraphBuilder:
         if impl is None:
             raise ShaderGenError("unknown_node",
                                  f"no {self.target} implementation of '{nodedef.name}' for <{elem.category}>", elem.path)
-        node = Node(self.unique(elem.name), elem.category, elem.get("type") or "", nodedef, impl, elem.path)
+        node = Node(self.unique(self.prefix + elem.name), elem.category, elem.get("type") or "", nodedef, impl, elem.path)
         for out in nodedef.children_of("output"):
             node.outputs[out.name] = Output(out.name, out.get("type"), node)
         if not node.outputs:

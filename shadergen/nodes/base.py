@@ -84,16 +84,25 @@ class SourceFunctionImpl(NodeImpl):
 
 
 class NodeGraphImpl(NodeImpl):
-    """A nodegraph emitted as one function whose parameters are the nodedef's inputs (seed 2.3.3)."""
+    """A nodegraph (seed 2.3.3): one function whose parameters are the nodedef's inputs when
+    several nodes of the shader use it, written in place when only one does."""
 
     def __init__(self, elem: Element):
         self.graph_elem = elem
 
+    def create_variables(self, node, ctx) -> None:
+        key = ("nodegraph uses", id(self.graph_elem))
+        ctx.memo[key] = ctx.memo.get(key, 0) + 1
+
     def emit_function_definition(self, node, ctx) -> None:
-        ctx.emit_graph_function(self.graph_elem, node)
+        if ctx.memo[("nodegraph uses", id(self.graph_elem))] > 1:
+            ctx.emit_graph_function(self.graph_elem, node)
 
     def emit_function_call(self, node, ctx) -> None:
-        ctx.call(ctx.graph_function_name(self.graph_elem), node)
+        if id(self.graph_elem) in ctx.graph_functions:
+            ctx.call(ctx.graph_function_name(self.graph_elem), node)
+        else:
+            ctx.inline_graph(self.graph_elem, node)
 
 
 def _source_path(elem: Element, file: str) -> str:

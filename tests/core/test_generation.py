@@ -42,11 +42,22 @@ def test_source_function_is_emitted_once_with_its_includes(gen):
     assert "n0_out" in src and "n1_out" in src
 
 
-def test_nodegraph_implementation_becomes_a_function(gen):
+def test_nodegraph_implementation_used_twice_becomes_a_function(gen):
+    rec = first(gen, '<safepower name="p" type="float"><input name="in1" type="float" value="-2"/></safepower>'
+                     '<safepower name="q" type="float"><input name="in1" type="float" nodename="p"/></safepower>'
+                     '<output name="o" type="float" nodename="q"/>')
+    assert pixel(rec).count("void NG_safepower_float(") == 1
+    assert "NG_safepower_float(p_in1, p_in2, p_out);" in pixel(rec)
+    assert "NG_safepower_float(p_out, q_in2, q_out);" in pixel(rec)
+
+
+def test_nodegraph_implementation_used_once_is_written_in_place(gen):
     rec = first(gen, '<safepower name="p" type="float"><input name="in1" type="float" value="-2"/></safepower>'
                      '<output name="o" type="float" nodename="p"/>')
-    assert "void NG_safepower_float(" in pixel(rec)
-    assert "NG_safepower_float(p_in1, p_in2, p_out);" in pixel(rec)
+    src = pixel(rec)
+    assert "NG_safepower_float" not in src
+    main = src[src.index("void main()"):]
+    assert "p_in1" in main and "p_in2" in main and main.count("p_N_") >= 3
 
 
 def test_dynamic_texcoord_writes_both_stages(gen):
