@@ -1,0 +1,1 @@
+"""ShaderX HTTP service: FastAPI app, shared graph-hash cache and render-worker pools."""

@@ -1,0 +1,29 @@
+"""What every cache back end offers. Keys are namespaced by the caller (`rec:<graph hash>`,
+`req:<request digest>`, `png:<digest>`); values are bytes."""
+import json
+from abc import ABC, abstractmethod
+
+
+class Store(ABC):
+    @abstractmethod
+    def get(self, key: str) -> bytes | None: ...
+
+    @abstractmethod
+    def put(self, key: str, value: bytes) -> None: ...
+
+    @abstractmethod
+    def delete(self, key: str) -> None: ...
+
+    async def aget(self, key: str) -> bytes | None:
+        """Read from the event loop. Back ends whose reads can wait on the network override this."""
+        return self.get(key)
+
+    def get_json(self, key: str):
+        raw = self.get(key)
+        return None if raw is None else json.loads(raw)
+
+    def put_json(self, key: str, value) -> None:
+        self.put(key, json.dumps(value, separators=(",", ":")).encode())
+
+    def close(self) -> None:
+        pass

@@ -1,0 +1,206 @@
+"""The embedded cache: one SQLite file in WAL mode shared by every process on the machine.
+
+WAL lets readers run while one process writes; writers serialise on SQLite's own lock with a
+busy timeout. The total size is kept in a meta row by triggers, so bounding the store never scans
+the table, and eviction removes the least recently used entries. A file that is corrupt, not a
+database, or deleted under us is rebuilt empty: a cache may always be lost, never be fatal."""
+import fcntl
+import logging
+import os
+import sqlite3
+import threading
+import time
+from pathlib import Path
+
+from .base import Store
+
+log = logging.getLogger(__name__)
+
+# recency is recorded at most this often per entry: a write on every hit would make 32 concurrent
+# readers queue on SQLite's single write lock for the sake of a finer LRU order
+TOUCH_INTERVAL_S = 10.0
+EVICT_BATCH = 64
+# after eviction the store is this fraction of its bound, so a full store does not evict on every put
+LOW_WATERMARK = 0.9
+BUSY_TIMEOUT_S = 10.0
+INODE_CHECK_S = 1.0
+_CORRUPT = {sqlite3.SQLITE_CORRUPT, sqlite3.SQLITE_NOTADB}
+
+SCHEMA = """
+CREATE TABLE IF NOT EXISTS entries (
+    key TEXT PRIMARY KEY, value BLOB NOT NULL, size INTEGER NOT NULL, accessed REAL NOT NULL
+) WITHOUT ROWID;
+CREATE INDEX IF NOT EXISTS entries_accessed ON entries (accessed);
+CREATE TABLE IF NOT EXISTS meta (name TEXT PRIMARY KEY, value INTEGER NOT NULL);
+INSERT OR IGNORE INTO meta VALUES ('total_bytes', 0);
+CREATE TRIGGER IF NOT EXISTS entries_ins AFTER INSERT ON entries BEGIN
+    UPDATE meta SET value = value + new.size WHERE name = 'total_bytes'; END;
+CREATE TRIGGER IF NOT EXISTS entries_del AFTER DELETE ON entries BEGIN
+    UPDATE meta SET value = value - old.size WHERE name = 'total_bytes'; END;
+CREATE TRIGGER IF NOT EXISTS entries_upd AFTER UPDATE OF size ON entries BEGIN
+    UPDATE meta SET value = value + new.size - old.size WHERE name = 'total_bytes'; END;
+"""
+
+
+def _is_corrupt(exc: sqlite3.Error) -> bool:
+    return getattr(exc, "sqlite_errorcode", None) in _CORRUPT
+
+
+class SQLiteStore(Store):
+    def __init__(self, path: str | os.PathLike, max_bytes: int = 512 * 1024 * 1024):
+        self.path = Path(path)
+        self.max_bytes = max_bytes
+        # one connection per thread: a writer waiting on the lock must not hold up the loop's reads
+        self._local = threading.local()
+        self._generation = 0  # bumped on rebuild so every thread reopens
+        self._lock = threading.Lock()
+        self._connect()
+
+    # -- connections ------------------------------------------------------------------------
+    def _connect(self) -> sqlite3.Connection:
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            conn = self._open()
+        except sqlite3.DatabaseError as exc:
+            if not _is_corrupt(exc):
+                raise
+            self._rebuild(reason=str(exc))
+            conn = self._open()
+        local = self._local
+        local.conn, local.inode, local.generation = conn, self._inode(), self._generation
+        return conn
+
+    def _open(self) -> sqlite3.Connection:
+        conn = sqlite3.connect(self.path, timeout=BUSY_TIMEOUT_S, isolation_level=None, check_same_thread=False)
+        try:
+            conn.execute("PRAGMA journal_mode=WAL")
+            conn.execute("PRAGMA synchronous=NORMAL")
+            # a schema change by another process needs the write lock: take it like any writer
+            if conn.execute("SELECT count(*) FROM sqlite_master WHERE name='entries'").fetchone()[0] == 0:
+                conn.executescript("BEGIN IMMEDIATE;" + SCHEMA + "COMMIT;")
+        except BaseException:
+            conn.close()
+            raise
+        return conn
+
+    def _inode(self) -> int | None:
+        try:
+            return self.path.stat().st_ino
+        except FileNotFoundError:
+            return None
+
+    def _conn(self) -> sqlite3.Connection:
+        local = self._local
+        conn = getattr(local, "conn", None)
+        if conn is not None and local.generation == self._generation and not self._replaced(local):
+            return conn
+        if conn is not None:
+            conn.close()
+        return self._connect()
+
+    def _replaced(self, local) -> bool:
+        """Whether the file was deleted or replaced under us (this process would otherwise go on
+        with an orphan). Checked at most every INODE_CHECK_S: a stat per lookup is measurable."""
+        now = time.monotonic()
+        if now - getattr(local, "checked", 0.0) < INODE_CHECK_S:
+            return False
+        local.checked = now
+        return self._inode() != local.inode
+
+    def _rebuild(self, reason: str) -> None:
+        """Replace a broken file by an empty store. A file lock keeps two processes from
+        rebuilding at once; whoever comes second finds a sound file and keeps it."""
+        lock_path = self.path.with_name(self.path.name + ".rebuild-lock")
+        with open(lock_path, "w") as lock_file:
+            fcntl.flock(lock_file, fcntl.LOCK_EX)
+            try:
+                probe = sqlite3.connect(self.path, timeout=BUSY_TIMEOUT_S)
+                try:
+                    if probe.execute("PRAGMA quick_check").fetchone()[0] == "ok":
+                        return  # someone else already rebuilt it
+                finally:
+                    probe.close()
+            except sqlite3.DatabaseError:
+                pass
+            log.warning("cache file %s unusable (%s): rebuilding it empty", self.path, reason)
+            for suffix in ("", "-wal", "-shm"):
+                Path(str(self.path) + suffix).unlink(missing_ok=True)
+            with self._lock:
+                self._generation += 1
+
+    def _run(self, op):
+        """Run op(conn); on corruption rebuild the file and try once more."""
+        try:
+            return op(self._conn())
+        except sqlite3.DatabaseError as exc:
+            if not _is_corrupt(exc):
+                raise
+            self._rebuild(reason=str(exc))
+            return op(self._conn())
+
+    # -- the Store interface -----------------------------------------------------------------
+    def get(self, key: str) -> bytes | None:
+        def op(conn):
+            row = conn.execute("SELECT value, accessed FROM entries WHERE key = ?", (key,)).fetchone()
+            if row is None:
+                return None
+            now = time.time()
+            if now - row[1] > TOUCH_INTERVAL_S:
+                conn.execute("UPDATE entries SET accessed = ? WHERE key = ?", (now, key))
+            return bytes(row[0])
+
+        return self._run(op)
+
+    def put(self, key: str, value: bytes) -> None:
+        if len(value) > self.max_bytes:
+            return  # larger than the whole store: caching it would only evict everything else
+
+        def op(conn):
+            conn.execute("BEGIN IMMEDIATE")
+            try:
+                conn.execute(
+                    "INSERT INTO entries (key, value, size, accessed) VALUES (?, ?, ?, ?) "
+                    "ON CONFLICT (key) DO UPDATE SET value = excluded.value, size = excluded.size, "
+                    "accessed = excluded.accessed",
+                    (key, value, len(value), time.time()),
+                )
+                self._evict(conn)
+                conn.execute("COMMIT")
+            except BaseException:
+                conn.execute("ROLLBACK")
+                raise
+
+        self._run(op)
+
+    def _evict(self, conn: sqlite3.Connection) -> None:
+        total = self.total_bytes(conn)
+        if total <= self.max_bytes:
+            return
+        excess = total - int(self.max_bytes * LOW_WATERMARK)
+        while excess > 0:
+            oldest = conn.execute("SELECT key, size FROM entries ORDER BY accessed LIMIT ?", (EVICT_BATCH,)).fetchall()
+            if not oldest:
+                break
+            victims = []
+            for key, size in oldest:
+                if excess <= 0:
+                    break
+                victims.append((key,))
+                excess -= size
+            conn.executemany("DELETE FROM entries WHERE key = ?", victims)
+
+    def delete(self, key: str) -> None:
+        self._run(lambda conn: conn.execute("DELETE FROM entries WHERE key = ?", (key,)))
+
+    def total_bytes(self, conn: sqlite3.Connection | None = None) -> int:
+        conn = conn or self._conn()
+        return conn.execute("SELECT value FROM meta WHERE name = 'total_bytes'").fetchone()[0]
+
+    def __len__(self) -> int:
+        return self._run(lambda conn: conn.execute("SELECT count(*) FROM entries").fetchone()[0])
+
+    def close(self) -> None:
+        conn = getattr(self._local, "conn", None)
+        if conn is not None:
+            conn.close()
+            self._local.conn = None

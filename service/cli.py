@@ -1,0 +1,54 @@
+"""`shadergen serve`: uvicorn on N worker processes, a shared render pool (unless Celery is
+configured), and one Prometheus directory that every process writes to."""
+import os
+import shutil
+import signal
+import tempfile
+
+import uvicorn
+
+from .config import get_settings
+
+
+def add_arguments(parser) -> None:
+    parser.add_argument("--host", default="127.0.0.1", help="address to listen on (default: loopback only)")
+    parser.add_argument("--port", type=int, default=8000)
+    parser.add_argument("--workers", type=int, default=2, metavar="N", help="API worker processes")
+    parser.add_argument("--render-workers", type=int, default=None, metavar="N",
+                        help="render processes of the local pool (default: SHADERGEN_RENDER_WORKERS or 1)")
+    parser.add_argument("--access-log", action="store_true", help="log every request")
+
+
+def _exit(signum, frame):
+    raise SystemExit(0)
+
+
+def run(args) -> int:
+    if args.render_workers is not None:
+        os.environ["SHADERGEN_RENDER_WORKERS"] = str(args.render_workers)
+    # prometheus_client reads this when first imported, so it is set before any worker starts
+    metrics_dir = None
+    if not os.environ.get("PROMETHEUS_MULTIPROC_DIR"):
+        metrics_dir = tempfile.mkdtemp(prefix="shadergen-metrics-")
+        os.environ["PROMETHEUS_MULTIPROC_DIR"] = metrics_dir
+    get_settings.cache_clear()
+    settings = get_settings()
+    pool = None
+    if not settings.broker:
+        from .jobs.local import start_pool_server, stop_pool_server
+
+        pool = start_pool_server(settings)
+        os.environ["SHADERGEN_RENDER_SOCKET"] = pool[1]  # every API worker connects to this one pool
+        get_settings.cache_clear()  # with one worker, uvicorn runs the app in this very process
+    # uvicorn re-raises the SIGTERM it handled once it has stopped; as an exception instead of the
+    # default action (death on the spot), it lets the pool and the metrics directory be cleaned up
+    signal.signal(signal.SIGTERM, _exit)
+    try:
+        uvicorn.run("service.main:create_app", factory=True, host=args.host, port=args.port,
+                    workers=args.workers, access_log=args.access_log, timeout_graceful_shutdown=10)
+    finally:
+        if pool is not None:
+            stop_pool_server(*pool)
+        if metrics_dir is not None:
+            shutil.rmtree(metrics_dir, ignore_errors=True)
+    return 0

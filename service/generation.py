@@ -1,0 +1,116 @@
+"""Generation behind the cache: plain functions over a Store and a generation ProcessPool.
+
+Two cache levels, both in the shared store:
+- `rec:<graph hash>`: the record. The graph hash (from the generator's `prepare`) ignores XML
+  formatting, element order and unused nodes, so equivalent documents share one entry.
+- `req:<request digest>`: the graph hash a byte-identical request resolved to. Digest of the
+  document bytes, the parameters and the library hash; a repeated request is answered from the
+  store without even parsing the XML, which is what keeps cached requests in the millisecond range.
+"""
+import hashlib
+import json
+from dataclasses import dataclass
+
+import shadergen
+
+from .cache import Store
+from .errors import ServiceError
+from .metrics import CACHE, GENERATE_SECONDS
+from .safety import check_document
+from .workers.pool import JobTimeout, PoolError, ProcessPool, QueueFull, WorkerCrashed
+
+RECORD_HITS = CACHE.labels("record", "hit")  # resolved once: this is on every cached request
+
+
+@dataclass(frozen=True)
+class GenerateParams:
+    target: str = "glsl"
+    element: str | None = None
+    interface: str = "complete"
+    source: bool = True
+
+
+def request_digest(library_hash: str, params: GenerateParams, document: bytes) -> str:
+    h = hashlib.sha256()
+    # the generator's version too: a new release may emit different code for the same library
+    for part in (shadergen.__version__, library_hash, params.target, params.element or "", params.interface):
+        h.update(part.encode() + b"\0")
+    h.update(document)
+    return h.hexdigest()
+
+
+def without_source(record_json: bytes) -> bytes:
+    """The listing-only form of a record (`"source": false`), as the generator writes it."""
+    record = json.loads(record_json)
+    record["stages"] = {name: None for name in record.get("stages", {})}
+    return json.dumps(record, separators=(",", ":")).encode()
+
+
+class GenerationService:
+    def __init__(self, pool: ProcessPool, store: Store, retry_after_s: int = 2):
+        self.pool = pool
+        self.store = store
+        self.retry_after_s = retry_after_s
+        self._nodedefs: bytes | None = None
+
+    @property
+    def library_hash(self) -> str:
+        return self.pool.hello["library_hash"]
+
+    async def generate(self, raw_document: bytes, params: GenerateParams) -> bytes:
+        """The record as JSON bytes; raises ServiceError (a 4xx for anything the client sent)."""
+        document = check_document(raw_document).encode()  # bytes: the generator reads a str as a path
+        digest = request_digest(self.library_hash, params, document)
+        record = await self._cached(digest) or await self._generate(document, params, digest)
+        return record if params.source else without_source(record)
+
+    async def cached(self, raw_document: bytes, params: GenerateParams) -> bytes | None:
+        """The record if a byte-identical request was answered before, else None (also for a
+        document the full path would refuse: it is the one that words the error)."""
+        try:
+            document = check_document(raw_document).encode()
+        except ServiceError:
+            return None
+        record = await self._cached(request_digest(self.library_hash, params, document))
+        if record is None:
+            return None
+        return record if params.source else without_source(record)
+
+    async def _cached(self, digest: str) -> bytes | None:
+        graph_hash = await self.store.aget("req:" + digest)
+        record = await self.store.aget("rec:" + graph_hash.decode()) if graph_hash else None
+        if record is not None:
+            RECORD_HITS.inc()
+        return record
+
+    async def _generate(self, document: bytes, params: GenerateParams, digest: str) -> bytes:
+        request = {"op": "generate", "document": document.decode(), "target": params.target,
+                   "element": params.element, "interface": params.interface, "digest": digest}
+        context = {"element": params.element, "target": params.target}
+        try:
+            reply, record = await self.pool.run(request)
+        except QueueFull as exc:
+            raise ServiceError("queue_full", f"generation queue full: {exc}", **context,
+                               headers={"Retry-After": str(self.retry_after_s)}) from None
+        except JobTimeout as exc:
+            raise ServiceError("timeout", f"generation stopped: {exc}", **context) from None
+        except WorkerCrashed as exc:
+            raise ServiceError("worker_crashed", f"generation failed: {exc}", **context) from None
+        except PoolError as exc:
+            raise ServiceError("unavailable", f"generation failed: {exc}", **context,
+                               headers={"Retry-After": str(self.retry_after_s)}) from None
+        if "error" in reply:
+            raise ServiceError.from_generator(reply["error"], **context)
+        CACHE.labels("record", "hit" if reply["cached"] else "miss").inc()
+        if not reply["cached"]:
+            GENERATE_SECONDS.observe(reply["seconds"])
+        return record
+
+    async def record(self, graph_hash: str) -> bytes | None:
+        return await self.store.aget("rec:" + graph_hash)
+
+    async def nodedefs(self) -> bytes:
+        # the library is fixed for the life of the process: ask the generator once
+        if self._nodedefs is None:
+            _, self._nodedefs = await self.pool.run({"op": "nodedefs"})
+        return self._nodedefs

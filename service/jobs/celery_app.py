@@ -1,0 +1,54 @@
+"""Celery on Redis, for render workers on several machines. The API sends tasks by name; the
+task itself is registered only in `shadergen worker` processes (register_tasks)."""
+import base64
+import os
+
+import redis
+from celery import Celery
+
+TASK = "shadergen.render_thumbnail"
+QUEUE = "shadergen-render"
+ATTEMPTS_KEY = "shadergen:attempts:"
+ATTEMPTS_TTL_S = 3600
+
+
+def make_celery(settings) -> Celery:
+    app = Celery("shadergen", broker=settings.broker, backend=settings.broker)
+    app.conf.update(
+        task_serializer="json", result_serializer="json", accept_content=["json"],
+        task_default_queue=QUEUE, task_track_started=True, result_expires=3600,
+        # a job is acknowledged only once done, and put back when its worker process dies, so a
+        # crash costs one attempt, not the job; render_thumbnail bounds the attempts at two
+        task_acks_late=True, task_reject_on_worker_lost=True, worker_prefetch_multiplier=1,
+        task_time_limit=settings.render_timeout_s,
+        broker_connection_retry_on_startup=True,
+    )
+    return app
+
+
+def register_tasks(app: Celery, settings, processes: int) -> None:
+    attempts = redis.Redis.from_url(settings.broker)
+    renderer = None  # one per worker process, made on its first job: EGL contexts do not survive fork
+
+    @app.task(name=TASK, bind=True)
+    def render_thumbnail(task, request: dict) -> dict:
+        nonlocal renderer
+        key = ATTEMPTS_KEY + task.request.id
+        attempt = attempts.incr(key)
+        attempts.expire(key, ATTEMPTS_TTL_S)
+        if attempt > 2:
+            return {"error": {"code": "worker_crashed",
+                              "message": "render worker died on this job twice; giving up", "where": None}}
+        task.update_state(state="STARTED", meta={"pid": os.getpid(), "attempt": attempt})
+        if renderer is None:
+            from shadergen.render import Renderer
+            from shadergen.render.worker import lp_threads_for
+
+            renderer = Renderer(texture_roots=settings.texture_roots, search_paths=settings.texture_roots,
+                                lp_threads=lp_threads_for(processes))
+        from ..workers.render_worker import render
+
+        reply, png = render(renderer, request)
+        if "error" in reply:
+            return reply
+        return {**reply, "png": base64.b64encode(png).decode()}

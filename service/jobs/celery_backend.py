@@ -1,0 +1,77 @@
+"""The Celery back end, API side: sends render tasks by name over Redis and reads their results.
+Celery's client calls block on Redis, so they run in threads, off the event loop."""
+import asyncio
+import base64
+import time
+import uuid
+
+import redis.asyncio
+from celery.result import AsyncResult
+
+from . import JobBackend, JobError, JobState, RenderResult
+from .celery_app import QUEUE, TASK, make_celery
+
+JOB_KEY = "shadergen:job:"
+JOB_TTL_S = 3600
+POLL_S = (0.01, 0.25)  # first and longest pause between polls of a job being waited for
+
+
+class CeleryJobs(JobBackend):
+    name = "celery"
+
+    def __init__(self, settings):
+        self.app = make_celery(settings)
+        self.redis = redis.asyncio.Redis.from_url(settings.broker)
+        self.max_depth = settings.render_queue_size
+        self.wait_s = settings.render_timeout_s * 3  # queueing, one retry, and the render itself
+
+    async def depth(self) -> int:
+        return await self.redis.llen(QUEUE)
+
+    async def submit(self, request: dict) -> str:
+        if await self.depth() >= self.max_depth:
+            raise JobError("queue_full", f"render queue full: {self.max_depth} jobs already waiting")
+        job_id = uuid.uuid4().hex
+        # known ids, so that an unknown one is a 404 and not Celery's eternal PENDING
+        await self.redis.set(JOB_KEY + job_id, "1", ex=JOB_TTL_S)
+        await asyncio.to_thread(self.app.send_task, TASK, args=[request], task_id=job_id, queue=QUEUE)
+        return job_id
+
+    def _read(self, job_id: str) -> JobState:
+        result = AsyncResult(job_id, app=self.app)
+        state, value = result.state, result.result
+        if state in ("PENDING", "RECEIVED"):
+            return JobState(job_id, "queued")
+        if state in ("STARTED", "RETRY"):
+            attempts = value.get("attempt", 1) if isinstance(value, dict) else 1
+            return JobState(job_id, "running", attempts=attempts)
+        if state == "SUCCESS":
+            if "error" in value:
+                return JobState(job_id, "failed", value["error"])
+            result = RenderResult(base64.b64decode(value["png"]), value.get("timings_ms", {}),
+                                  value.get("warnings", []))
+            return JobState(job_id, "done", result=result)
+        code = "timeout" if type(value).__name__ == "TimeLimitExceeded" else "worker_crashed"
+        return JobState(job_id, "failed", {"code": code, "message": f"render failed: {value!r}", "where": None})
+
+    async def status(self, job_id: str) -> JobState | None:
+        if not await self.redis.exists(JOB_KEY + job_id):
+            return None
+        return await asyncio.to_thread(self._read, job_id)
+
+    async def render(self, request: dict) -> RenderResult:
+        job_id = await self.submit(request)
+        deadline = time.monotonic() + self.wait_s
+        pause = POLL_S[0]
+        while time.monotonic() < deadline:
+            state = await asyncio.to_thread(self._read, job_id)
+            if state.state == "done":
+                return state.result
+            if state.state == "failed":
+                raise JobError(**state.error)
+            await asyncio.sleep(pause)
+            pause = min(pause * 2, POLL_S[1])
+        raise JobError("timeout", f"no render worker finished the job within {self.wait_s:g} s")
+
+    async def close(self) -> None:
+        await self.redis.aclose()

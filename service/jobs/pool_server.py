@@ -1,0 +1,128 @@
+"""The local render pool: M render-worker processes behind one bounded queue, served on a Unix
+socket so that every API worker process of `shadergen serve` shares the same pool and the same
+job table (an async job submitted through one API worker can be polled through another).
+
+Run as `python -m service.jobs.pool_server SOCKET`; settings come from SHADERGEN_* variables."""
+import asyncio
+import logging
+import os
+import signal
+import sys
+import time
+
+from ..config import get_settings
+from ..metrics import RENDER_SECONDS
+from ..workers import protocol
+from ..workers.pool import Job, JobTimeout, PoolError, ProcessPool, QueueFull, WorkerCrashed
+
+log = logging.getLogger("service.render_pool")
+
+JOB_TTL_S = 600.0  # finished async jobs (and their PNG) are kept this long for polling
+MAX_JOBS = 1024
+
+
+def _error_of(exc: BaseException) -> dict:
+    code = "timeout" if isinstance(exc, JobTimeout) else "worker_crashed" if isinstance(exc, WorkerCrashed) \
+        else "unavailable"
+    return {"code": code, "message": f"render job failed: {exc}", "where": None}
+
+
+class PoolServer:
+    def __init__(self, pool: ProcessPool):
+        self.pool = pool
+        self.jobs: dict[str, Job] = {}
+
+    def _forget_old(self) -> None:
+        cutoff = time.time() - JOB_TTL_S
+        for job_id in [i for i, j in self.jobs.items() if j.state in ("done", "failed") and j.created < cutoff]:
+            del self.jobs[job_id]
+        while len(self.jobs) > MAX_JOBS:  # oldest first: dicts keep insertion order
+            del self.jobs[next(iter(self.jobs))]
+
+    @staticmethod
+    def _outcome(job: Job) -> tuple[dict, bytes]:
+        """The reply for a job: its state, and the PNG when done."""
+        head = {"id": job.id, "state": job.state, "attempts": job.attempts}
+        if job.state == "failed":
+            return {**head, "error": _error_of(job.future.exception())}, b""
+        if job.state == "done":
+            reply, png = job.future.result()
+            if "error" in reply:  # the renderer refused the material: a failed job, not a done one
+                return {**head, "state": "failed", "error": reply["error"]}, b""
+            return {**head, "timings_ms": reply.get("timings_ms", {}), "warnings": reply.get("warnings", [])}, png
+        return head, b""
+
+    async def handle(self, message: dict) -> tuple[dict, bytes]:
+        op = message.get("op")
+        if op == "depth":
+            return {"depth": self.pool.depth, "workers": self.pool.size}, b""
+        if op == "status":
+            job = self.jobs.get(message.get("id", ""))
+            return self._outcome(job) if job else ({"state": "unknown"}, b"")
+        if op == "submit":
+            self._forget_old()
+            try:
+                job = self.pool.submit({"op": "render", **message["request"]})
+            except QueueFull as exc:
+                return {"error": {"code": "queue_full", "message": f"render queue full: {exc}"}}, b""
+            self.jobs[job.id] = job
+            if not message.get("wait"):
+                return {"id": job.id, "state": job.state}, b""
+            try:
+                await asyncio.shield(job.future)
+            except PoolError:
+                pass
+            return self._outcome(job)
+        return {"error": {"code": "invalid_request", "message": f"unknown op {op!r}"}}, b""
+
+    async def serve_connection(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        try:
+            message, _ = await protocol.read_frame(reader)
+            reply, payload = await self.handle(message)
+            writer.write(protocol.encode(reply, payload))
+            await writer.drain()
+        except (asyncio.IncompleteReadError, ConnectionError):
+            pass  # the API worker went away (its client disconnected): the job still completes
+        finally:
+            writer.close()
+
+
+async def serve(socket_path: str) -> None:
+    settings = get_settings()
+    pool = ProcessPool("service.workers.render_worker", size=settings.render_workers,
+                       queue_size=settings.render_queue_size, timeout_s=settings.render_timeout_s,
+                       on_result=lambda job, seconds: RENDER_SECONDS.observe(seconds))
+    await pool.start(wait=False)
+    server = PoolServer(pool)
+    unix = await asyncio.start_unix_server(server.serve_connection, path=socket_path)
+    os.chmod(socket_path, 0o600)  # only this user's processes may submit renders
+    log.info("render pool: %d workers on %s", pool.size, socket_path)
+    stop = asyncio.Event()
+    asyncio.get_running_loop().add_signal_handler(signal.SIGTERM, stop.set)
+    watchdog = asyncio.create_task(_stop_when_orphaned(stop))
+    try:
+        async with unix:
+            await stop.wait()
+    finally:
+        watchdog.cancel()
+        await pool.close()  # kills the render workers: none outlives the pool
+
+
+async def _stop_when_orphaned(stop: asyncio.Event) -> None:
+    """A pool whose parent died (killed without the chance to stop us) must not live on."""
+    parent = os.getppid()
+    while os.getppid() == parent:
+        await asyncio.sleep(1.0)
+    stop.set()
+
+
+def main() -> None:
+    logging.basicConfig(level=logging.INFO, format="%(name)s: %(message)s")
+    try:
+        asyncio.run(serve(sys.argv[1]))
+    except KeyboardInterrupt:
+        pass
+
+
+if __name__ == "__main__":
+    main()

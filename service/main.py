@@ -1,0 +1,39 @@
+"""The FastAPI app. `create_app` is the factory uvicorn calls in every worker process
+(`uvicorn --factory service.main:create_app`); each worker builds its services in the lifespan."""
+from contextlib import asynccontextmanager
+
+from fastapi import FastAPI
+
+import shadergen
+
+from .config import get_settings
+from .errors import install_error_handlers
+from .fastpath import CachedGenerateMiddleware
+from .limits import BodyLimitMiddleware
+from .metrics import MetricsMiddleware
+from .routes import routers
+from .services import Services
+
+
+@asynccontextmanager
+async def lifespan(app: FastAPI):
+    app.state.services = await Services.start(get_settings())
+    try:
+        yield
+    finally:
+        await app.state.services.stop()
+
+
+def create_app() -> FastAPI:
+    # Prometheus (/metrics) is the telemetry here; FastAPI's own OpenTelemetry layer stays off
+    app = FastAPI(title="ShaderX service", version=shadergen.__version__, lifespan=lifespan,
+                  telemetry={"tracing": False, "metrics": False, "logs": False},
+                  description="MaterialX documents to shader source, variable listings and thumbnails.")
+    install_error_handlers(app)
+    # the last added runs first: metrics see everything, the body limit applies to the fast path
+    app.add_middleware(CachedGenerateMiddleware)
+    app.add_middleware(BodyLimitMiddleware, max_bytes=get_settings().max_body_bytes)
+    app.add_middleware(MetricsMiddleware)
+    for router in routers:
+        app.include_router(router)
+    return app

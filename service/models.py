@@ -1,0 +1,120 @@
+"""Request and response models: the single source of the HTTP schema (openapi.yaml is generated
+from them). Records come from the generator; their models describe the contract's fields and
+let the generator add more."""
+from typing import Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field
+
+Interface = Literal["complete", "reduced", "specialized"]
+Mesh = Literal["sphere", "plane"]
+
+
+# -- requests ----------------------------------------------------------------------------------
+class GenerateRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    document: str = Field(description="the MaterialX document (XML text)")
+    target: str = Field("glsl", max_length=64, description="glsl, essl, osl, ...")
+    element: str | None = Field(None, max_length=1024, description="name path; default: the first renderable")
+    interface: Interface = "complete"
+    source: bool = Field(True, description="false: listings without stage source")
+
+
+class ThumbnailRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    document: str
+    element: str | None = Field(None, max_length=1024)
+    interface: Interface = "complete"
+    size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
+    mesh: Mesh = "sphere"
+
+
+# -- responses ---------------------------------------------------------------------------------
+class ErrorDetail(BaseModel):
+    code: str
+    message: str
+    where: str | None = None
+
+
+class ErrorResponse(BaseModel):
+    document: str | None = None
+    element: str | None = None
+    target: str | None = None
+    error: ErrorDetail
+
+
+class UiHints(BaseModel):
+    model_config = ConfigDict(extra="allow")
+    name: str | None = None
+    folder: str | None = None
+    min: Any = None
+    max: Any = None
+    softmin: Any = None
+    softmax: Any = None
+    step: Any = None
+    advanced: bool | None = None
+    doc: str | None = None
+    enum: Any = None
+    enumvalues: Any = None
+
+
+class Variable(BaseModel):
+    model_config = ConfigDict(extra="allow")
+    name: str
+    type: str
+    value: Any = None
+    path: str | None = None
+    semantic: str | None = None
+    unit: str | None = None
+    colorspace: str | None = None
+    ui: UiHints | None = None
+
+
+class ShaderRecord(BaseModel):
+    model_config = ConfigDict(extra="allow")
+    document: str | None = None
+    element: str
+    target: str
+    interface: Interface
+    hash: str = Field(description="canonical graph hash: the cache key")
+    cached: bool
+    stages: dict[str, str] = Field(default_factory=dict)
+    blocks: dict[str, dict[str, list[Variable]]]
+    timings_ms: dict[str, float] = Field(default_factory=dict)
+    warnings: list[Any] = Field(default_factory=list)
+
+
+class JobAccepted(BaseModel):
+    id: str
+    state: Literal["queued", "running", "done", "failed"]
+    status_url: str
+
+
+class JobStatus(BaseModel):
+    id: str
+    state: Literal["queued", "running", "done", "failed"]
+    error: ErrorDetail | None = None
+    attempts: int = Field(0, description="2 when a render worker died on the job and it was tried again")
+    thumbnail_url: str | None = Field(None, description="where the PNG is, once done")
+    timings_ms: dict[str, float] = Field(default_factory=dict)
+
+
+class NodeDefPort(BaseModel):
+    model_config = ConfigDict(extra="allow")
+    name: str
+    type: str
+
+
+class NodeDef(BaseModel):
+    model_config = ConfigDict(extra="allow")
+    name: str
+    node: str
+    nodegroup: str | None = None
+    inputs: list[NodeDefPort] = Field(default_factory=list)
+    outputs: list[NodeDefPort] = Field(default_factory=list)
+
+
+class Health(BaseModel):
+    status: Literal["ok"]
+    library_hash: str
+    cache: str
+    jobs: str

@@ -1,0 +1,57 @@
+"""Checks on what clients upload, done before any parser sees it.
+
+MaterialX documents never need a DOCTYPE, and every XML bomb (entity expansion) and external
+entity needs one, so a document with a DOCTYPE is refused outright rather than parsed carefully.
+(The generator parses with defusedxml and refuses xi:include as well: this is the first wall.)"""
+import os
+from pathlib import Path
+
+from .errors import ServiceError
+
+_DTD_MARKERS = (b"<!DOCTYPE", b"<!ENTITY")
+
+
+def check_document(raw: bytes) -> str:
+    """The document as text, or a 400 for anything that is not plain UTF-8 XML without a DTD."""
+    for marker in _DTD_MARKERS:
+        if marker in raw:
+            raise ServiceError("unsafe_xml", "documents with a DOCTYPE or entity declarations are refused")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ServiceError("invalid_document", f"the document is not UTF-8: {exc.reason}",
+                           f"byte {exc.start}") from None
+    if "\x00" in text:
+        raise ServiceError("invalid_document", "the document contains a NUL character")
+    return text
+
+
+def _inside(path: Path, root: Path) -> bool:
+    return path == root or root in path.parents
+
+
+def check_texture_paths(record: dict, roots: list[str]) -> None:
+    """Every filename a shader will read must resolve inside a configured texture root, so a
+    document cannot make a render worker read the server's files (`/etc/passwd`, `../../key`)."""
+    real_roots = [Path(os.path.realpath(r)) for r in roots]
+    for stage in (record.get("blocks") or {}).values():
+        for variables in stage.values():
+            for var in variables:
+                value = var.get("value")
+                if var.get("type") != "filename" or not value:
+                    continue
+                if not isinstance(value, str) or not _allowed(value, real_roots):
+                    raise ServiceError("path_not_allowed",
+                                       f"texture {value!r} is outside the configured texture roots",
+                                       var.get("path"))
+
+
+def _allowed(value: str, roots: list[Path]) -> bool:
+    if "://" in value or "\x00" in value:
+        return False
+    candidate = Path(value)
+    if candidate.is_absolute():
+        real = Path(os.path.realpath(candidate))
+        return any(_inside(real, root) for root in roots)
+    # relative names are looked up under a root and must stay under that same root
+    return any(_inside(Path(os.path.realpath(root / candidate)), root) for root in roots)

@@ -1,0 +1,80 @@
+"""Generation child process: one Generator (node libraries loaded once), answering
+`generate` and `nodedefs` requests from its API worker.
+
+It reads and fills the shared cache itself: the expensive step (emitting code) happens only when
+the graph hash, known after `prepare`, is not in the cache, and the record goes into the store
+from here, off the API's event loop. Records are stored with `"cached": true`, which is what
+they are whenever they are read back."""
+import json
+import sys
+import threading
+import time
+
+from shadergen.api import Generator
+from shadergen.errors import ShaderGenError
+
+from ..cache import open_store
+from ..config import get_settings
+from .child import serve
+
+
+def _dumps(record: dict) -> bytes:
+    return json.dumps(record, separators=(",", ":")).encode()
+
+
+class GenerateHandler:
+    def __init__(self):
+        settings = get_settings()
+        self.store = open_store(settings.cache, settings.cache_max_bytes)
+        self.generator = Generator()
+
+    def __call__(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
+        if message["op"] == "nodedefs":
+            return {"ok": True}, _dumps(self.generator.nodedefs())
+        return self.generate(message)
+
+    def generate(self, message: dict) -> tuple[dict, bytes]:
+        started = time.perf_counter()
+        # bytes, never str: the generator reads a str that does not start with "<" as a file path
+        try:
+            prepared = self.generator.prepare(
+                message["document"].encode(), target=message["target"], element=message["element"],
+                interface=message["interface"], base_dir=None, allow_includes=False,
+            )
+            key = "rec:" + prepared.hash
+            stored = self.store.get(key)
+            if stored is None:
+                record = prepared.emit(source=True)
+                record["document"] = None  # uploads have no path
+                self.store.put(key, _dumps({**record, "cached": True}))
+                body, cached = _dumps({**record, "cached": False}), False
+            else:
+                body, cached = stored, True
+        except ShaderGenError as exc:
+            return {"error": exc.to_dict()}, b""
+        if message.get("digest"):
+            # identical requests later skip even `prepare` (see service/generation.py)
+            self.store.put("req:" + message["digest"], prepared.hash.encode())
+        return {"hash": prepared.hash, "cached": cached, "seconds": time.perf_counter() - started}, body
+
+
+# The generator recurses along graph edges, so a long chain of nodes (a few thousand fit in the
+# body limit) needs a deep stack; the time limit, not the stack, is what bounds such documents.
+STACK_BYTES = 512 * 1024 * 1024  # address space reserved, not memory used
+RECURSION_LIMIT = 200_000
+
+
+def main() -> None:
+    def work():
+        handler = GenerateHandler()
+        serve(handler, {"library_hash": handler.generator.library_hash})
+
+    threading.stack_size(STACK_BYTES)
+    sys.setrecursionlimit(RECURSION_LIMIT)
+    thread = threading.Thread(target=work, name="generate")
+    thread.start()
+    thread.join()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,30 @@
+"""A child for the pool tests: the real child loop (service.workers.child.serve) around a handler
+whose jobs sleep, crash or answer, so the pool's own logic can be tested on real processes."""
+import os
+import time
+from pathlib import Path
+
+from service.workers.child import serve
+
+
+def handle(message: dict, payload: bytes):
+    action = message.get("action")
+    if action == "sleep":
+        time.sleep(message["seconds"])
+    elif action == "crash":
+        os._exit(3)
+    elif action == "crash_once":
+        # crashes the first time it sees this marker path, answers afterwards
+        marker = Path(message["marker"])
+        if not marker.exists():
+            marker.write_text("crashed")
+            os._exit(3)
+    elif action == "raise":
+        raise ValueError("a bug in the handler")
+    elif action == "print":
+        print("stray output that must not corrupt the protocol")
+    return {"pid": os.getpid(), "echo": message.get("echo")}, payload[::-1]
+
+
+if __name__ == "__main__":
+    serve(handle, {"ready": True, "pid": os.getpid()})

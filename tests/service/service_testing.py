@@ -1,0 +1,181 @@
+"""Helpers that start real things on 127.0.0.1 (redis-server, `shadergen serve`) for the service
+tests. Every process started here is stopped by its owner, and every wait is bounded."""
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import httpx
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+HOST = "127.0.0.1"
+DOCS = Path(__file__).parent / "documents"
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind((HOST, 0))
+        return s.getsockname()[1]
+
+
+def wait_until(predicate, timeout_s: float, what: str, pause_s: float = 0.05):
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(pause_s)
+    raise TimeoutError(f"{what} not within {timeout_s:g} s")
+
+
+def stop(proc: subprocess.Popen, timeout_s: float = 20) -> None:
+    if proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+def renderer_available() -> bool:
+    probe = "from shadergen.render import Renderer; Renderer(texture_roots=[], search_paths=[])"
+    return subprocess.run([sys.executable, "-c", probe], capture_output=True, timeout=60).returncode == 0
+
+
+# -- redis ------------------------------------------------------------------------------------
+class RedisServer:
+    def __init__(self, tmp: Path):
+        exe = shutil.which("redis-server")
+        if exe is None:
+            pytest.skip("redis-server is not installed (scripts/system-packages.sh installs it)")
+        self.port = free_port()
+        self.url = f"redis://{HOST}:{self.port}/0"
+        self.proc = subprocess.Popen(
+            [exe, "--bind", HOST, "--port", str(self.port), "--save", "", "--appendonly", "no",
+             "--dir", str(tmp), "--maxmemory", "256mb", "--maxmemory-policy", "allkeys-lru"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        )
+        wait_until(self._ping, 15, "redis-server")
+
+    def _ping(self) -> bool:
+        try:
+            with socket.create_connection((HOST, self.port), timeout=1) as s:
+                s.sendall(b"PING\r\n")
+                return s.recv(16).startswith(b"+PONG")
+        except OSError:
+            return False
+
+    def flush(self) -> None:
+        import redis
+
+        redis.Redis.from_url(self.url).flushall()
+
+
+
+class Server:
+    """`shadergen serve` on a free loopback port, with its own cache file and settings."""
+
+    def __init__(self, tmp: Path, workers: int = 2, render_workers: int = 1, env: dict | None = None):
+        self.port = free_port()
+        self.url = f"http://{HOST}:{self.port}"
+        self.log = open(tmp / "serve.log", "wb")
+        self.cache_path = tmp / "cache.sqlite3"
+        self.env = {
+            **os.environ,
+            "SHADERGEN_CACHE": f"sqlite:///{self.cache_path}",
+            "SHADERGEN_TEXTURE_ROOTS": str(DOCS),
+            **(env or {}),
+        }
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "shadergen.cli", "serve", "--host", HOST, "--port", str(self.port),
+             "--workers", str(workers), "--render-workers", str(render_workers)],
+            cwd=ROOT, env=self.env, stdout=self.log, stderr=subprocess.STDOUT,
+        )
+        self.client = httpx.Client(base_url=self.url, timeout=120)
+        wait_until(self._healthy, 90, "shadergen serve")
+
+    def _healthy(self) -> bool:
+        if self.proc.poll() is not None:
+            raise RuntimeError(f"shadergen serve exited with {self.proc.returncode}: {self.log_text()[-3000:]}")
+        try:
+            return self.client.get("/healthz").status_code == 200
+        except httpx.TransportError:
+            return False
+
+    def log_text(self) -> str:
+        self.log.flush()
+        return Path(self.log.name).read_text(errors="replace")
+
+    def close(self) -> None:
+        self.client.close()
+        stop(self.proc)
+        self.log.close()
+
+
+def document(name: str) -> str:
+    return (DOCS / name).read_text()
+
+
+def descendants(pid: int) -> list[int]:
+    """Every process below `pid`, from /proc."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text()
+            except OSError:
+                continue
+            ppid = int(stat.rsplit(")", 1)[1].split()[1])
+            children.setdefault(ppid, []).append(int(entry.name))
+    found, todo = [], [pid]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            found.append(child)
+            todo.append(child)
+    return found
+
+
+def cmdline(pid: int) -> str:
+    try:
+        return (Path("/proc") / str(pid) / "cmdline").read_bytes().replace(b"\0", b" ").decode()
+    except OSError:
+        return ""
+
+
+def wait_for_job(client, job_id: str, timeout_s: float = 120) -> dict:
+    def finished():
+        body = client.get(f"/v1/jobs/{job_id}").json()
+        return body if body["state"] in ("done", "failed") else None
+
+    return wait_until(finished, timeout_s, f"job {job_id}", pause_s=0.05)
+
+
+def kill_while_running(client, job_id: str, find_workers, kills: int, timeout_s: float = 60) -> list[int]:
+    """Kill the process running job `job_id` `kills` times (each time a new one has taken it up)."""
+    import signal
+
+    killed: list[int] = []
+    deadline = time.monotonic() + timeout_s
+    while len(killed) < kills and time.monotonic() < deadline:
+        status = client.get(f"/v1/jobs/{job_id}").json()
+        if status["state"] in ("done", "failed"):
+            break
+        fresh = [p for p in find_workers() if p not in killed]
+        # attempt n+1 has begun on a process that is not one of the n already killed
+        if status["state"] == "running" and status["attempts"] == len(killed) + 1 and fresh:
+            for pid in fresh:
+                os.kill(pid, signal.SIGKILL)
+            killed.extend(fresh)
+        time.sleep(0.01)
+    return killed
+
+
+def is_png(data: bytes, side: int) -> bool:
+    import struct
+
+    return data[:8] == b"\x89PNG\r\n\x1a\n" and struct.unpack(">II", data[16:24]) == (side, side)

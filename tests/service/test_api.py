@@ -1,0 +1,248 @@
+"""The real server (`shadergen serve`, two API workers) on 127.0.0.1: every endpoint, the cache,
+and bad input answered with the contract's error object, never a 500."""
+import socket
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+import pytest
+
+from service_testing import HOST, Server, document
+
+XML = {"content-type": "application/xml"}
+MIB = 1024 * 1024
+
+
+def generate(client, name_or_text: str, **params):
+    text = document(name_or_text) if name_or_text.endswith(".mtlx") else name_or_text
+    return client.post("/v1/generate", json={"document": text, **params})
+
+
+def assert_error(response, status: int, code: str):
+    assert response.status_code == status, response.text
+    body = response.json()
+    assert set(body) == {"document", "element", "target", "error"}
+    assert body["error"]["code"] == code and body["error"]["message"]
+    return body["error"]
+
+
+# -- endpoints ---------------------------------------------------------------------------------
+def test_healthz(client):
+    body = client.get("/healthz").json()
+    assert body["status"] == "ok" and len(body["library_hash"]) >= 16
+    assert body["cache"] == "SQLiteStore" and body["jobs"] == "local"
+
+
+def test_generate_json_returns_the_contract_record(client):
+    r = generate(client, "ramp.mtlx", target="essl", interface="reduced")
+    assert r.status_code == 200, r.text
+    rec = r.json()
+    assert rec["document"] is None and rec["element"] == "NG_ramp/out"
+    assert rec["target"] == "essl" and rec["interface"] == "reduced"
+    assert "void main()" in rec["stages"]["pixel"]
+    assert set(rec["blocks"]) == {"vertex", "pixel"}
+    assert rec["timings_ms"]["generate"] >= 0
+
+
+def test_generate_raw_xml_with_query_parameters(client):
+    r = client.post("/v1/generate?target=glsl&element=NG_ramp/out", content=document("ramp.mtlx"), headers=XML)
+    assert r.status_code == 200, r.text
+    assert r.json()["element"] == "NG_ramp/out"
+
+
+def test_source_false_gives_listings_only(client):
+    rec = generate(client, "ramp.mtlx", source=False).json()
+    assert rec["stages"] == {"vertex": None, "pixel": None}
+    names = [v["name"] for v in rec["blocks"]["pixel"]["PublicUniforms"]]
+    assert "mul_in2" in names
+
+
+def test_get_shader_by_hash(client):
+    rec = generate(client, "ramp.mtlx", target="essl").json()
+    got = client.get(f"/v1/shaders/{rec['hash']}", params={"target": "essl"})
+    assert got.status_code == 200 and got.json()["stages"] == rec["stages"] and got.json()["cached"] is True
+    assert_error(client.get(f"/v1/shaders/{rec['hash']}", params={"target": "glsl"}), 404, "not_found")
+    assert_error(client.get("/v1/shaders/" + "0" * 64), 404, "not_found")
+    assert_error(client.get("/v1/shaders/not-a-hash"), 422, "invalid_request")
+
+
+def test_nodedefs(client):
+    defs = client.get("/v1/nodedefs").json()
+    add = next(d for d in defs if d["name"] == "ND_add_float")
+    assert add["node"] == "add" and [i["name"] for i in add["inputs"]] == ["in1", "in2"]
+
+
+def test_metrics(client):
+    generate(client, "ramp.mtlx")
+    text = client.get("/metrics").text
+    for name in ("shadergen_requests_total", "shadergen_request_seconds_bucket", "shadergen_cache_total",
+                 "shadergen_queue_depth", "shadergen_render_seconds", "shadergen_generate_seconds"):
+        assert name in text
+    assert 'route="/v1/generate"' in text
+
+
+# -- the cache ---------------------------------------------------------------------------------
+def test_second_identical_request_is_cached(client):
+    text = document("ramp.mtlx").replace("0.5", "0.125")  # a graph no other test generates
+    first, second = generate(client, text).json(), generate(client, text).json()
+    assert first["cached"] is False and second["cached"] is True
+    assert first["hash"] == second["hash"] and first["stages"] == second["stages"]
+
+
+def test_equivalent_xml_hits_and_changed_value_misses(client):
+    base = generate(client, "ramp.mtlx", target="glsl", interface="complete").json()
+    same = generate(client, "ramp_equivalent.mtlx", target="glsl", interface="complete").json()
+    assert same["cached"] is True and same["hash"] == base["hash"] and same["stages"] == base["stages"]
+    changed = generate(client, "ramp_changed.mtlx").json()
+    assert changed["hash"] != base["hash"] and changed["cached"] is False
+    other_mode = generate(client, "ramp.mtlx", interface="reduced").json()
+    assert other_mode["hash"] != base["hash"]
+
+
+def test_cache_is_shared_by_all_workers(server, client):
+    text = document("ramp.mtlx").replace("0.5", "0.375")
+    generate(client, text)
+    # new connections land on either worker; every answer comes from the one store
+    from httpx import Client
+
+    with ThreadPoolExecutor(8) as pool:
+        recs = list(pool.map(lambda _: Client(base_url=server.url, timeout=60).post(
+            "/v1/generate", json={"document": text}).json(), range(16)))
+    assert all(r["cached"] for r in recs)
+
+
+# -- bad input ---------------------------------------------------------------------------------
+BOMB = """<?xml version="1.0"?>
+<!DOCTYPE lolz [<!ENTITY lol "lol"><!ENTITY lol2 "&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;">
+<!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;">]>
+<materialx version="1.39"><nodegraph name="&lol3;"/></materialx>"""
+EXTERNAL_ENTITY = """<?xml version="1.0"?>
+<!DOCTYPE m [<!ENTITY xxe SYSTEM "file:///etc/passwd">]>
+<materialx version="1.39"><nodegraph name="&xxe;"/></materialx>"""
+INCLUDE = """<?xml version="1.0"?>
+<materialx version="1.39" xmlns:xi="http://www.w3.org/2001/XInclude">
+  <xi:include href="/etc/passwd" parse="text"/>
+</materialx>"""
+
+
+@pytest.mark.parametrize("doc", [BOMB, EXTERNAL_ENTITY])
+def test_xml_bombs_and_external_entities_are_refused(client, doc):
+    assert_error(generate(client, doc), 400, "unsafe_xml")
+    assert_error(client.post("/v1/generate", content=doc, headers=XML), 400, "unsafe_xml")
+
+
+def test_xinclude_never_reads_server_files(client):
+    err = assert_error(generate(client, INCLUDE), 400, "include_refused")
+    assert "root:" not in err["message"]
+
+
+def test_body_over_the_limit_is_refused_before_reading(client):
+    r = client.post("/v1/generate", content=b"<" + b" " * (2 * MIB), headers=XML)
+    assert_error(r, 413, "too_large")
+
+
+def test_chunked_body_over_the_limit_is_cut_off_while_streaming(server):
+    head = (f"POST /v1/generate HTTP/1.1\r\nHost: {HOST}\r\nContent-Type: application/xml\r\n"
+            "Transfer-Encoding: chunked\r\n\r\n").encode()
+    chunk = b" " * 65536
+    with socket.create_connection((HOST, server.port), timeout=30) as s:
+        s.sendall(head)
+        try:
+            for _ in range(64):  # 4 MiB at most: the server answers before the end
+                s.sendall(b"%x\r\n%s\r\n" % (len(chunk), chunk))
+            s.sendall(b"0\r\n\r\n")
+        except (BrokenPipeError, ConnectionResetError):
+            pass
+        response = b""
+        while b"\r\n\r\n" not in response:
+            data = s.recv(65536)
+            if not data:
+                break
+            response += data
+    assert response.startswith(b"HTTP/1.1 413"), response[:200]
+
+
+@pytest.mark.parametrize("params, status, code", [
+    ({"target": "nope"}, 422, "unsupported_target"),
+    ({"target": "x" * 65}, 422, "invalid_request"),
+    ({"element": "NoSuchElement"}, 422, "unknown_element"),
+    ({"interface": "bogus"}, 422, "invalid_request"),
+    ({"unknown_field": 1}, 422, "invalid_request"),
+])
+def test_bad_parameters(client, params, status, code):
+    assert_error(generate(client, "ramp.mtlx", **params), status, code)
+
+
+@pytest.mark.parametrize("body, headers, status, code", [
+    (b"<materialx><bad", XML, 400, "invalid_document"),
+    (b"", XML, 400, "invalid_document"),
+    (b"/etc/passwd", XML, 400, "invalid_document"),  # a path is not a document
+    (b"\xff\xfe<materialx/>", XML, 400, "invalid_document"),
+    (b"{not json", {"content-type": "application/json"}, 422, "invalid_request"),
+    (b'{"target": "glsl"}', {"content-type": "application/json"}, 422, "invalid_request"),
+    (b"[1, 2]", {"content-type": "application/json"}, 422, "invalid_request"),
+    (b"hello", {"content-type": "text/plain"}, 415, "unsupported_media_type"),
+])
+def test_bad_bodies(client, body, headers, status, code):
+    assert_error(client.post("/v1/generate", content=body, headers=headers), status, code)
+
+
+def test_json_document_naming_a_server_file_is_not_read(client):
+    assert_error(generate(client, "/etc/passwd"), 400, "invalid_document")
+
+
+def test_unknown_routes_and_methods(client):
+    assert_error(client.get("/v1/nope"), 404, "not_found")
+    assert_error(client.get("/v1/generate"), 405, "method_not_allowed")
+
+
+def test_texture_outside_the_roots_is_refused(client):
+    err = assert_error(client.post("/v1/thumbnails", json={"document": document("texture_outside.mtlx")}),
+                       403, "path_not_allowed")
+    assert err["where"] == "NG_tex/img/file"
+
+
+def test_unknown_job(client):
+    assert_error(client.get("/v1/jobs/" + "0" * 32), 404, "not_found")
+    assert_error(client.get("/v1/jobs/" + "0" * 32 + "/thumbnail"), 404, "not_found")
+
+
+def chain_document(n: int) -> str:
+    nodes = ['<constant name="n0" type="float"><input name="value" type="float" value="0.5"/></constant>']
+    nodes += [f'<add name="n{i}" type="float"><input name="in1" type="float" nodename="n{i - 1}"/>'
+              f'<input name="in2" type="float" value="{i}"/></add>' for i in range(1, n)]
+    return ('<?xml version="1.0"?><materialx version="1.39"><nodegraph name="NG_chain">' + "\n".join(nodes)
+            + f'<output name="out" type="float" nodename="n{n - 1}"/></nodegraph></materialx>')
+
+
+@pytest.fixture(scope="module")
+def slow_server(tmp_path_factory):
+    srv = Server(tmp_path_factory.mktemp("slow"), workers=1, render_workers=1,
+                 env={"SHADERGEN_GENERATE_TIMEOUT_S": "1"})
+    yield srv
+    srv.close()
+
+
+def test_runaway_generation_is_stopped_and_the_worker_replaced(slow_server):
+    client = slow_server.client
+    err = assert_error(client.post("/v1/generate", json={"document": chain_document(10_000)}), 422, "timeout")
+    assert "time limit" in err["message"]
+    assert generate(client, "ramp.mtlx").status_code == 200  # a fresh generator took over
+
+
+def test_deep_graph_is_generated_not_a_recursion_error(client):
+    r = generate(client, chain_document(1500))
+    assert r.status_code == 200, r.text
+
+
+def test_cache_file_destroyed_under_a_running_server_is_rebuilt(slow_server):
+    client = slow_server.client
+    text = document("ramp.mtlx").replace("0.5", "0.875")
+    assert generate(client, text).json()["cached"] is False
+    path = slow_server.cache_path
+    for suffix in ("", "-wal", "-shm"):
+        path.with_name(path.name + suffix).unlink(missing_ok=True)
+    path.write_bytes(b"garbage, not a database " * 1000)
+    time.sleep(1.1)  # processes look for a replaced file at most once a second
+    again = generate(client, text)
+    assert again.status_code == 200 and again.json()["cached"] is False  # the entry went with the file
+    assert generate(client, text).json()["cached"] is True

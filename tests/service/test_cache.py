@@ -1,0 +1,140 @@
+"""The cache stores on real back ends: SQLite files (bounded, LRU, shared by processes, rebuilt
+when broken) and a real redis-server."""
+import asyncio
+import multiprocessing
+import sqlite3
+import time
+
+import pytest
+
+from service.cache import SQLiteStore, open_store
+from service.cache import sqlite as sqlite_module
+
+
+def test_put_get_delete_and_json(tmp_path):
+    store = SQLiteStore(tmp_path / "c.sqlite3")
+    assert store.get("missing") is None
+    store.put("k", b"\x00bytes\xff")
+    assert store.get("k") == b"\x00bytes\xff"
+    store.put_json("j", {"a": [1, 2]})
+    assert store.get_json("j") == {"a": [1, 2]}
+    assert asyncio.run(store.aget("k")) == b"\x00bytes\xff"
+    store.put("k", b"replaced")
+    assert store.get("k") == b"replaced"
+    store.delete("k")
+    assert store.get("k") is None
+    assert store.total_bytes() == len(b'{"a":[1,2]}')
+
+
+def test_bounded_with_least_recently_used_evicted(tmp_path, monkeypatch):
+    monkeypatch.setattr(sqlite_module, "TOUCH_INTERVAL_S", 0.0)  # record every read, for a strict order
+    store = SQLiteStore(tmp_path / "c.sqlite3", max_bytes=10_000)
+    for i in range(10):
+        store.put(f"k{i}", bytes(900))
+        time.sleep(0.002)
+    store.get("k0")  # k0 is now the most recent: k1 goes first
+    store.put("k10", bytes(900))
+    store.put("k11", bytes(900))
+    assert store.total_bytes() <= 10_000
+    assert store.get("k0") is not None and store.get("k11") is not None
+    assert store.get("k1") is None
+    assert store.total_bytes() == sum(len(store.get(f"k{i}") or b"") for i in range(12))
+    store.put("huge", bytes(20_000))  # larger than the store: not kept, nothing evicted for it
+    assert store.get("huge") is None and store.get("k11") is not None
+
+
+def _writer(path: str, worker: int, count: int) -> None:
+    store = SQLiteStore(path, max_bytes=200_000)
+    for i in range(count):
+        store.put(f"w{worker}-{i}", bytes([worker]) * 500)
+        store.get(f"w{(worker + 1) % 4}-{i}")
+
+
+def test_concurrent_writers_in_several_processes(tmp_path):
+    path = str(tmp_path / "c.sqlite3")
+    SQLiteStore(path)  # created once, as the service does before its workers start
+    ctx = multiprocessing.get_context("spawn")
+    procs = [ctx.Process(target=_writer, args=(path, w, 300)) for w in range(4)]
+    for p in procs:
+        p.start()
+    for p in procs:
+        p.join(60)
+    assert [p.exitcode for p in procs] == [0, 0, 0, 0]
+    store = SQLiteStore(path, max_bytes=200_000)
+    with sqlite3.connect(path) as conn:
+        actual = conn.execute("SELECT coalesce(sum(size), 0) FROM entries").fetchone()[0]
+    assert store.total_bytes() == actual <= 200_000
+    assert len(store) > 100
+
+
+def test_corrupt_file_is_rebuilt(tmp_path):
+    path = tmp_path / "c.sqlite3"
+    path.write_bytes(b"this is not a database, just garbage " * 200)
+    store = SQLiteStore(path)
+    assert store.get("k") is None
+    store.put("k", b"v")
+    assert store.get("k") == b"v"
+
+
+def test_file_corrupted_while_open_is_rebuilt(tmp_path):
+    path = tmp_path / "c.sqlite3"
+    store = SQLiteStore(path)
+    for i in range(50):
+        store.put(f"k{i}", bytes(4000))
+    store.close()
+    with open(path, "r+b") as f:  # trash every page after the header
+        f.seek(4096)
+        f.write(b"\xde\xad" * 100_000)
+    for suffix in ("-wal", "-shm"):
+        (tmp_path / f"c.sqlite3{suffix}").unlink(missing_ok=True)
+    again = SQLiteStore(path)
+    assert again.get("k3") is None
+    again.put("new", b"v")
+    assert again.get("new") == b"v"
+
+
+def test_deleted_file_is_recreated(tmp_path, monkeypatch):
+    monkeypatch.setattr(sqlite_module, "INODE_CHECK_S", 0.0)  # noticed at the next lookup, not a second later
+    path = tmp_path / "sub" / "c.sqlite3"
+    store = SQLiteStore(path)
+    store.put("k", b"v")
+    for p in path.parent.iterdir():
+        p.unlink()
+    assert store.get("k") is None  # a fresh, empty store, not an orphaned file
+    store.put("k2", b"v2")
+    assert SQLiteStore(path).get("k2") == b"v2"
+
+
+def test_open_store_by_url(tmp_path):
+    store = open_store(f"sqlite:///{tmp_path / 'x.sqlite3'}", 1000)
+    assert isinstance(store, SQLiteStore) and store.path == tmp_path / "x.sqlite3"
+
+
+def test_redis_store(redis_server):
+    store = open_store(redis_server.url, 0)
+    try:
+        store.put("k", b"\x00v")
+        assert store.get("k") == b"\x00v"
+        assert asyncio.run(_aget_and_close(store, "k")) == b"\x00v"
+        store.put_json("j", [1, "a"])
+        assert store.get_json("j") == [1, "a"]
+        store.delete("k")
+        assert store.get("k") is None
+    finally:
+        store.close()
+
+
+async def _aget_and_close(store, key):
+    try:
+        return await store.aget(key)
+    finally:
+        await store.aclose()
+
+
+@pytest.mark.parametrize("url", ["redis://127.0.0.1:1/0"])
+def test_redis_store_unreachable_is_an_error_not_a_hang(url):
+    import redis
+
+    store = open_store(url, 0)
+    with pytest.raises(redis.ConnectionError):
+        store.get("k")

@@ -1,0 +1,21 @@
+"""Property-based requests from openapi.yaml against the live server: whatever schemathesis
+sends, no 5xx, and every answer has a documented status, media type and schema. Bounded in
+examples per operation; the server is the session's live `shadergen serve`."""
+from pathlib import Path
+
+import schemathesis
+import yaml
+from hypothesis import HealthCheck, settings
+from schemathesis.checks import not_a_server_error
+from schemathesis.specs.openapi.checks import (content_type_conformance, response_schema_conformance,
+                                               status_code_conformance)
+
+CHECKS = [not_a_server_error, status_code_conformance, content_type_conformance, response_schema_conformance]
+# the committed contract, which test_openapi.py keeps equal to what the server serves
+schema = schemathesis.openapi.from_dict(yaml.safe_load((Path(__file__).parents[2] / "openapi.yaml").read_text()))
+
+
+@schema.parametrize()
+@settings(max_examples=40, deadline=None, derandomize=True, suppress_health_check=list(HealthCheck))
+def test_no_server_errors(case, server):
+    case.call_and_validate(base_url=server.url, checks=CHECKS, timeout=60)
