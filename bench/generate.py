@@ -16,6 +16,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 ORACLE_PY = os.path.join(os.environ.get("ORACLE_VENV", os.path.expanduser("~/.cache/mx-oracle/venv")), "bin", "python")
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -60,7 +61,7 @@ def ours_warm(docs):
     gen = Generator()
     out = []
     for path in docs:
-        doc = gen.load(path)  # parsed once, as the reference's document is
+        doc = gen.load(Path(path))  # parsed once, as the reference's document is
         for p in gen.prepare_all(doc):
             if isinstance(p, Exception):
                 continue

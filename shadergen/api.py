@@ -10,6 +10,7 @@ Errors are ShaderGenError everywhere; `records` turns them into error records fo
 import os
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from .document import Document, parse_document, read_document
 from .element import Element
@@ -45,6 +46,14 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
 
 def internal_error(bug: Exception, where: str | None) -> ShaderGenError:
     err = ShaderGenError("internal_error", f"generation failed: {type(bug).__name__}: {bug}", where)
+    err.element = where
+    return err
+
+
+def too_deep(where: str | None) -> ShaderGenError:
+    """Connections are followed recursively; a chain deeper than Python's stack allows is a
+    document error (the service may raise the limit), not a crash."""
+    err = ShaderGenError("too_large", "the graph's chain of connections is too deep to generate", where)
     err.element = where
     return err
 
@@ -89,7 +98,9 @@ class Generator:
     # -- documents ----------------------------------------------------------------------------
     def load(self, source: str | bytes | os.PathLike, *, base_dir: str | None = None,
              allow_includes: bool = True) -> Document:
-        if isinstance(source, os.PathLike) or (isinstance(source, str) and not source.lstrip().startswith("<")):
+        """A path (os.PathLike) is read from disk; str or bytes are the XML itself, never a path,
+        and may include other files only relative to an explicit `base_dir`."""
+        if isinstance(source, os.PathLike):
             return read_document(os.fspath(source), allow_includes=allow_includes)
         return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
 
@@ -116,7 +127,9 @@ class Generator:
             except ShaderGenError as err:
                 err.element = e.path
                 out.append(err)
-            except (ValueError, TypeError, KeyError, AttributeError, IndexError, RecursionError) as bug:
+            except RecursionError:
+                out.append(too_deep(e.path))
+            except (ValueError, TypeError, KeyError, AttributeError, IndexError) as bug:
                 # A document that reaches a gap in our code still gets a record, never a traceback.
                 out.append(internal_error(bug, e.path))
         return out
@@ -134,8 +147,7 @@ class Generator:
     def records(self, source, **kw):
         """Contract records (or error records) for each element: what the CLI prints."""
         target, interface = kw.get("target", "glsl"), kw.get("interface", "complete")
-        path = os.fspath(source) if isinstance(source, (str, os.PathLike)) and not str(source).lstrip().startswith(
-            "<") else None
+        path = os.fspath(source) if isinstance(source, os.PathLike) else None
         base = {"document": path, "target": target, "interface": interface}
         try:
             prepared = self.prepare_all(source, **kw)
@@ -150,7 +162,9 @@ class Generator:
                 yield p.emit()
             except ShaderGenError as e:
                 yield dict(base, element=p.element, error=e.to_dict())
-            except (ValueError, TypeError, KeyError, AttributeError, IndexError, RecursionError) as bug:
+            except RecursionError:
+                yield dict(base, element=p.element, error=too_deep(p.element).to_dict())
+            except (ValueError, TypeError, KeyError, AttributeError, IndexError) as bug:
                 yield dict(base, element=p.element, error=internal_error(bug, p.element).to_dict())
 
     def nodedefs(self) -> list[dict]:
@@ -179,14 +193,14 @@ class Generator:
         builder = GraphBuilder(scope, lib_target, doc.root)
         root = None
         if elem.category == "output":
-            src = builder.follow(elem, elem.get("type"))
+            src = builder.source_of(elem)
             if not isinstance(src, Output):
                 raise ShaderGenError("invalid_document", f"output '{elem.name}' is not connected", elem.path)
             outputs = {elem.name: src}
         elif elem.category in ("nodegraph",):
             outputs = {}
             for o in elem.children_of("output"):
-                src = builder.follow(o, o.get("type"))
+                src = builder.source_of(o)
                 if isinstance(src, Output):
                     outputs[o.name] = src
         else:
@@ -213,4 +227,5 @@ def default_generator() -> Generator:
 def generate_file(path: str, *, target: str = "glsl", element: str | None = None, all: bool = False,
                   interface: str = "complete") -> list[dict]:
     """Records for a document file (used by the renderer's CLI)."""
-    return list(default_generator().records(path, target=target, element=element, all=all, interface=interface))
+    return list(default_generator().records(Path(path), target=target, element=element, all=all,
+                                            interface=interface))

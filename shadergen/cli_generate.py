@@ -2,6 +2,7 @@
 import json
 import os
 import sys
+from pathlib import Path
 
 STAGE_SUFFIX = {"glsl": {"vertex": "vert", "pixel": "frag"}, "essl": {"vertex": "vert", "pixel": "frag"}}
 
@@ -38,7 +39,7 @@ def run(args) -> int:
         print(json.dumps({"document": None, "element": None, "target": args.target, "error": e.to_dict()}))
         return 1
     for doc in args.documents:
-        for rec in gen.records(doc, target=args.target, element=args.element, all=args.all,
+        for rec in gen.records(Path(doc), target=args.target, element=args.element, all=args.all,
                                interface=args.interface):
             if "error" in rec:
                 ok = False

@@ -165,7 +165,7 @@ class EmitContext:
                                prefix)
         outputs = {}
         for out_elem in elem.children_of("output"):
-            src = builder.follow(out_elem, out_elem.get("type"))
+            src = builder.source_of(out_elem)
             if not isinstance(src, Output):
                 raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
                                      out_elem.path)
@@ -222,11 +222,12 @@ class EmitContext:
 
     # -- calls -------------------------------------------------------------------------------
     def emit_nodes(self, graph: Graph, scope: tuple) -> None:
+        branching = {id(cond) for n in graph.nodes for cond, _ in n.scope}  # conditionals with nodes of their own
         for node in graph.nodes:
             if is_closure_node(node) and self.closure is None:
                 continue  # closures are evaluated per shading context by the surface that reads them
             if node.scope == scope:
-                if any(n.scope[len(scope):len(scope) + 1] and n.scope[len(scope)][0] is node for n in graph.nodes):
+                if id(node) in branching:
                     self.emit_branches(graph, node)
                 else:
                     node.impl.emit_function_call(node, self)

@@ -25,6 +25,13 @@ WORKING_COLORSPACE = "lin_rec709"
 TARGET_UNITS = {"distance": "meter"}
 
 
+@dataclass(frozen=True)
+class NodeRef:
+    """A connection's upstream node, before the node is built."""
+    elem: Element
+    output: str | None
+
+
 @dataclass(eq=False)
 class Socket:
     """A graph interface input: a published uniform of the shader, or a parameter of a
@@ -122,7 +129,6 @@ class GraphBuilder:
         self.target = target
         self.doc_root = doc_root
         self.nodes: dict[int, Node] = {}  # id(element) -> node
-        self.visiting: list[Element] = []
         self.names: set[str] = set()
         self.geom_nodes: dict[str, Node] = {}
         self.redirect: dict[int, Output] = {}  # id(output) -> the transform node output that replaces it
@@ -179,19 +185,34 @@ class GraphBuilder:
 
     # -- building ----------------------------------------------------------------------------
     def node_for(self, elem: Element) -> Node:
-        key = id(elem)
-        if key in self.nodes:
-            return self.nodes[key]
-        if elem in self.visiting:
-            cycle = self.visiting[self.visiting.index(elem):] + [elem]
-            raise ShaderGenError("cycle", "cycle in the graph: " + " -> ".join(e.path for e in cycle), elem.path)
-        self.visiting.append(elem)
-        try:
-            node = self._make_node(elem)
-        finally:
-            self.visiting.pop()
-        self.nodes[key] = node
-        return node
+        """The node of an element, building every node upstream of it first. Iterative, so graphs
+        of any depth build; a connection back onto the current path is a cycle, named in full."""
+        if id(elem) in self.nodes:
+            return self.nodes[id(elem)]
+        stack = [(elem, iter(self.upstream_elements(elem)))]
+        on_path = {id(elem)}
+        while stack:
+            current, deps = stack[-1]
+            dep = next(deps, None)
+            if dep is None:
+                stack.pop()
+                on_path.discard(id(current))
+                self.nodes[id(current)] = self._make_node(current)
+            elif id(dep) in on_path:
+                path = [e for e, _ in stack]
+                cycle = path[path.index(dep):] + [dep]
+                raise ShaderGenError("cycle", "cycle in the graph: " + " -> ".join(e.path for e in cycle), dep.path)
+            elif id(dep) not in self.nodes:
+                on_path.add(id(dep))
+                stack.append((dep, iter(self.upstream_elements(dep))))
+        return self.nodes[id(elem)]
+
+    def upstream_elements(self, elem: Element):
+        """The node elements an element's inputs connect to (through graph outputs and interfaces)."""
+        for authored in elem.children_of("input", "parameter"):
+            source = self.follow(authored)
+            if isinstance(source, NodeRef):
+                yield source.elem
 
     def _make_node(self, elem: Element) -> Node:
         nodedef = self.resolve_nodedef(elem)
@@ -311,7 +332,7 @@ class GraphBuilder:
             cs = authored.inherited("colorspace")
             if cs:
                 inp.meta["colorspace"] = cs
-        source = self.follow(authored, inp.type)
+        source = self.source_of(authored)
         if isinstance(source, Socket):
             inp.bind_socket(source)
         elif isinstance(source, Output):
@@ -328,9 +349,16 @@ class GraphBuilder:
                 if source.get(key) and key not in inp.meta:
                     inp.meta[key] = source.get(key)
 
-    def follow(self, port: Element, type_name: str):
-        """Where a port's data comes from: an upstream node Output, an interface Socket of the
-        nodegraph being implemented, or the Element holding its value."""
+    def source_of(self, port: Element):
+        """Where a port's data comes from: an upstream node's Output, an interface Socket of the
+        nodegraph being implemented, the Element holding its value, or None."""
+        source = self.follow(port)
+        if isinstance(source, NodeRef):
+            return self.output_of(source.elem, source.output, port.path)
+        return source
+
+    def follow(self, port: Element):
+        """Like source_of, but names an upstream node by its element (NodeRef) without building it."""
         for _ in range(256):
             graph = _graph_of(port)
             if port.get("nodename"):
@@ -338,7 +366,7 @@ class GraphBuilder:
                 if target is None or target.category in ("input", "output", "nodedef", "nodegraph"):
                     raise ShaderGenError("dangling_connection", f"'{port.get('nodename')}' is not a node here",
                                          port.path)
-                return self.output_of(target, port.get("output"), port.path)
+                return NodeRef(target, port.get("output"))
             if port.get("nodegraph"):
                 ng = self.doc_root.child(port.get("nodegraph"))
                 if ng is None or ng.category != "nodegraph":

@@ -8,10 +8,25 @@ cannot change the key. Document-local definitions are hashed by content.
 """
 import hashlib
 import json
+from functools import lru_cache
+from pathlib import Path
 
 from . import __version__
 from .element import Element
 from .graph import Graph
+
+PACKAGE = Path(__file__).resolve().parent
+
+
+@lru_cache(maxsize=1)
+def generator_fingerprint() -> str:
+    """The generator's own code is an input too: a new release must never be served records
+    cached by the old one. The renderer is not part of what a record depends on."""
+    h = hashlib.sha256(__version__.encode())
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if "render" not in path.relative_to(PACKAGE).parts:
+            h.update(str(path.relative_to(PACKAGE)).encode() + b"\0" + path.read_bytes())
+    return h.hexdigest()
 
 
 def _element_digest(e: Element) -> list:
@@ -35,7 +50,7 @@ def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, 
         nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
     outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
     payload = json.dumps(
-        {"v": __version__, "target": target, "interface": interface, "library": library_hash,
+        {"generator": generator_fingerprint(), "target": target, "interface": interface, "library": library_hash,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
          "nodes": nodes, "outputs": outputs},
         sort_keys=True, separators=(",", ":"), default=str)

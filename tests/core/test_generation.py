@@ -193,3 +193,17 @@ def test_derivative_nodes_stay_in_uniform_control_flow(gen):
     src = pixel(rec)
     assert src.index("mx_heighttonormal_vector3(") < src.index("pick_out")
     assert "if (" not in src[src.index("void main()"):]
+
+
+def test_deep_chains_generate(gen):
+    n = 3000
+    body = '<add name="n0" type="float"/>' + ''.join(
+        f'<add name="n{i}" type="float"><input name="in1" type="float" nodename="n{i - 1}"/></add>' for i in range(1, n))
+    rec = first(gen, body + f'<output name="o" type="float" nodename="n{n - 1}"/>')
+    assert f"float n{n - 1}_out = n{n - 2}_out + n{n - 1}_in2;" in pixel(rec)
+
+
+def test_text_is_never_read_as_a_path(gen):
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare("/etc/passwd")
+    assert e.value.code == "invalid_document"
