@@ -23,7 +23,10 @@ STRUCTS = {
 LIGHT_DATA_MEMBERS = (("type", "integer"), ("position", "vector3"), ("direction", "vector3"), ("color", "color3"),
                       ("intensity", "float"), ("decay_rate", "float"), ("inner_angle", "float"),
                       ("outer_angle", "float"))
-STRUCT_DEPENDENCIES = {"material": ("surfaceshader",)}
+# Library files that handle one closure type usually handle its siblings too (mix of BSDF, EDF and
+# VDF in one file), so the closure family is declared together.
+CLOSURE_FAMILY = ("BSDF", "EDF", "VDF", "surfaceshader", "volumeshader", "displacementshader", "lightshader")
+STRUCT_DEPENDENCIES = {t: CLOSURE_FAMILY for t in CLOSURE_FAMILY} | {"material": CLOSURE_FAMILY}
 STRUCT_ZERO = {
     "surfaceshader": "surfaceshader(vec3(0.0), vec3(0.0))",
     "volumeshader": "volumeshader(vec3(0.0), vec3(0.0))",
