@@ -66,6 +66,9 @@ class EmitContext:
         self.graph_functions: dict[int, str] = {}
         self.vertex_main: list[str] = []
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
+        # `vars` is keyed by id(): every graph emitted from must stay alive until the shader is
+        # written, or a new object could reuse an id and take over another's variable name.
+        self.retained: list = []
 
     @property
     def pixel(self) -> Stage:
@@ -170,7 +173,9 @@ class EmitContext:
                 raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
                                      out_elem.path)
             outputs[out_elem.name] = src
-        return prepare(builder, outputs, None), sockets
+        graph = prepare(builder, outputs, None)
+        self.retained.append((graph, sockets))
+        return graph, sockets
 
     def inline_graph(self, elem: Element, node: Node) -> None:
         """A nodegraph used once is written in place (smaller than a function and its call): its

@@ -131,6 +131,7 @@ class GraphBuilder:
         self.nodes: dict[int, Node] = {}  # id(element) -> node
         self.names: set[str] = set()
         self.geom_nodes: dict[str, Node] = {}
+        self.synthetic: list[Element] = []  # elements made here (default geometric nodes)
         self.redirect: dict[int, Output] = {}  # id(output) -> the transform node output that replaces it
         self.warnings: list[str] = []
 
@@ -159,7 +160,7 @@ class GraphBuilder:
         version = elem.get("version")
         matches = []
         for nd in candidates:
-            outputs = nd.children_of("output")
+            outputs = self.scope.nodedef_outputs(nd)
             if out_type and out_type != "multioutput":
                 if not outputs or outputs[0].get("type", nd.get("type")) != out_type:
                     if not (not outputs and nd.get("type") == out_type):
@@ -221,7 +222,7 @@ class GraphBuilder:
             raise ShaderGenError("unknown_node",
                                  f"no {self.target} implementation of '{nodedef.name}' for <{elem.category}>", elem.path)
         node = Node(self.unique(self.prefix + elem.name), elem.category, elem.get("type") or "", nodedef, impl, elem.path)
-        for out in nodedef.children_of("output"):
+        for out in self.scope.nodedef_outputs(nodedef):
             node.outputs[out.name] = Output(out.name, out.get("type"), node)
         if not node.outputs:
             node.outputs["out"] = Output("out", nodedef.get("type"), node)
@@ -231,7 +232,7 @@ class GraphBuilder:
             t = decl.get("type")
             inp = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path), None,
                         meta=input_meta(decl))
-            inp.path = f"{elem.path}/{decl.name}" if decl.parent is nodedef else None
+            inp.path = f"{elem.path}/{decl.name}" if decl.parent.category == "nodedef" else None
             node.inputs[decl.name] = inp
         for authored in elem.children_of("input", "parameter"):
             inp = node.inputs.get(authored.name)
@@ -241,7 +242,8 @@ class GraphBuilder:
             self.bind(inp, authored)
         for inp in list(node.inputs.values()):
             geomprop = inp.meta.get("defaultgeomprop")
-            if geomprop and not inp.authored:
+            if geomprop and inp.connection is None and inp.socket is None:
+                # as MaterialX does: an unconnected geometric input reads the geometry, value or not
                 inp.connection = self.geomprop_output(geomprop, elem)
             elif inp.authored and inp.type != "filename":
                 self.convert_units(inp)
@@ -257,7 +259,7 @@ class GraphBuilder:
             self.warnings.append(f"{where}: no {self.target} transform '{nodedef_name}'; value used as is")
             return None
         node = Node(self.unique(name), nodedef.get("node"), "", nodedef, impl, where)
-        for out in nodedef.children_of("output"):
+        for out in self.scope.nodedef_outputs(nodedef):
             node.outputs[out.name] = Output(out.name, out.get("type"), node)
         for decl in self.scope.nodedef_inputs(nodedef):
             t = decl.get("type")
@@ -415,6 +417,7 @@ class GraphBuilder:
             if gdef.get(key) is not None and key != "geomprop":
                 elem.children.append(Element("input", {"name": key, "type": "integer" if key == "index" else "string",
                                                        "value": gdef.get(key)}, elem))
+        self.synthetic.append(elem)  # `nodes` is keyed by id(element): keep it alive
         node = self.node_for(elem)
         for inp in node.inputs.values():  # published under the geompropdef's name
             if inp.authored:

@@ -188,6 +188,15 @@ class Scope:
             nd = self.nodedef(parent) if parent else None
         return None
 
+    def nodedef_outputs(self, nodedef: Element) -> list[Element]:
+        """Outputs of a nodedef; a nodedef that declares none has its parent's."""
+        while nodedef is not None:
+            outputs = nodedef.children_of("output")
+            if outputs or not nodedef.get("inherit"):
+                return outputs
+            nodedef = self.nodedef(nodedef.get("inherit"))
+        return []
+
     def nodedef_inputs(self, nodedef: Element) -> list[Element]:
         """Inputs of a nodedef including inherited ones (the child's override the parent's)."""
         parent_name = nodedef.get("inherit")
