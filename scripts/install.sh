@@ -4,7 +4,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/system-packages.sh
 [ -x .venv/bin/python ] || python3 -m venv .venv
+mkdir -p out
 .venv/bin/pip install -q --upgrade pip
 .venv/bin/pip install -q -e ".[render,service]"
-.venv/bin/shadergen generate examples/marble_checker.mtlx --out out/marble_checker
+.venv/bin/shadergen generate examples/marble_checker.mtlx --out out/marble_checker > out/marble_checker.jsonl
 echo "shader written to out/marble_checker; start the service with: .venv/bin/shadergen serve"
