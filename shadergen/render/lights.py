@@ -1,9 +1,10 @@
 """Light rigs: a MaterialX document of lightshader nodes (directional_light, point_light,
 spot_light, ...) as the u_numActiveLightSources / u_lightData[] uniforms of MaterialX's GLSL.
 
-Each light's `type` is the id its nodedef gets from MaterialX's light handler: 1, 2, ... in order
-of first appearance in the document. The shader must have been generated with the same rig bound
-(its light dispatch compares against these ids); a shader generated without lights ignores them.
+Each light's `type` is the id the shader's light dispatch compares against. Our records list those
+ids (the `enum`/`enumvalues` of LightData's `type` member); for other shaders it is the id
+MaterialX's light handler gives: 1, 2, ... in order of first appearance in the rig, which must then
+be the rig the shader was generated with. A shader generated without lights ignores them.
 Inputs the node does not set take their nodedef's default from the data libraries.
 """
 import functools
@@ -27,7 +28,16 @@ class Light:
     inputs: dict[str, list[float]]   # LightData member -> its numbers
 
 
-def load_lights(path: str, library_dir: Path = LIBRARY_DIR) -> list[Light]:
+def light_type_ids(record: dict) -> dict[str, int] | None:
+    """category -> id, when the record lists its shader's light dispatch; None otherwise."""
+    for var in ((record.get("blocks") or {}).get("pixel") or {}).get("LightData") or []:
+        ui = var.get("ui") or {}
+        if var.get("name") == "type" and ui.get("enum") and ui.get("enumvalues"):
+            return dict(zip(ui["enum"].split(","), (int(v) for v in ui["enumvalues"].split(","))))
+    return None
+
+
+def load_lights(path: str, library_dir: Path = LIBRARY_DIR, type_ids: dict[str, int] | None = None) -> list[Light]:
     try:
         root = ElementTree.parse(path).getroot()
     except (OSError, ElementTree.ParseError, DefusedXmlException) as exc:
@@ -39,7 +49,9 @@ def load_lights(path: str, library_dir: Path = LIBRARY_DIR) -> list[Light]:
         if node.get("type") != "lightshader":
             continue
         category = node.tag
-        ids.setdefault(category, len(ids) + 1)
+        if type_ids is not None and category not in type_ids:
+            raise RenderError("invalid_lights", f"the shader has no {category} lights", node.get("name"))
+        ids.setdefault(category, type_ids[category] if type_ids is not None else len(ids) + 1)
         inputs = dict(defaults.get(category, {}))
         for inp in node.findall("input"):
             value = numbers(inp.get("type", ""), inp.get("value"))

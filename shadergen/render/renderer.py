@@ -16,7 +16,7 @@ from .context import gl_context
 from .environment import ENV_MATRIX, Environment
 from .errors import RenderError
 from .geometry import Mesh, load_mesh
-from .lights import Light, light_uniforms, load_lights
+from .lights import Light, light_type_ids, light_uniforms, load_lights
 from .program import Program
 from .record import check_record, source_digest, uniform_variables
 from .scene import matrix_bytes, scene_uniforms
@@ -77,7 +77,7 @@ class Renderer:
         if document_dir is None and isinstance(record.get("document"), str):
             document_dir = os.path.dirname(os.path.abspath(record["document"]))
 
-        owned = self._bind_lighting(program, environment, env_samples, lights, warnings)
+        owned = self._bind_lighting(program, environment, env_samples, lights, light_type_ids(record), warnings)
         warnings += self._bind_record_values(program, record, owned)
         self._textures.trim()
         units = {}  # sampler name -> texture unit
@@ -160,7 +160,7 @@ class Renderer:
     # -- uniform binding --------------------------------------------------------------------
 
     def _bind_lighting(self, program: Program, environment: Environment, env_samples: int, lights,
-                       warnings: list[str]) -> set[str]:
+                       type_ids: dict[str, int] | None, warnings: list[str]) -> set[str]:
         """Scene, environment and light uniforms; returns their names, which record values never override."""
         values: dict[str, object] = {}
         for name, value in scene_uniforms().items():
@@ -169,7 +169,8 @@ class Renderer:
         values["u_envRadianceMips"] = [float(environment.radiance_mips)]
         values["u_envRadianceSamples"] = [float(env_samples)]
         values["u_envLightIntensity"] = [float(environment.intensity)]
-        rig: list[Light] = load_lights(lights) if isinstance(lights, (str, os.PathLike)) else list(lights or [])
+        rig: list[Light] = (load_lights(lights, type_ids=type_ids) if isinstance(lights, (str, os.PathLike))
+                            else list(lights or []))
         values.update(light_uniforms(rig) if rig else {"u_numActiveLightSources": [0.0]})
         light_data = {name for name in program.uniforms if name.startswith("u_lightData[")}
         if rig and not light_data:
