@@ -21,7 +21,10 @@ BRANCH_INPUTS = {
     "ifgreater": ("in1", "in2"), "ifgreatereq": ("in1", "in2"), "ifequal": ("in1", "in2"),
     "switch": tuple(f"in{i}" for i in range(1, 11)),
 }
-WORKING_COLORSPACE = "lin_rec709"
+# Names MaterialX's default colour management accepts for the spaces of its transforms.
+COLORSPACE_ALIASES = {"gamma18": "g18_rec709", "gamma22": "g22_rec709", "gamma24": "rec709_display",
+                      "lin_rec709_scene": "lin_rec709", "lin_ap1": "acescg", "lin_ap1_scene": "acescg",
+                      "none": "raw"}
 TARGET_UNITS = {"distance": "meter"}
 
 
@@ -297,9 +300,11 @@ class GraphBuilder:
             factor.value, factor.path, factor.authored = src_scale / dst_scale, None, True
 
     def colorspace_node(self, name: str, source: str | None, type_name: str, where: str) -> Node | None:
-        """The working colour space is the document's own (MaterialX's rule), lin_rec709 by default."""
-        working = self.doc_root.get("colorspace") or WORKING_COLORSPACE
-        if not source or source in (working, "raw") or type_name not in ("color3", "color4"):
+        """The working colour space is the document's own (MaterialX's rule): a document that names
+        none is not colour managed at all."""
+        working = COLORSPACE_ALIASES.get(self.doc_root.get("colorspace"), self.doc_root.get("colorspace"))
+        source = COLORSPACE_ALIASES.get(source, source)
+        if not working or not source or source in (working, "raw") or type_name not in ("color3", "color4"):
             return None
         return self.transform_node(name, f"ND_{source}_to_{working}_{type_name}", where)
 
@@ -379,6 +384,13 @@ class GraphBuilder:
                 if out is None or out.category != "output":
                     raise ShaderGenError("dangling_connection",
                                          f"nodegraph '{ng.name}' has no output '{port.get('output')}'", port.path)
+                port = out
+                continue
+            if port.get("output") and port.category != "output":
+                # an input naming an <output> of its own graph (the document's, at top level)
+                out = graph.child(port.get("output")) if graph is not None else None
+                if out is None or out.category != "output":
+                    raise ShaderGenError("dangling_connection", f"output '{port.get('output')}' not found", port.path)
                 port = out
                 continue
             name = port.get("interfacename")

@@ -13,8 +13,9 @@ def gen() -> Generator:
     return Generator()
 
 
-def doc(body: str, version: str = "1.39") -> str:
-    return f'<?xml version="1.0"?>\n<materialx version="{version}">\n{body}\n</materialx>\n'
+def doc(body: str, version: str = "1.39", colorspace: str | None = None) -> str:
+    cs = f' colorspace="{colorspace}"' if colorspace else ""
+    return f'<?xml version="1.0"?>\n<materialx version="{version}"{cs}>\n{body}\n</materialx>\n'
 
 
 def glslang(source: str, stage: str) -> tuple[bool, str]:

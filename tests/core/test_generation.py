@@ -124,11 +124,18 @@ def test_dangling_connection(gen):
     assert e.value.code == "dangling_connection" and e.value.where == "a/in"
 
 
-def test_colorspace_inserts_a_transform(gen):
-    rec = first(gen, '<multiply name="m" type="color3"><input name="in1" type="color3" value="0.5,0.5,0.5" '
-                     'colorspace="srgb_texture"/></multiply><output name="o" type="color3" nodename="m"/>')
-    assert "m_in1_cm" in pixel(rec)
-    assert public(rec)["m/in1"]["colorspace"] == "srgb_texture"
+COLORED = ('<multiply name="m" type="color3"><input name="in1" type="color3" value="0.5,0.5,0.5" '
+           'colorspace="gamma22"/></multiply><output name="o" type="color3" nodename="m"/>')
+
+
+def test_colorspace_inserts_a_transform_into_the_working_space(gen):
+    rec = gen.prepare(doc(COLORED, colorspace="lin_rec709")).emit()
+    assert "m_in1_cm" in pixel(rec) and "pow(" in pixel(rec)  # gamma22 is MaterialX's name for g22_rec709
+    assert public(rec)["m/in1"]["colorspace"] == "gamma22"
+
+
+def test_a_document_without_colorspace_is_not_colour_managed(gen):
+    assert "_cm" not in pixel(gen.prepare(doc(COLORED)).emit())
 
 
 def test_units_insert_a_conversion(gen):
