@@ -66,17 +66,6 @@ class Writer:
             self.lines.append(self.unit * self.depth + ln if ln.strip() else "")
 
     @contextmanager
-    def block(self, opener: str, closer: str = "}"):
-        self.line(opener)
-        self.line("{")
-        self.depth += 1
-        try:
-            yield
-        finally:
-            self.depth -= 1
-            self.line(closer)
-
-    @contextmanager
     def scope(self, comment: str | None = None):
         """A bare `{ }` block: the variables declared inside stay local to it."""
         if comment:
@@ -88,6 +77,13 @@ class Writer:
         finally:
             self.depth -= 1
             self.line("}")
+
+    @contextmanager
+    def block(self, opener: str):
+        """`opener { ... }`: a function body, a loop, a branch."""
+        self.line(opener)
+        with self.scope():
+            yield
 
     def text(self) -> str:
         return "\n".join(self.lines) + "\n"
