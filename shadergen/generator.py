@@ -267,24 +267,27 @@ class EmitContext:
         only what it needs (seed 2.4 step 5)."""
         out = next(iter(node.outputs.values()))
         result = self.declare(out)
-        branches = self.branch_conditions(node)
-        for i, (branch, condition) in enumerate(branches):
+        for i, (branch, condition) in enumerate(self.branch_conditions(node)):
             opener = ("if" if i == 0 else "else if") + f" ({condition})" if condition else "else"
             with self.body.block(opener):
+                if branch is None:  # no input selected: the type's zero, as the inline form gives
+                    self.body.line(f"{result} = {self.syntax.literal(out.type, None)};")
+                    continue
                 self.emit_nodes(graph, node.scope + ((node, branch),))
                 self.body.line(f"{result} = {self.value(node.inputs[branch])};")
 
-    def branch_conditions(self, node: Node) -> list[tuple[str, str | None]]:
+    def branch_conditions(self, node: Node) -> list[tuple[str | None, str | None]]:
+        """(branch input, condition) in order; a None condition is the final else."""
         if node.category in CONDITIONS:
             op = CONDITIONS[node.category]
             v1, v2 = self.value(node.inputs["value1"]), self.value(node.inputs["value2"])
             return [("in1", f"{v1} {op} {v2}"), ("in2", None)]
         which = node.inputs["which"]
         w = self.value(which)
-        one = "1" if which.type == "integer" else "1.0"
+        bound = (lambda k: str(k)) if which.type == "integer" else (lambda k: f"{k}.0")
         names = [n for n in BRANCH_INPUTS["switch"] if n in node.inputs]
-        conds = [(n, f"{w} < {str(k + 1) if one == '1' else f'{k + 1}.0'}") for k, n in enumerate(names[:-1])]
-        return conds + [(names[-1], None)]
+        # `which` below k selects input k; from the number of inputs on, none is selected
+        return [(n, f"{w} < {bound(k)}") for k, n in enumerate(names, start=1)] + [(None, None)]
 
 
 def is_closure_node(node: Node) -> bool:

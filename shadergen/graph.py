@@ -344,6 +344,8 @@ class GraphBuilder:
             inp.bind_socket(source)
         elif isinstance(source, Output):
             inp.connection = source
+        elif isinstance(source, Element) and source.get("defaultgeomprop") and source.get("value") is None:
+            inp.connection = self.geomprop_output(source.get("defaultgeomprop"), source)  # a graph input reading geometry
         elif isinstance(source, Element):  # a value, possibly on an interface input
             inp.value = T.parse_value(inp.type, source.get("value"), source.path) if source.get("value") is not None \
                 else inp.value
