@@ -7,5 +7,7 @@ bash scripts/system-packages.sh
 mkdir -p out
 .venv/bin/pip install -q --upgrade pip
 .venv/bin/pip install -q -e ".[render,service]"
+# an editable install compiles nothing: write the bytecode now, or every cold process compiles it
+.venv/bin/python -m compileall -q shadergen service > /dev/null
 .venv/bin/shadergen generate examples/marble_checker.mtlx --out out/marble_checker > out/marble_checker.jsonl
 echo "shader written to out/marble_checker; start the service with: .venv/bin/shadergen serve"

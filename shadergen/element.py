@@ -4,16 +4,27 @@
 class Element:
     """One MaterialX element. `category` is the XML tag (`nodedef`, `input`, `image`, ...)."""
 
-    __slots__ = ("category", "name", "attrs", "children", "parent", "_by_name", "source")
+    __slots__ = ("category", "name", "attrs", "_children", "_pending", "parent", "_by_name", "source")
 
-    def __init__(self, category: str, attrs: dict, parent: "Element | None" = None, source: str | None = None):
+    def __init__(self, category: str, attrs: dict, parent: "Element | None" = None, source: str | None = None,
+                 pending: list | None = None):
         self.category = category
         self.name = attrs.get("name", "")
         self.attrs = attrs
-        self.children: list[Element] = []
+        self._children: list[Element] | None = None if pending else []
+        # Children still in their cached [category, attrs, children] form: a library holds
+        # thousands of elements and a shader reads a few dozen, so they are built when first read.
+        self._pending = pending
         self.parent = parent
         self._by_name: dict[str, Element] | None = None
         self.source = source
+
+    @property
+    def children(self) -> list["Element"]:
+        if self._children is None:
+            self._children = [Element(c, a, self, self.source, kids) for c, a, kids in self._pending]
+            self._pending = None
+        return self._children
 
     def get(self, key: str, default=None):
         return self.attrs.get(key, default)

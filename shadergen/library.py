@@ -97,18 +97,16 @@ def _to_json(e: Element) -> list:
     return [e.category, e.attrs, [_to_json(c) for c in e.children]]
 
 
-def _from_json(data: list, parent: Element | None, source: str | None) -> Element:
+def _from_json(data: list, source: str | None) -> Element:
     category, attrs, children = data
-    e = Element(category, attrs, parent, source)
-    e.children = [_from_json(c, e, source) for c in children]
-    return e
+    return Element(category, attrs, None, source, children)
 
 
 def _read_cache(path: Path) -> list[Element] | None:
     try:
         with open(path, "rb") as f:
             data = json.loads(f.read())
-        return [_from_json(d, None, src) for src, d in data]
+        return [_from_json(d, src) for src, d in data]
     except (OSError, ValueError, TypeError):
         return None  # missing or corrupt: rebuilt from the .mtlx files
 
