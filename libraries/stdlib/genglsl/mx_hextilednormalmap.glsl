@@ -8,6 +8,14 @@ vec3 mx_hextile_axis_rotate(vec3 v, vec3 a, float angle)
     return v * c + cross(a, v) * s + a * (dot(a, v) * (1.0 - c));
 }
 
+// normalize(), except that a zero vector (a fully cancelled perturbation) falls back to `n`
+// instead of producing NaN.
+vec3 mx_hextile_unit(vec3 v, vec3 n)
+{
+    float len2 = dot(v, v);
+    return len2 > 1e-20 ? v * inversesqrt(len2) : n;
+}
+
 // Surface gradient of perturbed normal Np relative to N (Mikkelsen, "Surface Gradient-Based Bump
 // Mapping Framework", JCGT 9(3), 2020).
 vec3 mx_hextile_surface_gradient(vec3 N, vec3 Np)
@@ -38,11 +46,11 @@ void mx_hextilednormalmap_vector3(sampler2D file, vec3 dflt, vec2 texcoord, vec2
     n1 = n1 * 2.0 - 1.0;
     n2 = n2 * 2.0 - 1.0;
     n3 = n3 * 2.0 - 1.0;
-    vec3 N1 = normalize(mx_hextile_axis_rotate(T, N, angles.x) * (strength * n1.x) + mx_hextile_axis_rotate(B, N, angles.x) * (strength * n1.y) + N * n1.z);
-    vec3 N2 = normalize(mx_hextile_axis_rotate(T, N, angles.y) * (strength * n2.x) + mx_hextile_axis_rotate(B, N, angles.y) * (strength * n2.y) + N * n2.z);
-    vec3 N3 = normalize(mx_hextile_axis_rotate(T, N, angles.z) * (strength * n3.x) + mx_hextile_axis_rotate(B, N, angles.z) * (strength * n3.y) + N * n3.z);
+    vec3 N1 = mx_hextile_unit(mx_hextile_axis_rotate(T, N, angles.x) * (strength * n1.x) + mx_hextile_axis_rotate(B, N, angles.x) * (strength * n1.y) + N * n1.z, N);
+    vec3 N2 = mx_hextile_unit(mx_hextile_axis_rotate(T, N, angles.y) * (strength * n2.x) + mx_hextile_axis_rotate(B, N, angles.y) * (strength * n2.y) + N * n2.z, N);
+    vec3 N3 = mx_hextile_unit(mx_hextile_axis_rotate(T, N, angles.z) * (strength * n3.x) + mx_hextile_axis_rotate(B, N, angles.z) * (strength * n3.y) + N * n3.z, N);
 
     vec3 w = clamp(mx_hextile_weights(vec3(1.0), tile, falloff), 0.0, 1.0);
     vec3 g = mx_hextile_surface_gradient(N, N1) * w.x + mx_hextile_surface_gradient(N, N2) * w.y + mx_hextile_surface_gradient(N, N3) * w.z;
-    result = normalize(N - g);
+    result = mx_hextile_unit(N - g, N);
 }
