@@ -301,7 +301,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     for node in nodes:
         node.impl = implementation_for(node.implementation)
     assign_scopes(nodes, lambda n: n.impl.uses_derivatives or any(i.type == "filename" for i in n.inputs.values()))
-    return Graph(builder.doc_root.name, nodes, outputs, builder.interface or {}, root, builder.warnings)
+    return Graph(nodes, outputs, root, builder.warnings)
 
 
 def publish_interface(ctx: EmitContext, graph: Graph) -> None:

@@ -96,10 +96,8 @@ class Node:
 
 @dataclass(eq=False)
 class Graph:
-    name: str
     nodes: list[Node]
     outputs: dict[str, Output]
-    sockets: dict[str, Socket]  # interface inputs, in nodedef (or discovery) order
     root: Node | None = None  # the node a shader was generated from, when it is a node
     warnings: list[str] = field(default_factory=list)
 
@@ -224,19 +222,7 @@ class GraphBuilder:
         if impl is None:
             raise ShaderGenError("unknown_node",
                                  f"no {self.target} implementation of '{nodedef.name}' for <{elem.category}>", elem.path)
-        node = Node(self.unique(self.prefix + elem.name), elem.category, elem.get("type") or "", nodedef, impl, elem.path)
-        for out in self.scope.nodedef_outputs(nodedef):
-            node.outputs[out.name] = Output(out.name, out.get("type"), node)
-        if not node.outputs:
-            node.outputs["out"] = Output("out", nodedef.get("type"), node)
-        for decl in self.scope.nodedef_inputs(nodedef) + impl.children_of("input"):
-            if decl.category == "token":
-                continue
-            t = decl.get("type")
-            inp = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path), None,
-                        meta=input_meta(decl))
-            inp.path = f"{elem.path}/{decl.name}" if decl.parent.category == "nodedef" else None
-            node.inputs[decl.name] = inp
+        node = self.new_node(self.prefix + elem.name, elem.category, elem.get("type") or "", nodedef, impl, elem.path)
         for authored in elem.children_of("input", "parameter"):
             inp = node.inputs.get(authored.name)
             if inp is None:
@@ -254,6 +240,26 @@ class GraphBuilder:
         self.convert_file_colorspace(node)
         return node
 
+    def new_node(self, name: str, category: str, type_name: str, nodedef: Element, impl: Element,
+                 path: str | None) -> Node:
+        """A node with the ports of its nodedef (and the extra inputs its implementation declares).
+        An input's listing path is the element path of the node's input, when the node has one."""
+        node = Node(self.unique(name), category, type_name, nodedef, impl, path or "")
+        for out in self.scope.nodedef_outputs(nodedef):
+            node.outputs[out.name] = Output(out.name, out.get("type"), node)
+        if not node.outputs:
+            node.outputs["out"] = Output("out", nodedef.get("type"), node)
+        for decl in self.scope.nodedef_inputs(nodedef) + impl.children_of("input"):
+            if decl.category == "token":
+                continue
+            t = decl.get("type")
+            inp = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path), None,
+                        meta=input_meta(decl))
+            if path is not None and decl.parent.category == "nodedef":
+                inp.path = f"{path}/{decl.name}"
+            node.inputs[decl.name] = inp
+        return node
+
     # -- colour-space and unit transforms (seed 3.3, 3.4) --------------------------------------
     def transform_node(self, name: str, nodedef_name: str, where: str) -> Node | None:
         nodedef = self.scope.nodedef(nodedef_name)
@@ -261,13 +267,8 @@ class GraphBuilder:
         if impl is None:
             self.warnings.append(f"{where}: no {self.target} transform '{nodedef_name}'; value used as is")
             return None
-        node = Node(self.unique(name), nodedef.get("node"), "", nodedef, impl, where)
-        for out in self.scope.nodedef_outputs(nodedef):
-            node.outputs[out.name] = Output(out.name, out.get("type"), node)
-        for decl in self.scope.nodedef_inputs(nodedef):
-            t = decl.get("type")
-            node.inputs[decl.name] = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path),
-                                           None, meta=input_meta(decl))
+        node = self.new_node(name, nodedef.get("node"), "", nodedef, impl, None)
+        node.path = where  # errors name the input the transform serves; its own inputs have no document path
         return node
 
     def insert_before(self, inp: Input, node: Node) -> Input:

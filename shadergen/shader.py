@@ -21,7 +21,6 @@ class Variable:
     unit: str | None = None
     colorspace: str | None = None
     ui: dict | None = None
-    glsl_type: str | None = None  # set when the declaration differs from the type's usual spelling
 
     def to_json(self) -> dict:
         d = {"name": self.name, "type": self.type, "value": value_to_json(self.value), "path": self.path,

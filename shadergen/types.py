@@ -20,10 +20,6 @@ class TypeDesc:
     def is_closure(self) -> bool:
         return self.base == "closure"
 
-    @property
-    def is_aggregate(self) -> bool:
-        return self.base == "float" and self.size > 1
-
 
 _TYPES = [
     TypeDesc("float", 1, "float"),
@@ -52,12 +48,6 @@ _TYPES = [
     TypeDesc("none", 0, "closure"),
 ]
 TYPES = {t.name: t for t in _TYPES}
-
-# Component names used by `channels` swizzles, per type.
-CHANNELS = {
-    "float": "r", "color3": "rgb", "color4": "rgba",
-    "vector2": "xy", "vector3": "xyz", "vector4": "xyzw",
-}
 
 
 def type_desc(name: str, where: str | None = None) -> TypeDesc:
