@@ -44,16 +44,18 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
     return outputs + [o for o in doc.root.children_of("output") if o.get("type") not in closures]
 
 
-def internal_error(bug: Exception, where: str | None) -> ShaderGenError:
-    err = ShaderGenError("internal_error", f"generation failed: {type(bug).__name__}: {bug}", where)
-    err.element = where
-    return err
+# What generating one element can raise: its own errors, and gaps in our code that a document
+# reached, which still become a record (never a traceback).
+ELEMENT_FAILURES = (ShaderGenError, RecursionError, ValueError, TypeError, KeyError, AttributeError, IndexError)
 
 
-def too_deep(where: str | None) -> ShaderGenError:
-    """Connections are followed recursively; a chain deeper than Python's stack allows is a
-    document error (the service may raise the limit), not a crash."""
-    err = ShaderGenError("too_large", "the graph's chain of connections is too deep to generate", where)
+def element_error(exc: Exception, where: str | None) -> ShaderGenError:
+    if isinstance(exc, ShaderGenError):
+        err = exc
+    elif isinstance(exc, RecursionError):  # a chain deeper than Python's stack: a document limit, not a crash
+        err = ShaderGenError("too_large", "the graph's chain of connections is too deep to generate", where)
+    else:
+        err = ShaderGenError("internal_error", f"generation failed: {type(exc).__name__}: {exc}", where)
     err.element = where
     return err
 
@@ -124,14 +126,8 @@ class Generator:
         for e in elems:
             try:
                 out.append(self._prepare(doc, scope, e, target, interface))
-            except ShaderGenError as err:
-                err.element = e.path
-                out.append(err)
-            except RecursionError:
-                out.append(too_deep(e.path))
-            except (ValueError, TypeError, KeyError, AttributeError, IndexError) as bug:
-                # A document that reaches a gap in our code still gets a record, never a traceback.
-                out.append(internal_error(bug, e.path))
+            except ELEMENT_FAILURES as exc:
+                out.append(element_error(exc, e.path))
         return out
 
     def prepare(self, source, **kw) -> Prepared:
@@ -160,12 +156,8 @@ class Generator:
                 continue
             try:
                 yield p.emit()
-            except ShaderGenError as e:
-                yield dict(base, element=p.element, error=e.to_dict())
-            except RecursionError:
-                yield dict(base, element=p.element, error=too_deep(p.element).to_dict())
-            except (ValueError, TypeError, KeyError, AttributeError, IndexError) as bug:
-                yield dict(base, element=p.element, error=internal_error(bug, p.element).to_dict())
+            except ELEMENT_FAILURES as exc:
+                yield dict(base, element=p.element, error=element_error(exc, p.element).to_dict())
 
     def nodedefs(self) -> list[dict]:
         out = []

@@ -286,7 +286,8 @@ class GraphBuilder:
 
     def convert_units(self, inp: Input) -> None:
         unit, unittype = inp.meta.get("unit"), inp.meta.get("unittype")
-        decl_unit = input_meta_unit(inp)
+        decl_unit = next((d.get("unit") for d in self.scope.nodedef_inputs(inp.node.nodedef) if d.name == inp.name),
+                         None)  # the unit the implementation expects
         if not unit or not unittype or inp.type not in ("float", "vector2", "vector3", "vector4"):
             return
         target = TARGET_UNITS.get(unittype) or decl_unit
@@ -461,14 +462,6 @@ def substitute_tokens(text: str, port: Element, scope: Scope) -> str:
                 tokens.setdefault(t.name, t.get("value", ""))
         e = e.parent
     return TOKEN.sub(lambda m: tokens.get(m.group(1), m.group(0)), text)
-
-
-def input_meta_unit(inp: Input) -> str | None:
-    """The unit the nodedef declares for an input (what the implementation expects)."""
-    for decl in inp.node.nodedef.children_of("input"):
-        if decl.name == inp.name:
-            return decl.get("unit")
-    return None
 
 
 def _graph_of(port: Element) -> Element | None:
