@@ -8,6 +8,7 @@ import tempfile
 import uvicorn
 
 from .config import get_settings
+from .http_protocol import BoundedHttpToolsProtocol
 
 
 def add_arguments(parser) -> None:
@@ -45,7 +46,7 @@ def run(args) -> int:
     signal.signal(signal.SIGTERM, _exit)
     try:
         uvicorn.run("service.main:create_app", factory=True, host=args.host, port=args.port,
-                    workers=args.workers, access_log=args.access_log, timeout_graceful_shutdown=10)
+                    http=BoundedHttpToolsProtocol, workers=args.workers, access_log=args.access_log, timeout_graceful_shutdown=10)
     finally:
         if pool is not None:
             stop_pool_server(*pool)

@@ -29,6 +29,11 @@ class Settings(BaseModel):
     generate_queue_size: int = 64
     generate_timeout_s: float = 10.0
     max_body_bytes: int = 2 * 1024 * 1024
+    # a request's body must arrive within this, its line and headers within head_timeout_s and
+    # head_max_bytes: a slow or endless upload cannot hold a worker's memory or a connection
+    body_timeout_s: float = 30.0
+    head_timeout_s: float = 10.0
+    head_max_bytes: int = 32 * 1024
     # colon-separated directories that textures named by documents may come from
     texture_roots: list[str] = Field(default_factory=list)
     retry_after_s: int = 2

@@ -18,6 +18,7 @@ STATUS_BY_CODE = {
     "include_refused": 400,
     "path_not_allowed": 403,
     "not_found": 404,
+    "request_timeout": 408,
     "too_large": 413,
     "unsupported_media_type": 415,
     "queue_full": 503,

@@ -10,7 +10,6 @@ replayed, and the route decides: this path never produces an answer the route wo
 import json
 from urllib.parse import parse_qsl
 
-from .errors import ServiceError, error_response
 from .generation import GenerateParams
 from .metrics import ROUTE_KEY
 
@@ -20,12 +19,15 @@ JSON_FIELDS = frozenset(("document", "target", "element", "interface", "source")
 XML_TYPES = (b"application/xml", b"text/xml")
 
 
+def _text(value, max_length: int) -> bool:
+    return isinstance(value, str) and len(value) <= max_length and value.isascii()
+
+
 def _plain(target, element, interface, source) -> GenerateParams | None:
     """Parameters exactly as the route's models would read them, or None to let the route judge."""
-    if not (isinstance(target, str) and len(target) <= 64 and isinstance(interface, str)
-            and interface in INTERFACES and isinstance(source, bool)):
+    if not (_text(target, 64) and isinstance(interface, str) and interface in INTERFACES and isinstance(source, bool)):
         return None
-    if element is not None and not (isinstance(element, str) and len(element) <= 1024):
+    if element is not None and not _text(element, 1024):
         return None
     return GenerateParams(target, element, interface, source)
 
@@ -45,13 +47,17 @@ def parse(content_type: bytes, query: bytes, body: bytes) -> tuple[bytes, Genera
         return None
     try:
         data = json.loads(body)
-    except ValueError:
+    except (ValueError, RecursionError):  # RecursionError: arrays nested thousands deep
         return None
     if not (isinstance(data, dict) and isinstance(data.get("document"), str) and set(data) <= JSON_FIELDS):
         return None
     params = _plain(data.get("target", "glsl"), data.get("element"), data.get("interface", "complete"),
                     data.get("source", True))
-    return (data["document"].encode(), params) if params else None
+    try:
+        document = data["document"].encode()
+    except UnicodeEncodeError:  # a lone surrogate: the route's model words the refusal
+        return None
+    return (document, params) if params else None
 
 
 async def read_body(receive) -> tuple[bytes, list[dict]]:
@@ -75,10 +81,7 @@ class CachedGenerateMiddleware:
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http" or scope["path"] != PATH or scope["method"] != "POST":
             return await self.app(scope, receive, send)
-        try:
-            body, messages = await read_body(receive)
-        except ServiceError as exc:  # the body limit, raised while the body streams in
-            return await error_response(exc)(scope, receive, send)
+        body, messages = await read_body(receive)  # bounded in size and time by BodyLimitMiddleware
         services = getattr(scope["app"].state, "services", None)
         content_type = next((v for k, v in scope["headers"] if k == b"content-type"), b"application/json")
         parsed = parse(content_type, scope["query_string"], body)

@@ -1,45 +1,87 @@
-"""The request body limit, enforced while the body streams in: a declared Content-Length over the
-limit is refused before a byte is read, and a chunked body is cut off at the first chunk that
-crosses it, so no client can make a worker buffer more than the limit."""
-import json
+"""What a request body may cost, enforced before any handler sees it: the body is read here,
+whole, under a size limit and a deadline, and handed on as one message.
 
-from .errors import ServiceError, error_body
+A declared Content-Length over the limit is refused before a byte is read, a chunked body is cut
+off at the first chunk that crosses it (413 on every route), a body that does not arrive within
+the deadline is refused (408), so no client can make a worker buffer more than the limit or hold
+it open for ever. A client that goes away while sending is logged in one line and counted as
+status 499 (nginx's "client closed request"), not as a server error."""
+import asyncio
+import logging
+
+from .errors import ServiceError, error_response
+from .metrics import DISCONNECTED
+
+log = logging.getLogger("uvicorn.error")  # the server's own log, configured by uvicorn in every worker
 
 
-class BodyTooLarge(ServiceError):
-    def __init__(self, limit: int):
-        super().__init__("too_large", f"request body over the limit of {limit} bytes")
+class ClientDisconnected(Exception):
+    pass
+
+
+def _declares_body(headers) -> tuple[bool, bytes | None]:
+    """(whether a body follows, the declared Content-Length)."""
+    length, chunked = None, False
+    for name, value in headers:
+        if name == b"content-length":
+            length = value
+        elif name == b"transfer-encoding":
+            chunked = True
+    return chunked or (length is not None and length != b"0"), length
+
+
+async def _read_body(receive, max_bytes: int) -> bytes:
+    chunks, seen = [], 0
+    while True:
+        message = await receive()
+        if message["type"] == "http.disconnect":
+            raise ClientDisconnected
+        body = message.get("body", b"")
+        seen += len(body)
+        if seen > max_bytes:
+            raise ServiceError("too_large", f"request body over the limit of {max_bytes} bytes",
+                               headers={"Connection": "close"})
+        chunks.append(body)
+        if not message.get("more_body"):
+            return b"".join(chunks)
 
 
 class BodyLimitMiddleware:
-    def __init__(self, app, max_bytes: int):
+    def __init__(self, app, max_bytes: int, read_timeout_s: float):
         self.app = app
         self.max_bytes = max_bytes
+        self.read_timeout_s = read_timeout_s
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             return await self.app(scope, receive, send)
-        for name, value in scope["headers"]:
-            if name == b"content-length":
-                if not value.isdigit() or int(value) > self.max_bytes:
-                    return await self._refuse(send)
-        seen = 0
+        has_body, length = _declares_body(scope["headers"])
+        if not has_body:
+            return await self.app(scope, receive, send)
+        try:
+            if length is not None and (not length.isdigit() or int(length) > self.max_bytes):
+                raise ServiceError("too_large", f"request body over the limit of {self.max_bytes} bytes",
+                                   headers={"Connection": "close"})
+            async with asyncio.timeout(self.read_timeout_s):
+                body = await _read_body(receive, self.max_bytes)
+        except ServiceError as exc:
+            return await error_response(exc)(scope, receive, send)
+        except TimeoutError:
+            exc = ServiceError("request_timeout", f"the body did not arrive within {self.read_timeout_s:g} s",
+                               headers={"Connection": "close"})
+            return await error_response(exc)(scope, receive, send)
+        except ClientDisconnected:
+            client = "%s:%s" % tuple(scope["client"]) if scope.get("client") else "a client"
+            log.info("%s disconnected while sending the body of %s %s", client, scope["method"], scope["path"])
+            scope[DISCONNECTED] = True
+            return
+        replayed = False
 
-        async def limited_receive():
-            nonlocal seen
-            message = await receive()
-            if message["type"] == "http.request":
-                seen += len(message.get("body", b""))
-                if seen > self.max_bytes:
-                    raise BodyTooLarge(self.max_bytes)  # the app's error handler answers 413
-            return message
+        async def replay():
+            nonlocal replayed
+            if replayed:
+                return await receive()
+            replayed = True
+            return {"type": "http.request", "body": body, "more_body": False}
 
-        await self.app(scope, limited_receive, send)
-
-    async def _refuse(self, send) -> None:
-        exc = BodyTooLarge(self.max_bytes)
-        body = json.dumps(error_body(exc.code, exc.message)).encode()
-        await send({"type": "http.response.start", "status": 413,
-                    "headers": [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode()),
-                                (b"connection", b"close")]})
-        await send({"type": "http.response.body", "body": body})
+        await self.app(scope, replay, send)

@@ -32,7 +32,8 @@ def create_app() -> FastAPI:
     install_error_handlers(app)
     # the last added runs first: metrics see everything, the body limit applies to the fast path
     app.add_middleware(CachedGenerateMiddleware)
-    app.add_middleware(BodyLimitMiddleware, max_bytes=get_settings().max_body_bytes)
+    settings = get_settings()
+    app.add_middleware(BodyLimitMiddleware, max_bytes=settings.max_body_bytes, read_timeout_s=settings.body_timeout_s)
     app.add_middleware(MetricsMiddleware)
     for router in routers:
         app.include_router(router)

@@ -22,6 +22,9 @@ RENDER_SECONDS = Histogram("shadergen_render_seconds", "thumbnail render in a re
 CONTENT_TYPE = CONTENT_TYPE_LATEST
 # where a middleware that answers by itself names the route it answered for
 ROUTE_KEY = "shadergen.route"
+# set when the client went away before a response: counted as status 499, not as a server error
+DISCONNECTED = "shadergen.disconnected"
+CLIENT_CLOSED = 499
 
 
 def exposition() -> bytes:
@@ -63,5 +66,7 @@ class MetricsMiddleware:
         try:
             await self.app(scope, receive, send_status)
         finally:
+            if scope.get(DISCONNECTED):
+                status = CLIENT_CLOSED
             route = scope.get(ROUTE_KEY) or getattr(scope.get("route"), "path", "unmatched")
             self._observe(scope["method"], route, status, time.perf_counter() - started)

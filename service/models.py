@@ -1,28 +1,40 @@
 """Request and response models: the single source of the HTTP schema (openapi.yaml is generated
 from them). Records come from the generator; their models describe the contract's fields and
 let the generator add more."""
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field
 
 Interface = Literal["complete", "reduced", "specialized"]
 Mesh = Literal["sphere", "plane"]
 
 
+def _encodable(value: str) -> str:
+    """JSON may escape a lone surrogate (`"\\ud800"`); no such string can be UTF-8, so none is text."""
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        raise ValueError(f"unpaired surrogate at character {exc.start}") from None
+    return value
+
+
+Text = Annotated[str, AfterValidator(_encodable)]
+
+
 # -- requests ----------------------------------------------------------------------------------
 class GenerateRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    document: str = Field(description="the MaterialX document (XML text)")
-    target: str = Field("glsl", max_length=64, description="glsl, essl, osl, ...")
-    element: str | None = Field(None, max_length=1024, description="name path; default: the first renderable")
+    document: Text = Field(description="the MaterialX document (XML text)")
+    target: Text = Field("glsl", max_length=64, description="glsl, essl, osl, ...")
+    element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
     interface: Interface = "complete"
     source: bool = Field(True, description="false: listings without stage source")
 
 
 class ThumbnailRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    document: str
-    element: str | None = Field(None, max_length=1024)
+    document: Text
+    element: Text | None = Field(None, max_length=1024)
     interface: Interface = "complete"
     size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
     mesh: Mesh = "sphere"

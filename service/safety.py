@@ -4,18 +4,28 @@ MaterialX documents never need a DOCTYPE, and every XML bomb (entity expansion) 
 entity needs one, so a document with a DOCTYPE is refused outright rather than parsed carefully.
 (The generator parses with defusedxml and refuses xi:include as well: this is the first wall.)"""
 import os
+import re
 from pathlib import Path
 
 from .errors import ServiceError
 
-_DTD_MARKERS = (b"<!DOCTYPE", b"<!ENTITY")
+# what may come before the root element besides a DOCTYPE: space, comments, processing instructions
+_PROLOG_ITEM = re.compile(rb"\s+|<!--.*?-->|<\?.*?\?>", re.DOTALL)
+
+
+def _has_doctype(raw: bytes) -> bool:
+    """Whether the prolog holds a DOCTYPE. A DTD (and so any entity declaration) can only stand
+    there; the same text inside a comment or CDATA is text, and after the root a parse error."""
+    position = 3 if raw.startswith(b"\xef\xbb\xbf") else 0
+    while (item := _PROLOG_ITEM.match(raw, position)) is not None:
+        position = item.end()
+    return raw.startswith(b"<!DOCTYPE", position)
 
 
 def check_document(raw: bytes) -> str:
     """The document as text, or a 400 for anything that is not plain UTF-8 XML without a DTD."""
-    for marker in _DTD_MARKERS:
-        if marker in raw:
-            raise ServiceError("unsafe_xml", "documents with a DOCTYPE or entity declarations are refused")
+    if _has_doctype(raw):
+        raise ServiceError("unsafe_xml", "documents with a DOCTYPE (and so entity declarations) are refused")
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

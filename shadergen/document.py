@@ -4,11 +4,14 @@ The parser refuses DTDs (so no entity expansion and no external entities), resol
 `xi:include` relative to the including file (or refuses it, for untrusted uploads), and
 upgrades the older syntax that real documents still use (see upgrade.py).
 """
+import codecs
 import os
+import re
 from dataclasses import dataclass, field
+from xml.etree.ElementTree import TreeBuilder
 
 from defusedxml import DefusedXmlException
-from defusedxml.ElementTree import ParseError, fromstring
+from defusedxml.ElementTree import DefusedXMLParser, ParseError
 
 from .element import Element
 from .errors import ShaderGenError
@@ -17,6 +20,9 @@ from .upgrade import upgrade
 XINCLUDE = "{http://www.w3.org/2001/XInclude}include"
 MAX_DOCUMENT_BYTES = 64 * 1024 * 1024
 MAX_INCLUDE_DEPTH = 16
+# MaterialX nests a handful of levels (materialx > nodegraph > node > input); a deeper document
+# is refused while it is parsed, before its tree could cost time or stack
+MAX_NESTING = 64
 
 
 @dataclass
@@ -51,18 +57,81 @@ def _convert(xml_elem, parent: Element | None, source: str | None) -> Element:
 FILENAME_TOKENS = ((b"<UDIM>", b"&lt;UDIM&gt;"), (b"<UVTILE>", b"&lt;UVTILE&gt;"))
 
 
+class _NestingLimit(Exception):
+    pass
+
+
+class _BoundedTreeBuilder(TreeBuilder):
+    """The standard tree builder, refusing elements nested deeper than MAX_NESTING."""
+
+    def __init__(self):
+        super().__init__()
+        self.depth = 0
+
+    def start(self, tag, attrs):
+        self.depth += 1
+        if self.depth > MAX_NESTING:
+            raise _NestingLimit
+        return super().start(tag, attrs)
+
+    def end(self, tag):
+        self.depth -= 1
+        return super().end(tag)
+
+
+# the encoding named by an XML declaration at the start of ASCII-compatible bytes
+_DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml\s[^>]*?\bencoding\s*=\s*["']([^"']*)["']""")
+_BOMS = ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"), (codecs.BOM_UTF8, "utf-8-sig"),
+         (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
+_UTF8_NAMES = ("utf-8", "utf8")
+
+
+def _utf8(text: str | bytes, where: str) -> bytes:
+    """The document as UTF-8 bytes whose declaration (if any) says so. Expat reads only UTF-8,
+    UTF-16 and single-byte encodings itself; any other encoding Python knows (utf-32, shift_jis,
+    ...) is decoded here, and one it does not know is an invalid document, not a crash."""
+    if isinstance(text, bytes):
+        encoding = next((name for bom, name in _BOMS if text.startswith(bom)), None)
+        if encoding is None:
+            declared = _DECLARED_ENCODING.match(text[:1024])
+            encoding = declared.group(1).decode("ascii", "replace").lower() if declared else "utf-8"
+            if encoding in _UTF8_NAMES:
+                return text  # the common case, left to expat as it is
+        try:
+            text = text.decode(encoding)
+        except LookupError:
+            raise ShaderGenError("invalid_document", f"unknown encoding {encoding!r} in the XML declaration",
+                                 f"{where}:1:1") from None
+        except UnicodeDecodeError as e:
+            raise ShaderGenError("invalid_document", f"the document is not valid {encoding}: {e.reason}",
+                                 f"{where}: byte {e.start}") from None
+    # the text is decoded now: what its declaration names no longer applies
+    text = re.sub(r"""^(\ufeff?\s*<\?xml\s[^>]*?\bencoding\s*=\s*)(["'])[^"']*\2""", r"\1\2utf-8\2", text, count=1)
+    try:
+        return text.encode("utf-8")
+    except UnicodeEncodeError as e:
+        raise ShaderGenError("invalid_document", f"the document contains an unpaired surrogate ({e.reason})",
+                             f"{where}: character {e.start}") from None
+
+
 def _parse_text(text: str | bytes, where: str) -> "object":
     if len(text) > MAX_DOCUMENT_BYTES:
         raise ShaderGenError("too_large", f"document is larger than {MAX_DOCUMENT_BYTES} bytes", where)
-    if isinstance(text, str):
-        text = text.encode("utf-8")
+    text = _utf8(text, where)
     for raw, escaped in FILENAME_TOKENS:
         text = text.replace(raw, escaped)
+    parser = DefusedXMLParser(target=_BoundedTreeBuilder(), forbid_dtd=True, forbid_entities=True,
+                              forbid_external=True)
     try:
-        return fromstring(text, forbid_dtd=True, forbid_entities=True, forbid_external=True)
+        parser.feed(text)
+        return parser.close()
     except DefusedXmlException as e:
         raise ShaderGenError("unsafe_xml", f"refused unsafe XML ({type(e).__name__}): DTDs and entities are not allowed",
                              where) from None
+    except _NestingLimit:
+        line, col = parser.parser.CurrentLineNumber, parser.parser.CurrentColumnNumber
+        raise ShaderGenError("invalid_document", f"elements nested deeper than {MAX_NESTING} levels",
+                             f"{where}:{line}:{col}") from None
     except ParseError as e:
         line, col = e.position if hasattr(e, "position") else (0, 0)
         raise ShaderGenError("invalid_document", f"malformed XML: {e}", f"{where}:{line}:{col}") from None
