@@ -8,13 +8,14 @@
              steady frame at --size) of both renderers, measured in this run, Mesa's shader
              cache off.
   generator  Our shader against the reference shader, one renderer: every renderable element of
-             TestSuite/stdlib, our record (shadergen.api) and the oracle's drawn by our Renderer
+             TestSuite/stdlib (or the documents --documents names), our record (shadergen.api) and the oracle's drawn by our Renderer
              the same way. Prints the PSNR distribution, the share >= 40 dB and the worst ten.
 
 PSNR is over the linear RGBA framebuffers (peak 1.0); identical images print "inf".
 
   .venv/bin/python bench/accuracy.py renderer  [--corpus ../shared/corpus] [--out DIR] [--size 256]
   .venv/bin/python bench/accuracy.py generator [--corpus ../shared/corpus] [--filter math] [--json out.json]
+  .venv/bin/python bench/accuracy.py generator --documents 'resources/Materials/Examples/**/*.mtlx'
 
 The oracle runs only as a subprocess of its own venv ($ORACLE_VENV, default ~/.cache/mx-oracle/venv).
 """
@@ -148,7 +149,7 @@ def measure_generator(args) -> int:
     from shadergen.render import Renderer, RenderError
 
     corpus = os.path.abspath(args.corpus)
-    documents = sorted(glob.glob(os.path.join(corpus, "resources/Materials/TestSuite/stdlib/**/*.mtlx"), recursive=True))
+    documents = sorted(glob.glob(os.path.join(corpus, args.documents), recursive=True))
     documents = [d for d in documents if not args.filter or args.filter in d]
     renderer = Renderer(search_paths=[corpus])
     rows = []
@@ -247,6 +248,8 @@ def main() -> int:
     parser.add_argument("--corpus", default=os.path.join(SHARED, "corpus"))
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--repeat", type=int, default=5, help="frames timed per render (renderer measurement)")
+    parser.add_argument("--documents", default="resources/Materials/TestSuite/stdlib/**/*.mtlx",
+                        help="glob of the documents below the corpus (generator measurement)")
     parser.add_argument("--filter", help="only documents whose path contains this (generator measurement)")
     parser.add_argument("--out", help="keep records and images here (renderer measurement)")
     parser.add_argument("--json", help="also write the per-element results here")
