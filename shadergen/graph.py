@@ -182,6 +182,10 @@ class GraphBuilder:
             if not versioned:
                 raise ShaderGenError("unknown_nodedef", f"<{elem.category}> has no version '{version}'", elem.path)
             return versioned[0]
+        # As MaterialX does: a definition declaring every authored input wins over one that merely
+        # tolerates them (the seed's roughness_dual with roughnessX/Y over 1.39's vector2 one).
+        exact = [nd for nd in matches if all(n in {i.name for i in self.scope.nodedef_inputs(nd)} for n in authored)]
+        matches = exact or matches
         defaults = [nd for nd in matches if nd.get("isdefaultversion") == "true"]
         return (defaults or matches)[0]
 
