@@ -1,0 +1,81 @@
+"""The five shading models (libraries/bxdf) drawn in a white furnace: finite everywhere, lit, and
+never brighter than the light around them when nothing emits."""
+import numpy as np
+import pytest
+
+from shadergen.api import Generator
+from shadergen.render.environment import Environment
+
+GEN = Generator()
+WHITE = Environment(np.ones((16, 32, 3), "f4"), np.ones((16, 32, 3), "f4"), "white-furnace")
+
+# model: {case: inputs}
+CASES = {
+    "standard_surface": {
+        "default": {},
+        "coated metal": {"metalness": 1.0, "base_color": (0.9, 0.6, 0.3), "coat": 1.0, "coat_roughness": 0.3},
+        "glass": {"transmission": 1.0, "specular_roughness": 0.3, "base": 0.0},
+        "sheen subsurface": {"sheen": 1.0, "subsurface": 0.5, "specular_anisotropy": 0.5},
+    },
+    "open_pbr_surface": {
+        "default": {},
+        "coated metal": {"base_metalness": 1.0, "coat_weight": 1.0, "coat_darkening": 1.0},
+        "glass": {"transmission_weight": 1.0, "specular_roughness": 0.3},
+        "fuzz film": {"fuzz_weight": 1.0, "thin_film_weight": 1.0, "specular_roughness_anisotropy": 0.5},
+    },
+    "gltf_pbr": {
+        "default": {},
+        "dielectric": {"metallic": 0.0, "roughness": 0.4, "base_color": (0.8, 0.3, 0.2)},
+        "clearcoat sheen": {"metallic": 0.0, "clearcoat": 1.0, "sheen_color": (0.5, 0.5, 0.5), "sheen_roughness": 0.5},
+        "transmission": {"metallic": 0.0, "roughness": 0.2, "transmission": 1.0},
+    },
+    "UsdPreviewSurface": {
+        "default": {},
+        "metal coat": {"metallic": 1.0, "diffuseColor": (0.9, 0.6, 0.2), "clearcoat": 1.0},
+        "specular workflow": {"useSpecularWorkflow": 1, "specularColor": (0.2, 0.4, 0.9), "roughness": 0.2},
+    },
+    "disney_principled": {
+        "default": {},
+        "metal": {"metallic": 1.0, "baseColor": (0.9, 0.7, 0.4), "roughness": 0.3},
+        "clearcoat sheen": {"clearcoat": 1.0, "sheen": 1.0, "anisotropic": 0.5},
+    },
+}
+
+
+def input_xml(name: str, value) -> str:
+    if isinstance(value, tuple):
+        return f'<input name="{name}" type="color3" value="{", ".join(map(str, value))}"/>'
+    kind = "integer" if isinstance(value, int) else "float"
+    return f'<input name="{name}" type="{kind}" value="{value}"/>'
+
+
+def material(model: str, inputs: dict) -> str:
+    body = "".join(input_xml(n, v) for n, v in inputs.items())
+    return (f'<?xml version="1.0"?>\n<materialx version="1.39">\n<{model} name="sr" type="surfaceshader">{body}</{model}>\n'
+            '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" nodename="sr"/>'
+            '</surfacematerial>\n</materialx>\n')
+
+
+# Above 1.01 today because of the lobes themselves, not of how the graphs stack them: the Schlick
+# lobe of a white rough metal (1.013) and clearcoat over sheen over it (1.022) lack the multiple-
+# scattering compensation that issue 10's BSDF rewrite brings.
+OVER_UNITY = {("gltf_pbr", "default"), ("gltf_pbr", "clearcoat sheen")}
+
+
+def params():
+    for model, cases in CASES.items():
+        for case in cases:
+            marks = [pytest.mark.xfail(reason="generalized_schlick_bsdf without energy compensation", strict=False)] \
+                if (model, case) in OVER_UNITY else []
+            yield pytest.param(model, case, marks=marks)
+
+
+@pytest.mark.parametrize("model,case", params())
+def test_shading_model_in_a_white_furnace(renderer, model, case):
+    record = GEN.prepare(material(model, CASES[model][case])).emit()
+    assert "error" not in record, record.get("error")
+    rgb = renderer.render(record, size=32, env=WHITE, env_samples=64).rgba[..., :3]
+    covered = rgb[rgb.max(axis=2) > 0]  # the sphere, not the empty corners
+    assert np.isfinite(rgb).all()
+    assert len(covered) > 400 and covered.mean() > 0.02  # drawn and lit
+    assert np.percentile(covered, 99.9) <= 1.01  # no energy made up
