@@ -20,6 +20,7 @@ from .graph import GraphBuilder, Output
 from .hashing import graph_hash
 from .library import Library, Scope, default_library
 from .targets import syntax_for
+from .usd import is_usd_path, parse_usd, read_usd
 
 INTERFACES = ("complete", "reduced")
 SHADER_CATEGORIES_SKIPPED = ("nodedef", "implementation", "nodegraph", "input", "output", "typedef", "geompropdef",
@@ -49,9 +50,12 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
 ELEMENT_FAILURES = (ShaderGenError, RecursionError, ValueError, TypeError, KeyError, AttributeError, IndexError)
 
 
-def element_error(exc: Exception, where: str | None) -> ShaderGenError:
+def element_error(exc: Exception, where: str | None, doc: Document) -> ShaderGenError:
+    """The error record of an element (`where`: its name as users know it); element paths the
+    error names become the document's labels for them (prim paths, for USD)."""
     if isinstance(exc, ShaderGenError):
         err = exc
+        err.where = doc.label(err.where)
     elif isinstance(exc, RecursionError):  # a chain deeper than Python's stack: a document limit, not a crash
         err = ShaderGenError("too_large", "the graph's chain of connections is too deep to generate", where)
     else:
@@ -79,12 +83,16 @@ class Prepared:
         ctx = EmitContext(syntax_for(self.target), self.scope, "genglsl" if self.target == "glsl" else self.target,
                           Options(interface=self.interface))
         stages = emit_shader(ctx, self.graph)
+        blocks = {name: st.listing() for name, st in ctx.stages.items()}
+        if self.document.labels:  # variables name their inputs as the source document does
+            for variable in (v for block in blocks.values() for vs in block.values() for v in vs):
+                variable["path"] = self.document.label(variable["path"])
         ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
         return {
             "document": self.document.path, "element": self.element, "target": self.target,
             "interface": self.interface, "hash": self.hash, "cached": False,
             "stages": stages if source else {k: None for k in stages},
-            "blocks": {name: st.listing() for name, st in ctx.stages.items()},
+            "blocks": blocks,
             "timings_ms": {"generate": round(ms, 3)}, "warnings": self.warnings,
         }
 
@@ -99,35 +107,43 @@ class Generator:
 
     # -- documents ----------------------------------------------------------------------------
     def load(self, source: str | bytes | os.PathLike, *, base_dir: str | None = None,
-             allow_includes: bool = True) -> Document:
-        """A path (os.PathLike) is read from disk; str or bytes are the XML itself, never a path,
-        and may include other files only relative to an explicit `base_dir`."""
+             allow_includes: bool = True, document_format: str = "mtlx") -> Document:
+        """A path (os.PathLike) is read from disk, as USD when its suffix says so; str or bytes
+        are the document itself (MaterialX XML, or a USD upload of `document_format` usda/usdz),
+        never a path, and XML may include other files only relative to an explicit `base_dir`."""
         if isinstance(source, os.PathLike):
-            return read_document(os.fspath(source), allow_includes=allow_includes)
+            path = os.fspath(source)
+            if is_usd_path(path):
+                return read_usd(path, self.library)
+            return read_document(path, allow_includes=allow_includes)
+        if document_format != "mtlx":
+            return parse_usd(source, document_format, self.library)
         return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
                     interface: str = "complete", base_dir: str | None = None,
-                    allow_includes: bool = True) -> list["Prepared | ShaderGenError"]:
+                    allow_includes: bool = True, document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others."""
         syntax_for(target)  # unknown targets fail before any work
         if interface not in INTERFACES:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'", interface)
-        doc = source if isinstance(source, Document) else self.load(source, base_dir=base_dir,
-                                                                     allow_includes=allow_includes)
+        doc = source if isinstance(source, Document) else self.load(
+            source, base_dir=base_dir, allow_includes=allow_includes, document_format=document_format)
         scope = Scope(self.library, doc.root)
         elems = renderable_elements(doc, scope)
         if element:
-            elems = [e for e in elems if e.path == element or e.name == element] or self._named(doc, element)
+            elems = [e for e in elems if element in (e.path, e.name, doc.label(e.path))] or self._named(doc, element)
         elif not all:
             elems = elems[:1]
         out = []
         for e in elems:
             try:
+                if e.path in doc.failures:
+                    raise doc.failures[e.path]
                 out.append(self._prepare(doc, scope, e, target, interface))
             except ELEMENT_FAILURES as exc:
-                out.append(element_error(exc, e.path))
+                out.append(element_error(exc, doc.label(e.path), doc))
         return out
 
     def prepare(self, source, **kw) -> Prepared:
@@ -157,7 +173,7 @@ class Generator:
             try:
                 yield p.emit()
             except ELEMENT_FAILURES as exc:
-                yield dict(base, element=p.element, error=element_error(exc, p.element).to_dict())
+                yield dict(base, element=p.element, error=element_error(exc, p.element, p.document).to_dict())
 
     def nodedefs(self) -> list[dict]:
         out = []
@@ -202,7 +218,7 @@ class Generator:
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         h = graph_hash(graph, target=target, interface=interface, library_hash=self.library.content_hash,
                        local_ids=local)
-        return Prepared(self, doc, elem.path, target, interface, h, graph, scope,
+        return Prepared(self, doc, doc.label(elem.path), target, interface, h, graph, scope,
                         doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
 
 

@@ -31,6 +31,20 @@ class Document:
     path: str | None = None  # file path, when read from a file
     version: tuple[int, int] = (1, 39)
     warnings: list[str] = field(default_factory=list)
+    # Documents translated from another format (USD): the name each element has there (a prim
+    # path), and the elements that could not be translated, with why.
+    labels: dict[str, str] = field(default_factory=dict)
+    failures: dict[str, ShaderGenError] = field(default_factory=dict)
+
+    def label(self, path: str | None) -> str | None:
+        """What users call the element at `path` (or inside it): its own path for MaterialX."""
+        if not self.labels or path is None:
+            return path
+        head, tail = path, ""
+        while head not in self.labels and "/" in head:
+            head, last = head.rsplit("/", 1)
+            tail = f"/{last}{tail}"
+        return self.labels[head] + tail if head in self.labels else path
 
     @property
     def directory(self) -> str | None:

@@ -13,6 +13,7 @@ import numpy as np
 
 from .context import gl_extras
 from .imageio import read_image
+from .packages import has_member, member_file, split_member
 from .values import numbers
 
 # MaterialX address modes (image node `uaddressmode`/`vaddressmode`) -> GL wrap modes.
@@ -73,7 +74,9 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
     """(path, None) for a readable file, or (None, why not). A relative name is looked up in the
     document's folder, then in each search path; whatever it resolves to (symbolic links
     followed) must lie inside the document's folder, a search path or a texture root, so a
-    document cannot make the renderer read arbitrary files."""
+    document cannot make the renderer read arbitrary files. `package.usdz[member]` names a
+    member of a package, the package being found as any file is."""
+    name, member = split_member(name)
     if any(token in name for token in UNRESOLVABLE_TOKENS):
         return None, f"{name}: UDIM/UVTILE file sets are not supported by the thumbnail renderer"
     bases = [d for d in [document_dir, *search_paths] if d]
@@ -89,7 +92,11 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
         if not exists:
             continue
         if any(os.path.commonpath([real, root]) == root for root in roots):
-            return real, None
+            if member is None:
+                return real, None
+            if has_member(real, member):
+                return f"{real}[{member}]", None
+            return None, f"{name}[{member}]: the package has no such file"
         outside = real
     if outside:
         return None, f"{name}: resolves to {outside}, outside the allowed folders"
@@ -108,11 +115,18 @@ class TextureCache:
         self._constants: dict[tuple, object] = {}
 
     def file(self, ctx, path: str):
-        stat = os.stat(path)
+        """The texture of a path resolve_file returned (a package member included)."""
+        package, member = split_member(path)
+        stat = os.stat(package)
         key = (path, stat.st_mtime_ns, stat.st_size)
         texture = self._files.get(key)
         if texture is None:
-            texture = upload(ctx, read_image(path))
+            if member is None:
+                image = read_image(path)
+            else:
+                with member_file(package, member) as copy:
+                    image = read_image(copy)
+            texture = upload(ctx, image)
             self._files[key] = texture
         self._files.move_to_end(key)
         return texture
