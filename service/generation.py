@@ -28,15 +28,23 @@ class GenerateParams:
     element: str | None = None
     interface: str = "complete"
     source: bool = True
+    document_format: str = "mtlx"  # or a USD upload: usda (text) or usdz (a package)
 
 
 def request_digest(library_hash: str, params: GenerateParams, document: bytes) -> str:
     h = hashlib.sha256()
     # the generator's version too: a new release may emit different code for the same library
-    for part in (shadergen.__version__, library_hash, params.target, params.element or "", params.interface):
+    for part in (shadergen.__version__, library_hash, params.target, params.element or "", params.interface,
+                 params.document_format):
         h.update(part.encode() + b"\0")
     h.update(document)
     return h.hexdigest()
+
+
+def checked(raw_document: bytes, params: GenerateParams) -> bytes:
+    """The document as the generator takes it: XML passes the upload checks first (bytes: the
+    generator reads a str as a path); a USD upload is checked by the generator's USD reader."""
+    return check_document(raw_document).encode() if params.document_format == "mtlx" else raw_document
 
 
 def without_source(record_json: bytes) -> bytes:
@@ -59,7 +67,7 @@ class GenerationService:
 
     async def generate(self, raw_document: bytes, params: GenerateParams) -> bytes:
         """The record as JSON bytes; raises ServiceError (a 4xx for anything the client sent)."""
-        document = check_document(raw_document).encode()  # bytes: the generator reads a str as a path
+        document = checked(raw_document, params)
         digest = request_digest(self.library_hash, params, document)
         record = await self._cached(digest) or await self._generate(document, params, digest)
         return record if params.source else without_source(record)
@@ -68,7 +76,7 @@ class GenerationService:
         """The record if a byte-identical request was answered before, else None (also for a
         document the full path would refuse: it is the one that words the error)."""
         try:
-            document = check_document(raw_document).encode()
+            document = checked(raw_document, params)
         except ServiceError:
             return None
         record = await self._cached(request_digest(self.library_hash, params, document))
@@ -84,11 +92,13 @@ class GenerationService:
         return record
 
     async def _generate(self, document: bytes, params: GenerateParams, digest: str) -> bytes:
-        request = {"op": "generate", "document": document.decode(), "target": params.target,
+        xml = params.document_format == "mtlx"
+        request = {"op": "generate", "document": document.decode() if xml else None,
+                   "format": params.document_format, "target": params.target,
                    "element": params.element, "interface": params.interface, "digest": digest}
         context = {"element": params.element, "target": params.target}
         try:
-            reply, record = await self.pool.run(request)
+            reply, record = await self.pool.run(request, b"" if xml else document)  # binary USD as the payload
         except QueueFull as exc:
             raise ServiceError("queue_full", f"generation queue full: {exc}", **context,
                                headers={"Retry-After": str(self.retry_after_s)}) from None

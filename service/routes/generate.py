@@ -1,4 +1,5 @@
-"""POST /v1/generate: a JSON body, or the raw XML with the parameters in the query."""
+"""POST /v1/generate: a JSON body, or the raw document (MaterialX XML, a USD layer or usdz
+package) with the parameters in the query."""
 from typing import Annotated
 
 from fastapi import APIRouter, Query, Request, Response
@@ -13,10 +14,15 @@ from .common import ERRORS, json_bytes
 router = APIRouter(prefix="/v1", tags=["generate"])
 
 XML_TYPES = ("application/xml", "text/xml")
+USD_TYPES = {"model/vnd.usda": "usda", "model/vnd.usdz+zip": "usdz"}  # media type -> document format
+QUERY = "target, element (a material's prim path, for USD), interface and source come from the query"
 BODY = {"requestBody": {"required": True, "content": {
     "application/json": {"schema": GenerateRequest.model_json_schema()},
-    "application/xml": {"schema": {"type": "string", "description": "the MaterialX document; "
-                                   "target, element, interface and source come from the query"}},
+    "application/xml": {"schema": {"type": "string", "description": f"the MaterialX document; {QUERY}"}},
+    "model/vnd.usda": {"schema": {"type": "string", "description": f"a USD layer (text) that refers to no other "
+                                  f"file; one record per material, of the first or the named one; {QUERY}"}},
+    "model/vnd.usdz+zip": {"schema": {"type": "string", "format": "binary", "description": "a usdz package; assets "
+                                      f"and layers must lie inside it; {QUERY}"}},
 }}}
 
 
@@ -25,15 +31,17 @@ BODY = {"requestBody": {"required": True, "content": {
 async def generate(
     request: Request,
     generation: GenerationDep,
-    target: Annotated[str, Query(max_length=64, description="with an XML body")] = "glsl",
-    element: Annotated[str | None, Query(max_length=1024, description="with an XML body")] = None,
-    interface: Annotated[Interface, Query(description="with an XML body")] = "complete",
-    source: Annotated[bool, Query(description="with an XML body")] = True,
+    target: Annotated[str, Query(max_length=64, description="with an XML or USD body")] = "glsl",
+    element: Annotated[str | None, Query(max_length=1024, description="with an XML or USD body")] = None,
+    interface: Annotated[Interface, Query(description="with an XML or USD body")] = "complete",
+    source: Annotated[bool, Query(description="with an XML or USD body")] = True,
 ) -> Response:
     media_type = request.headers.get("content-type", "application/json").split(";")[0].strip().lower()
     body = await request.body()
     if media_type in XML_TYPES:
         document, params = body, GenerateParams(target, element, interface, source)
+    elif media_type in USD_TYPES:
+        document, params = body, GenerateParams(target, element, interface, source, USD_TYPES[media_type])
     elif media_type == "application/json":
         try:
             req = GenerateRequest.model_validate_json(body)
@@ -41,5 +49,6 @@ async def generate(
             raise from_validation_error(exc) from None
         document, params = req.document.encode(), GenerateParams(req.target, req.element, req.interface, req.source)
     else:
-        raise ServiceError("unsupported_media_type", f"send application/json or application/xml, not {media_type}")
+        raise ServiceError("unsupported_media_type", "send application/json, application/xml, model/vnd.usda or "
+                           f"model/vnd.usdz+zip, not {media_type}")
     return json_bytes(await generation.generate(document, params))

@@ -31,15 +31,18 @@ class GenerateHandler:
     def __call__(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
         if message["op"] == "nodedefs":
             return {"ok": True}, _dumps(self.generator.nodedefs())
-        return self.generate(message)
+        return self.generate(message, payload)
 
-    def generate(self, message: dict) -> tuple[dict, bytes]:
+    def generate(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
         started = time.perf_counter()
-        # bytes, never str: the generator reads a str that does not start with "<" as a file path
+        document_format = message.get("format", "mtlx")
+        # bytes, never str: the generator reads a str that does not start with "<" as a file path;
+        # a USD upload (binary for usdz) comes as the payload
+        document = message["document"].encode() if document_format == "mtlx" else payload
         try:
             prepared = self.generator.prepare(
-                message["document"].encode(), target=message["target"], element=message["element"],
-                interface=message["interface"], base_dir=None, allow_includes=False,
+                document, target=message["target"], element=message["element"], interface=message["interface"],
+                base_dir=None, allow_includes=False, document_format=document_format,
             )
             key = "rec:" + prepared.hash
             stored = self.store.get(key)

@@ -1,0 +1,101 @@
+"""USD uploads on the live server: `model/vnd.usda` text and `model/vnd.usdz+zip` packages written
+with usd-core, confined to themselves, with bad USD answered by the contract's error object."""
+import os
+from pathlib import Path
+
+import pytest
+from pxr import Sdf, Usd, UsdShade
+
+USDA = {"content-type": "model/vnd.usda"}
+USDZ = {"content-type": "model/vnd.usdz+zip"}
+MIB = 1024 * 1024
+
+
+def layer_text(texture: str = "wood.png", shader_id: str = "UsdPreviewSurface") -> str:
+    """Two materials: a textured UsdPreviewSurface (or a shader of `shader_id`) and a plain one."""
+    stage = Usd.Stage.CreateInMemory()
+    for name, textured in (("Wood", True), ("Plain", False)):
+        material = UsdShade.Material.Define(stage, f"/Looks/{name}")
+        surface = UsdShade.Shader.Define(stage, f"/Looks/{name}/Surface")
+        surface.CreateIdAttr(shader_id if textured else "UsdPreviewSurface")
+        surface.CreateInput("roughness", Sdf.ValueTypeNames.Float).Set(0.25)
+        if textured:
+            texture_shader = UsdShade.Shader.Define(stage, f"/Looks/{name}/Texture")
+            texture_shader.CreateIdAttr("UsdUVTexture")
+            texture_shader.CreateInput("file", Sdf.ValueTypeNames.Asset).Set(texture)
+            surface.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f).ConnectToSource(
+                texture_shader.ConnectableAPI(), "rgb")
+        material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
+    return stage.GetRootLayer().ExportToString()
+
+
+def package(folder: Path, text: str, *members: tuple[str, bytes]) -> bytes:
+    (folder / "scene.usda").write_text(text)
+    writer = Sdf.ZipFileWriter.CreateNew(str(folder / "scene.usdz"))
+    writer.AddFile(str(folder / "scene.usda"), "scene.usda")
+    for name, data in members:
+        os.makedirs((folder / name).parent, exist_ok=True)
+        (folder / name).write_bytes(data)
+        writer.AddFile(str(folder / name), name)
+    writer.Save()
+    return (folder / "scene.usdz").read_bytes()
+
+
+def uniforms(record: dict) -> dict:
+    return {v["path"]: v for v in record["blocks"]["pixel"]["PublicUniforms"]}
+
+
+def assert_error(response, status: int, code: str) -> dict:
+    assert response.status_code == status, response.text
+    error = response.json()["error"]
+    assert error["code"] == code and error["message"]
+    return error
+
+
+def test_usda_upload_gives_the_first_or_the_named_material(client):
+    r = client.post("/v1/generate", content=layer_text(), headers=USDA)
+    assert r.status_code == 200, r.text
+    assert r.json()["element"] == "/Looks/Wood" and r.json()["document"] is None
+    assert uniforms(r.json())["/Looks/Wood/Texture.inputs:file"]["value"] == "wood.png"
+    r = client.post("/v1/generate", params={"element": "/Looks/Plain", "target": "essl", "source": "false"},
+                    content=layer_text(), headers=USDA)
+    assert r.status_code == 200, r.text
+    record = r.json()
+    assert record["element"] == "/Looks/Plain" and record["target"] == "essl" and record["stages"]["pixel"] is None
+    assert uniforms(record)["/Looks/Plain/Surface.inputs:roughness"]["value"] == 0.25
+
+
+def test_usdz_upload_names_textures_inside_the_package(client, tmp_path):
+    body = package(tmp_path, layer_text("textures/wood.png"), ("textures/wood.png", b"\x89PNG not read"))
+    r = client.post("/v1/generate", content=body, headers=USDZ)
+    assert r.status_code == 200, r.text
+    assert uniforms(r.json())["/Looks/Wood/Texture.inputs:file"]["value"] == "textures/wood.png"
+
+
+@pytest.mark.parametrize("texture", ["../../etc/passwd", "/etc/passwd"])
+def test_usdz_asset_leaving_the_package_is_refused(client, tmp_path, texture):
+    r = client.post("/v1/generate", content=package(tmp_path, layer_text(texture)), headers=USDZ)
+    error = assert_error(r, 403, "path_not_allowed")
+    assert error["where"] == "/Looks/Wood/Texture.inputs:file"
+
+
+def test_layers_refering_outside_the_upload_are_refused(client, tmp_path):
+    text = '#usda 1.0\n(\n    subLayers = [@/etc/hosts@]\n)\n'
+    assert_error(client.post("/v1/generate", content=text, headers=USDA), 400, "include_refused")
+    referencing = '#usda 1.0\ndef "Looks" (\n    references = @../outside.usda@\n)\n{\n}\n'
+    r = client.post("/v1/generate", content=package(tmp_path, referencing), headers=USDZ)
+    assert_error(r, 403, "path_not_allowed")
+
+
+def test_bad_usd_uploads_get_error_records(client):
+    r = client.post("/v1/generate", content=layer_text(shader_id="NoSuchShader"), headers=USDA)
+    assert assert_error(r, 422, "unknown_node")["where"] == "/Looks/Wood/Surface"
+    r = client.post("/v1/generate", content='#usda 1.0\ndef "A" {\n  float x = (1,\n}\n', headers=USDA)
+    assert assert_error(r, 400, "invalid_document")["where"] == "/A.x"
+    assert_error(client.post("/v1/generate", content=b"\xff\xfe not text", headers=USDA), 400, "invalid_document")
+    assert_error(client.post("/v1/generate", content=b"PK not a zip", headers=USDZ), 400, "invalid_document")
+
+
+def test_usd_uploads_have_the_same_size_limit(client):
+    r = client.post("/v1/generate", content=b"PK\x03\x04" + b"\0" * (3 * MIB), headers=USDZ)
+    assert_error(r, 413, "too_large")
