@@ -70,7 +70,7 @@ def params():
             yield pytest.param(model, case, marks=marks)
 
 
-@pytest.mark.parametrize("model,case", params())
+@pytest.mark.parametrize("model,case", list(params()))
 def test_shading_model_in_a_white_furnace(renderer, model, case):
     record = GEN.prepare(material(model, CASES[model][case])).emit()
     assert "error" not in record, record.get("error")
