@@ -4,14 +4,14 @@ Two cache levels, both in the shared store:
 - `rec:<graph hash>`: the record. The graph hash (from the generator's `prepare`) ignores XML
   formatting, element order and unused nodes, so equivalent documents share one entry.
 - `req:<request digest>`: the graph hash a byte-identical request resolved to. Digest of the
-  document bytes, the parameters and the library hash; a repeated request is answered from the
-  store without even parsing the XML, which is what keeps cached requests in the millisecond range.
+  document bytes, the parameters and the generator's output key (shadergen/fingerprint.py: the
+  library files, their folder and the generator's code, as the generator process reports it); a
+  repeated request is answered from the store without even parsing the XML, which is what keeps
+  cached requests in the millisecond range.
 """
 import hashlib
 import json
 from dataclasses import dataclass
-
-import shadergen
 
 from .cache import Store
 from .errors import ServiceError
@@ -31,11 +31,10 @@ class GenerateParams:
     document_format: str = "mtlx"  # or a USD upload: usda (text) or usdz (a package)
 
 
-def request_digest(library_hash: str, params: GenerateParams, document: bytes) -> str:
+def request_digest(output_key: str, params: GenerateParams, document: bytes) -> str:
+    """`output_key`: fingerprint.output_key of the generator that answers (its `library_hash`)."""
     h = hashlib.sha256()
-    # the generator's version too: a new release may emit different code for the same library
-    for part in (shadergen.__version__, library_hash, params.target, params.element or "", params.interface,
-                 params.document_format):
+    for part in (output_key, params.target, params.element or "", params.interface, params.document_format):
         h.update(part.encode() + b"\0")
     h.update(document)
     return h.hexdigest()

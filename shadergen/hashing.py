@@ -2,31 +2,15 @@
 
 It covers everything the output depends on and nothing else: the prepared graph (nodes in
 topological order with their definitions, implementations, bound values, listing paths and
-connections), the target, the interface mode, the generator version and the library content
-hash. XML formatting, element order and unused nodes never reach the prepared graph, so they
+connections), the target, the interface mode and the library's output key (library files,
+their folder and the generator's code: fingerprint.py). XML formatting, element order and unused nodes never reach the prepared graph, so they
 cannot change the key. Document-local definitions are hashed by content.
 """
 import hashlib
 import json
-from functools import lru_cache
-from pathlib import Path
 
-from . import __version__
 from .element import Element
 from .graph import Graph
-
-PACKAGE = Path(__file__).resolve().parent
-
-
-@lru_cache(maxsize=1)
-def generator_fingerprint() -> str:
-    """The generator's own code is an input too: a new release must never be served records
-    cached by the old one. The renderer is not part of what a record depends on."""
-    h = hashlib.sha256(__version__.encode())
-    for path in sorted(PACKAGE.rglob("*.py")):
-        if "render" not in path.relative_to(PACKAGE).parts:
-            h.update(str(path.relative_to(PACKAGE)).encode() + b"\0" + path.read_bytes())
-    return h.hexdigest()
 
 
 def _element_digest(e: Element) -> list:
@@ -34,14 +18,15 @@ def _element_digest(e: Element) -> list:
 
 
 def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int]) -> str:
-    """`local_ids`: ids of the implementation elements the document itself declares."""
+    """`library_hash`: the library's output key (fingerprint.py), which covers the generator's
+    code too. `local_ids`: ids of the implementation elements the document itself declares."""
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     nodes = []
     for n in graph.nodes:
         inputs = []
         for inp in n.inputs.values():
             conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
-            meta = {k: inp.meta[k] for k in sorted(inp.meta) if k != "ui"}
+            meta = {k: inp.meta[k] for k in sorted(inp.meta)}  # ui too: the listing carries it
             inputs.append([inp.name, inp.type, _jsonable(inp.value), inp.path, conn, inp.authored, meta])
         impl = n.implementation
         impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
@@ -50,7 +35,7 @@ def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, 
         nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
     outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
     payload = json.dumps(
-        {"generator": generator_fingerprint(), "target": target, "interface": interface, "library": library_hash,
+        {"target": target, "interface": interface, "library": library_hash,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
          "nodes": nodes, "outputs": outputs},
         sort_keys=True, separators=(",", ":"), default=str)
