@@ -7,6 +7,7 @@ assign the shader outputs, then assemble each stage's text: header, type definit
 blocks, functions, main. Node graph implementations reuse the same steps to emit a function body.
 """
 import re
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 from .element import Element
@@ -69,6 +70,7 @@ class EmitContext:
         # `vars` is keyed by id(): every graph emitted from must stay alive until the shader is
         # written, or a new object could reuse an id and take over another's variable name.
         self.retained: list = []
+        self.expanding: list[Element] = []  # nodegraph implementations being written, outermost first
 
     @property
     def pixel(self) -> Stage:
@@ -161,6 +163,21 @@ class EmitContext:
     def graph_function_name(self, elem: Element) -> str:
         return self.graph_functions[id(elem)]
 
+    @contextmanager
+    def expansion(self, elem: Element):
+        """Scope of writing one nodegraph implementation. A graph that reaches its own node again
+        (directly or through other definitions) would expand forever, or call itself in GLSL."""
+        for i, outer in enumerate(self.expanding):
+            if outer is elem:
+                names = [e.name for e in self.expanding[i:]] + [elem.name]
+                raise ShaderGenError("cycle", "nodegraph implementation instantiates itself: " + " -> ".join(names),
+                                     elem.path)
+        self.expanding.append(elem)
+        try:
+            yield
+        finally:
+            self.expanding.pop()
+
     def implementation_graph(self, elem: Element, node: Node, prefix: str = "") -> tuple[Graph, dict[str, Socket]]:
         """The prepared graph of a nodegraph implementation, its interface as sockets."""
         sockets = {inp.name: Socket(inp.name, inp.type, inp.value, None, dict(inp.meta)) for inp in node.inputs.values()}
@@ -180,18 +197,22 @@ class EmitContext:
     def inline_graph(self, elem: Element, node: Node) -> None:
         """A nodegraph used once is written in place (smaller than a function and its call): its
         sockets read the node's input values, the node's outputs name the graph's results."""
-        graph, sockets = self.implementation_graph(elem, node, f"{node.name}_")
-        for name, socket in sockets.items():
-            self.vars[id(socket)] = self.value(node.inputs[name])
-        self.define_functions(graph)
-        self.emit_nodes(graph, ())
+        with self.expansion(elem):
+            graph, sockets = self.implementation_graph(elem, node, f"{node.name}_")
+            for name, socket in sockets.items():
+                self.vars[id(socket)] = self.value(node.inputs[name])
+            self.define_functions(graph)
+            self.emit_nodes(graph, ())
         for name, out in graph.outputs.items():
             if name in node.outputs:
                 self.vars[id(node.outputs[name])] = self.vars[id(out)]
 
     def emit_graph_function(self, elem: Element, node: Node) -> None:
-        if not self.pixel.once(("graph", id(elem))):
-            return
+        with self.expansion(elem):
+            if self.pixel.once(("graph", id(elem))):
+                self.write_graph_function(elem, node)
+
+    def write_graph_function(self, elem: Element, node: Node) -> None:
         self.graph_functions[id(elem)] = fname = self.namer(elem.name)
         graph, sockets = self.implementation_graph(elem, node)
         saved_body, saved_vars, saved_closure = self.body, self.vars, self.closure

@@ -1,11 +1,11 @@
 """Data libraries: node definitions, implementations and their source files, indexed for resolution.
 
 Everything a generator knows about nodes comes from `.mtlx` files (seed 1.3.2). A process loads
-them once; the parsed tree is kept in an on-disk cache named by the content hash of every library
-file, so a cold process reads one JSON file instead of parsing XML. Documents may declare their own
+them once; the parsed tree is kept in an on-disk cache named by the output key (fingerprint.py:
+every library file, the folder, the generator's code), so a cold process reads one JSON file
+instead of parsing XML. The cache names source files relative to the library folder. Documents may declare their own
 nodedefs, implementations and nodegraph implementations: `Scope` layers a document over a library.
 """
-import hashlib
 import json
 import os
 from functools import lru_cache
@@ -14,8 +14,8 @@ from pathlib import Path
 from .document import parse_document
 from .element import Element
 from .errors import ShaderGenError
+from .fingerprint import library_files, output_key
 
-CACHE_FORMAT = 1
 DEFAULT_LIBRARY_ROOT = Path(__file__).resolve().parent.parent / "libraries"
 
 
@@ -34,6 +34,7 @@ class Index:
         self.nodedefs: dict[str, Element] = {}
         self.nodedefs_by_node: dict[str, list[Element]] = {}
         self.implementations: dict[str, list[Element]] = {}  # nodedef name -> implementation / nodegraph
+        self.nodegraphs: dict[str, Element] = {}  # what <implementation nodegraph="..."> names
         self.geompropdefs: dict[str, Element] = {}
         self.typedefs: dict[str, Element] = {}
         self.units: dict[str, dict[str, float]] = {}  # unittype -> unit -> scale
@@ -47,6 +48,8 @@ class Index:
                 self.nodedefs_by_node.setdefault(e.get("node"), []).append(e)
             elif cat == "implementation" or (cat == "nodegraph" and e.get("nodedef")):
                 self.implementations.setdefault(e.get("nodedef"), []).append(e)
+            if cat == "nodegraph":
+                self.nodegraphs[e.name] = e
             elif cat == "geompropdef":
                 self.geompropdefs[e.name] = e
             elif cat == "typedef":
@@ -72,17 +75,14 @@ class Library(Index):
 
     @classmethod
     def load(cls, root: Path | None = None) -> "Library":
-        root = Path(root or library_root())
-        files = sorted(p for p in root.rglob("*.mtlx"))
-        h = hashlib.sha256(f"shadergen-library-{CACHE_FORMAT}".encode())
-        for p in files:
-            h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes() + b"\0")
-        content_hash = h.hexdigest()
+        root = Path(root or library_root()).resolve()
+        files = [p for p in library_files(root) if p.suffix == ".mtlx"]
+        content_hash = output_key(root)
         cached = cache_dir() / f"library-{content_hash[:24]}.json"
-        roots = _read_cache(cached)
+        roots = _read_cache(cached, root)
         if roots is None:
             roots = [parse_document(p.read_bytes(), path=str(p)).root for p in files]
-            _write_cache(cached, roots)
+            _write_cache(cached, roots, root)
         return cls(root, files, content_hash, roots)
 
     def target_chain(self, target: str) -> list[str]:
@@ -102,20 +102,21 @@ def _from_json(data: list, source: str | None) -> Element:
     return Element(category, attrs, None, source, children)
 
 
-def _read_cache(path: Path) -> list[Element] | None:
+def _read_cache(path: Path, root: Path) -> list[Element] | None:
     try:
         with open(path, "rb") as f:
             data = json.loads(f.read())
-        return [_from_json(d, src) for src, d in data]
+        return [_from_json(d, str(root / src)) for src, d in data]
     except (OSError, ValueError, TypeError):
         return None  # missing or corrupt: rebuilt from the .mtlx files
 
 
-def _write_cache(path: Path, roots: list[Element]) -> None:
+def _write_cache(path: Path, roots: list[Element], root: Path) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(json.dumps([[r.source, _to_json(r)] for r in roots], separators=(",", ":")))
+        relative = [[os.path.relpath(r.source, root), _to_json(r)] for r in roots]
+        tmp.write_text(json.dumps(relative, separators=(",", ":")))
         os.replace(tmp, path)  # atomic: concurrent processes never read half a file
     except OSError:
         pass  # a read-only home is not fatal: the next process parses again
@@ -167,43 +168,65 @@ class Scope:
                 return scale
         return None
 
+    def nodegraph(self, name: str) -> Element | None:
+        for layer in self.layers:
+            if name in layer.nodegraphs:
+                return layer.nodegraphs[name]
+        return None
+
+    def inheritance(self, nodedef: Element) -> list[Element]:
+        """The nodedef, its parent, its grandparent...: every inherited fact is read along this
+        chain, so a loop in it is found here, once, before any work depends on it."""
+        chain = [nodedef]
+        while chain[-1].get("inherit"):
+            parent_name = chain[-1].get("inherit")
+            parent = self.nodedef(parent_name)
+            if parent is None:
+                raise ShaderGenError("unknown_nodedef", f"nodedef '{chain[-1].name}' inherits unknown '{parent_name}'",
+                                     chain[-1].name)
+            if any(nd is parent for nd in chain):
+                names = [nd.name for nd in chain[chain.index(parent):]] + [parent.name]
+                raise ShaderGenError("cycle", "nodedef inheritance loops: " + " -> ".join(names), nodedef.name)
+            chain.append(parent)
+        return chain
+
     def implementation(self, nodedef: Element, target: str) -> Element | None:
         """The implementation of a nodedef for a target (or a target it inherits from); a nodegraph
-        implementation serves every target. Follows nodedef inheritance when the nodedef has none."""
+        implementation (a nodegraph naming the nodedef, or an <implementation nodegraph="...">)
+        serves every target. Follows nodedef inheritance when the nodedef has none."""
         chain = self.library.target_chain(target)
-        nd = nodedef
-        while nd is not None:
+        for nd in self.inheritance(nodedef):
             for t in chain:
                 for layer in self.layers:
                     for impl in layer.implementations.get(nd.name, ()):
                         if impl.category == "implementation" and impl.get("target", t) == t:
-                            return impl
+                            return self.implementing_graph(impl) if impl.get("nodegraph") else impl
             for layer in self.layers:
                 for impl in layer.implementations.get(nd.name, ()):
                     if impl.category == "nodegraph":
                         return impl
-            parent = nd.get("inherit")
-            nd = self.nodedef(parent) if parent else None
         return None
+
+    def implementing_graph(self, impl: Element) -> Element:
+        graph = self.nodegraph(impl.get("nodegraph"))
+        if graph is None:
+            raise ShaderGenError("unknown_implementation", f"implementation '{impl.name}' names nodegraph "
+                                 f"'{impl.get('nodegraph')}', which does not exist", impl.path or impl.name)
+        return graph
 
     def nodedef_outputs(self, nodedef: Element) -> list[Element]:
         """Outputs of a nodedef; a nodedef that declares none has its parent's."""
-        while nodedef is not None:
-            outputs = nodedef.children_of("output")
-            if outputs or not nodedef.get("inherit"):
+        for nd in self.inheritance(nodedef):
+            outputs = nd.children_of("output")
+            if outputs:
                 return outputs
-            nodedef = self.nodedef(nodedef.get("inherit"))
         return []
 
     def nodedef_inputs(self, nodedef: Element) -> list[Element]:
         """Inputs of a nodedef including inherited ones (the child's override the parent's)."""
-        parent_name = nodedef.get("inherit")
-        own = nodedef.children_of("input", "parameter", "token")
-        if not parent_name:
-            return own
-        parent = self.nodedef(parent_name)
-        if parent is None:
-            raise ShaderGenError("unknown_nodedef", f"nodedef '{nodedef.name}' inherits unknown '{parent_name}'",
-                                 nodedef.name)
-        names = {i.name for i in own}
-        return [i for i in self.nodedef_inputs(parent) if i.name not in names] + own
+        inputs: list[Element] = []
+        for nd in reversed(self.inheritance(nodedef)):
+            own = nd.children_of("input", "parameter", "token")
+            names = {i.name for i in own}
+            inputs = [i for i in inputs if i.name not in names] + own
+        return inputs
