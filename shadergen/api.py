@@ -39,7 +39,7 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
     materials = [e for e in nodes if output_type(e) == "material"]
     if materials:
         return materials
-    closures = ("BSDF", "EDF", "VDF")
+    closures = ("BSDF", "EDF", "VDF", "lightshader")  # what a surface reads, not what a pixel shows
     outputs = [o for g in doc.root.children_of("nodegraph") for o in g.children_of("output")
                if o.get("type") not in closures]
     return outputs + [o for o in doc.root.children_of("output") if o.get("type") not in closures]
@@ -163,6 +163,8 @@ class Generator:
         base = {"document": path, "target": target, "interface": interface}
         try:
             prepared = self.prepare_all(source, **kw)
+            if not prepared:
+                raise ShaderGenError("no_renderable_element", "the document has no renderable element", path)
         except ShaderGenError as e:
             yield dict(base, element=None, error=e.to_dict())
             return
@@ -216,6 +218,7 @@ class Generator:
             outputs = {name: out for name, out in root.outputs.items()}
         graph = prepare(builder, outputs, root)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
+        local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         h = graph_hash(graph, target=target, interface=interface, library_hash=self.library.content_hash,
                        local_ids=local)
         return Prepared(self, doc, doc.label(elem.path), target, interface, h, graph, scope,

@@ -322,15 +322,16 @@ class GraphBuilder:
             self.insert_before(inp, node)
 
     def convert_file_colorspace(self, node: Node) -> None:
-        """A texture in another colour space is transformed after sampling, on the node's output."""
+        """A texture in another colour space is transformed after sampling, on the node's colour
+        outputs (a multi-output image node such as gltf_colorimage has one colour and one alpha)."""
         file = next((i for i in node.inputs.values() if i.type == "filename"), None)
-        out = next(iter(node.outputs.values()))
-        if file is None or len(node.outputs) != 1:
+        if file is None:
             return
-        cm = self.colorspace_node(f"{node.name}_{out.name}_cm", file.meta.get("colorspace"), out.type, file.path)
-        if cm is not None:
-            next(iter(cm.inputs.values())).connection = out
-            self.redirect[id(out)] = next(iter(cm.outputs.values()))
+        for out in node.outputs.values():
+            cm = self.colorspace_node(f"{node.name}_{out.name}_cm", file.meta.get("colorspace"), out.type, file.path)
+            if cm is not None:
+                next(iter(cm.inputs.values())).connection = out
+                self.redirect[id(out)] = next(iter(cm.outputs.values()))
 
     def bind(self, inp: Input, authored: Element) -> None:
         """Bind a node input to what the document says: a connection, an interface input, or a value."""
@@ -349,6 +350,10 @@ class GraphBuilder:
         if isinstance(source, Socket):
             inp.bind_socket(source)
         elif isinstance(source, Output):
+            if source.type != inp.type:
+                raise ShaderGenError("type_mismatch", f"input '{inp.name}' is {inp.type} but is connected to the "
+                                     f"{source.type} output '{source.name}' of '{source.node.path or source.node.name}'",
+                                     authored.path)
             inp.connection = source
         elif isinstance(source, Element) and source.get("defaultgeomprop") and source.get("value") is None:
             inp.connection = self.geomprop_output(source.get("defaultgeomprop"), source)  # a graph input reading geometry
@@ -363,6 +368,10 @@ class GraphBuilder:
             for key in ("colorspace", "unit", "unittype"):
                 if source.get(key) and key not in inp.meta:
                     inp.meta[key] = source.get(key)
+            for holder in (authored, source):  # the document's ui metadata overrides the nodedef's
+                ui = input_meta(holder).get("ui")
+                if ui:
+                    inp.meta["ui"] = {**inp.meta.get("ui", {}), **ui}
 
     def source_of(self, port: Element):
         """Where a port's data comes from: an upstream node's Output, an interface Socket of the

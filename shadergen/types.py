@@ -4,6 +4,7 @@ Values are plain Python data so they hash, compare and serialise to JSON without
 float/int/bool/str for scalars and strings, tuples of floats for vectors, colours and
 matrices (row-major), None for closures and shaders.
 """
+import math
 from dataclasses import dataclass
 
 from .errors import ShaderGenError
@@ -73,19 +74,38 @@ def parse_value(type_name: str, text: str | None, where: str | None = None):
                 raise ValueError(text)
             return low in ("true", "1")
         if type_name == "integer":
-            return int(text.strip())
+            return _shader_int(text)
         if type_name == "float":
-            return float(text.strip())
+            return _shader_float(text)
         if type_name == "integerarray":
-            return tuple(int(p) for p in text.replace(",", " ").split())
+            return tuple(_shader_int(p) for p in text.replace(",", " ").split())
         if type_name == "floatarray":
-            return tuple(float(p) for p in text.replace(",", " ").split())
-        parts = tuple(float(p) for p in text.replace(",", " ").split())  # some writers separate with spaces
+            return tuple(_shader_float(p) for p in text.replace(",", " ").split())
+        parts = tuple(_shader_float(p) for p in text.replace(",", " ").split())  # some writers separate with spaces
         if len(parts) != t.size:
             raise ValueError(text)
         return parts
     except ValueError:
         raise ShaderGenError("invalid_value", f"'{text}' is not a valid {type_name} value", where) from None
+
+
+INT32_RANGE = range(-2**31, 2**31)
+
+
+def _shader_int(text: str) -> int:
+    """An integer a shader can hold: shading languages have 32-bit ints, so 10**400 is no value."""
+    value = int(text.strip())
+    if value not in INT32_RANGE:
+        raise ValueError(text)
+    return value
+
+
+def _shader_float(text: str) -> float:
+    """A finite float: `1e400` parses to inf, which no shading language can write as a literal."""
+    value = float(text.strip())
+    if not math.isfinite(value):
+        raise ValueError(text)
+    return value
 
 
 def default_value(type_name: str):

@@ -27,3 +27,12 @@ def test_errors_are_records_and_exit_1(tmp_path):
     assert p.returncode == 1 and "Traceback" not in p.stderr
     rec = json.loads(p.stdout)
     assert rec["error"]["code"] == "invalid_document" and rec["error"]["where"].startswith(str(bad))
+
+
+def test_document_without_renderable_element_is_an_error_record(tmp_path):
+    empty = tmp_path / "defs.mtlx"
+    empty.write_text(doc('<nodedef name="ND_x" node="x"><output name="out" type="float"/></nodedef>'))
+    p = run("generate", str(empty))
+    assert p.returncode == 1 and "Traceback" not in p.stderr
+    rec = json.loads(p.stdout)
+    assert rec["error"]["code"] == "no_renderable_element" and rec["element"] is None

@@ -1,9 +1,13 @@
 """Each generation mechanism, checked on the code and listings it produces."""
+from pathlib import Path
+
 import pytest
 
 from shadergen.errors import ShaderGenError
 
 from .conftest import doc, glslang, needs_glslang
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def first(gen, body, **kw):
@@ -214,3 +218,68 @@ def test_text_is_never_read_as_a_path(gen):
     with pytest.raises(ShaderGenError) as e:
         gen.prepare("/etc/passwd")
     assert e.value.code == "invalid_document"
+
+
+@pytest.mark.parametrize("value", ["1" + "0" * 400, "2147483648", "-2147483649"])
+def test_integer_out_of_the_shading_languages_range_is_invalid(gen, value):
+    text = doc(f'<switch name="s" type="float"><input name="which" type="integer" value="{value}"/></switch>'
+               '<output name="o" type="float" nodename="s"/>')
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(text).emit()
+    assert e.value.code == "invalid_value" and e.value.where == "s/which"
+
+
+def test_float_that_overflows_to_infinity_is_invalid(gen):
+    text = doc('<add name="a" type="float"><input name="in1" type="float" value="1e400"/></add>'
+               '<output name="o" type="float" nodename="a"/>')
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(text).emit()
+    assert e.value.code == "invalid_value"
+
+
+def test_connection_between_different_types_names_the_input(gen):
+    text = doc('<constant name="c" type="color3"><input name="value" type="color3" value="1,0,0"/></constant>'
+               '<add name="a" type="float"><input name="in1" type="float" nodename="c"/></add>'
+               '<output name="o" type="float" nodename="a"/>')
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(text).emit()
+    assert e.value.code == "type_mismatch" and e.value.where == "a/in1"
+    assert "color3" in e.value.message and "in1" in e.value.message
+
+
+def test_document_ui_metadata_overrides_the_nodedefs(gen):
+    rec = gen.prepare(Path(EXAMPLES / "marble_checker.mtlx")).emit()
+    ui = {v["path"]: v.get("ui") for v in rec["blocks"]["pixel"]["PublicUniforms"]}
+    assert ui["NG_marble_checker/scale"]["name"] == "Pattern scale"
+    text = doc('<add name="a" type="float"><input name="in1" type="float" value="1" uiname="Brightness" uimax="4"/>'
+               '</add><output name="o" type="float" nodename="a"/>')
+    ui = {v["path"]: v.get("ui") for v in gen.prepare(text).emit()["blocks"]["pixel"]["PublicUniforms"]}
+    assert ui["a/in1"]["name"] == "Brightness" and ui["a/in1"]["max"] == "4"
+
+
+def test_ui_metadata_is_part_of_the_hash(gen):
+    def hash_with(name):
+        return gen.prepare(doc(f'<add name="a" type="float"><input name="in1" type="float" value="1" uiname="{name}"/>'
+                               '</add><output name="o" type="float" nodename="a"/>')).hash
+    assert hash_with("A") != hash_with("B")
+
+
+def test_multi_output_image_node_decodes_its_colour_output(gen):
+    def pixel(node):
+        text = doc(f'<{node} name="img" type="multioutput"><input name="file" type="filename" value="a.png" '
+                   'colorspace="srgb_texture"/></' + node + '>'
+                   '<output name="o" type="color3" nodename="img" output="outcolor"/>', colorspace="lin_rec709")
+        return gen.prepare(text, element="o").emit()["stages"]["pixel"]
+    code = pixel("gltf_colorimage")
+    assert "o = vec4(img_outcolor_cm_out, 1.0);" in code and "outa_cm" not in code
+
+
+def test_light_shader_graph_is_not_renderable(gen):
+    text = doc('<nodedef name="ND_lamp" node="lamp"><input name="color" type="color3"/><output name="out" type="lightshader"/>'
+               '</nodedef><nodegraph name="NG_lamp" nodedef="ND_lamp"><uniform_edf name="e" type="EDF">'
+               '<input name="color" type="color3" interfacename="color"/></uniform_edf><light name="l" type="lightshader">'
+               '<input name="edf" type="EDF" nodename="e"/></light><output name="out" type="lightshader" nodename="l"/>'
+               '</nodegraph>')
+    with pytest.raises(ShaderGenError) as e:
+        gen.prepare(text)
+    assert e.value.code == "no_renderable_element"
