@@ -20,6 +20,9 @@ from .upgrade import upgrade
 XINCLUDE = "{http://www.w3.org/2001/XInclude}include"
 MAX_DOCUMENT_BYTES = 64 * 1024 * 1024
 MAX_INCLUDE_DEPTH = 16
+# Attributes of a document's root that its elements inherit: they move onto the elements of an
+# included document, which lose that root.
+SCOPED_ATTRIBUTES = ("fileprefix", "colorspace")
 # MaterialX nests a handful of levels (materialx > nodegraph > node > input); a deeper document
 # is refused while it is parsed, before its tree could cost time or stack
 MAX_NESTING = 64
@@ -169,6 +172,9 @@ def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tup
         index = root.children.index(inc)
         root.remove_child(inc)
         for offset, child in enumerate(included.children):
+            for key in SCOPED_ATTRIBUTES:  # what the included root said still holds for its elements
+                if included.get(key) is not None and child.get(key) is None:
+                    child.attrs[key] = included.get(key)
             root.add_child(child, index + offset)
 
 

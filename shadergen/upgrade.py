@@ -1,11 +1,19 @@
-"""Upgrade documents written for MaterialX 1.38 (and the 1.37 forms still in use) to 1.39.
+"""Upgrade documents written for older MaterialX versions to 1.39.
 
-Each rule is a small function over the element tree; `upgrade` applies the rules a document's
-version needs, recursively through node graphs, and records what it changed as warnings.
+Steps run in version order, each a pass of small rules over the whole element tree, so a later
+step sees what an earlier one produced (a 1.37 `channels` attribute becomes a 1.38 swizzle node,
+which the 1.39 step turns into extract/combine nodes):
+- before 1.26 (1.22, 1.25): `opgraph` graphs, `shader` elements, connections written as
+  `opgraphnode` values, and materials' `override` values by public name;
+- before 1.38: materials whose `shaderref` children name their shader node (1.22-1.37), the
+  1.37 BSDF nodes (`*_brdf`, `*_btdf`, a `base` input instead of a layer), `channels`, atan2's inputs;
+- before 1.39: normalmap's space, swizzle.
+`upgrade` records what it changed as warnings.
 """
 from .element import Element
 
 SWIZZLE_TYPES = {"r": 0, "x": 0, "g": 1, "y": 1, "b": 2, "z": 2, "a": 3, "w": 3}
+SHADER_TYPES = {"surface": "surfaceshader", "displacement": "displacementshader", "volume": "volumeshader"}
 
 
 def _walk(elem: Element):
@@ -13,6 +21,185 @@ def _walk(elem: Element):
     for c in elem.children:
         yield from _walk(c)
 
+
+def _graph_node(graph: Element | None, name: str | None) -> Element | None:
+    node = graph.child(name) if graph is not None and name else None
+    return node if node is not None and node.category not in ("input", "output") else None
+
+
+# -- before 1.26 -------------------------------------------------------------------------------
+
+def _opgraph(elem: Element) -> bool:
+    """1.22 called node graphs `opgraph`, and the 1.22 constant's value `color`."""
+    if elem.category == "opgraph":
+        elem.category = "nodegraph"
+        return True
+    value = elem.child("color") if elem.category == "constant" else None
+    if value is not None and elem.child("value") is None:
+        value.name = value.attrs["name"] = "value"
+        elem._by_name = None
+        return True
+    return False
+
+
+def _opgraphnode(port: Element) -> bool:
+    """A connection written as a port of type `opgraphnode` whose value names the upstream node."""
+    if port.get("type") != "opgraphnode" or port.parent is None:
+        return False
+    owner = port.parent
+    if owner.category == "output":
+        owner.attrs["nodename"] = port.get("value", "")
+        owner.remove_child(port)
+        return True
+    upstream = _graph_node(owner.parent, port.get("value"))
+    port.attrs["nodename"] = port.attrs.pop("value", "")
+    port.attrs["type"] = upstream.get("type", "float") if upstream is not None else "float"
+    return True
+
+
+def _shader(elem: Element) -> bool:
+    """A 1.22/1.25 `<shader shadername|shaderprogram="standard_surface">` is a shader node, its
+    inputs reading graph outputs through `graphname`/`graphoutput`."""
+    if elem.category != "shader":
+        return False
+    elem.category = elem.attrs.pop("shadername", None) or elem.attrs.pop("shaderprogram", None) or "shader"
+    elem.attrs["type"] = SHADER_TYPES.get(elem.attrs.pop("shadertype", "surface"), "surfaceshader")
+    for inp in elem.children_of("input", "parameter"):
+        if inp.get("graphname"):
+            inp.attrs["nodegraph"] = inp.attrs.pop("graphname")
+        if inp.get("graphoutput"):
+            inp.attrs["output"] = inp.attrs.pop("graphoutput")
+    return True
+
+
+# -- before 1.38 -------------------------------------------------------------------------------
+
+def _shader_node_of(material: Element, ref: Element) -> Element:
+    """The shader node a shaderref names: a 1.22/1.25 shader of that name (with the material's
+    overrides of its public names applied), or a node the 1.37 shaderref itself describes."""
+    root = material.parent
+    shader = root.child(ref.name)
+    if shader is not None and shader.category not in ("material", "surfacematerial"):
+        for override in material.children_of("override"):
+            for inp in shader.children_of("input", "parameter"):
+                if inp.get("publicname") == override.name and override.get("value") is not None:
+                    inp.attrs["value"] = override.get("value")
+        return shader
+    node = ref.get("node") or ref.get("nodedef", "ND_shader").removeprefix("ND_").rsplit("_", 1)[0]
+    attrs = {"name": ref.name, "type": SHADER_TYPES.get(ref.get("shadertype", "surface"), "surfaceshader")}
+    if ref.get("nodedef"):
+        attrs["nodedef"] = ref.get("nodedef")
+    shader = Element(node, attrs)
+    for bind in ref.children_of("bindinput", "bindparam", "bindtoken"):
+        port = {k: v for k, v in bind.attrs.items() if k not in ("output", "nodegraph")}
+        if bind.get("nodegraph"):
+            port |= {"nodegraph": bind.get("nodegraph"), "output": bind.get("output", "")}
+        shader.add_child(Element("token" if bind.category == "bindtoken" else "input", port))
+    root.add_child(shader, root.children.index(material))
+    return shader
+
+
+def _material(elem: Element) -> bool:
+    """A `<material>` of shaderrefs is a surfacematerial node reading the shader nodes."""
+    if elem.category != "material" or not elem.children_of("shaderref"):
+        return False
+    inputs = []
+    for ref in elem.children_of("shaderref"):
+        shader = _shader_node_of(elem, ref)
+        inputs.append(Element("input", {"name": shader.get("type"), "type": shader.get("type"),
+                                        "nodename": shader.name}))
+    for child in list(elem.children):
+        elem.remove_child(child)
+    for inp in inputs:
+        elem.add_child(inp)
+    elem.category, elem.attrs["type"] = "surfacematerial", "material"
+    return True
+
+
+RENAMED_BSDFS = {"diffuse_brdf": "oren_nayar_diffuse_bsdf", "burley_diffuse_brdf": "burley_diffuse_bsdf",
+                 "dielectric_brdf": "dielectric_bsdf", "dielectric_btdf": "dielectric_bsdf",
+                 "generalized_schlick_brdf": "generalized_schlick_bsdf", "sheen_brdf": "sheen_bsdf",
+                 "subsurface_brdf": "subsurface_bsdf", "conductor_brdf": "conductor_bsdf"}
+
+
+def _reconnect(graph: Element, old: str, new: str, skip: Element) -> None:
+    """Point every port of a graph that reads node `old` at node `new` instead."""
+    for elem in graph.children:
+        ports = [elem] if elem.category == "output" else elem.children_of("input", "parameter")
+        for port in ports:
+            if port.get("nodename") == old and elem is not skip:
+                port.attrs["nodename"] = new
+
+
+def _bsdf_1_37(node: Element) -> bool:
+    """1.38 renamed the BSDF nodes; a transmission is a dielectric with scatter_mode T, a
+    conductor takes ior/extinction (from artistic_ior), and a `base` input is a layer node."""
+    if node.category not in RENAMED_BSDFS:
+        return False
+    graph, old_category = node.parent, node.category
+    node.category = RENAMED_BSDFS[old_category]
+    if old_category == "dielectric_btdf":
+        node.add_child(Element("input", {"name": "scatter_mode", "type": "string", "value": "T"}))
+        interior = node.child("interior")
+        if interior is not None:
+            node.remove_child(interior)
+    if old_category == "conductor_brdf":
+        artistic = Element("artistic_ior", {"name": f"{node.name}_artistic_ior", "type": "multioutput"})
+        for name in ("reflectivity", "edge_color"):
+            port = node.child(name)
+            if port is not None:
+                node.remove_child(port)
+                artistic.add_child(port)
+        for name in ("ior", "extinction"):
+            node.add_child(Element("input", {"name": name, "type": "color3", "nodename": artistic.name,
+                                             "output": name}))
+        graph.add_child(artistic, graph.children.index(node))
+    base = node.child("base")
+    if base is not None:
+        node.remove_child(base)
+        layer = Element("layer", {"name": f"{node.name}_layer", "type": "BSDF"})
+        layer.add_child(Element("input", {"name": "top", "type": "BSDF", "nodename": node.name}))
+        layer.add_child(Element("input", {k: v for k, v in base.attrs.items()} | {"name": "base"}))
+        _reconnect(graph, node.name, layer.name, layer)
+        graph.add_child(layer, graph.children.index(node) + 1)
+    return True
+
+
+def _channels(port: Element) -> bool:
+    """A 1.37 `channels` attribute on a connection is a 1.38 swizzle node between the two."""
+    channels = port.get("channels")
+    if channels is None or port.category not in ("input", "parameter", "output"):
+        return False
+    del port.attrs["channels"]
+    owner = port if port.category == "output" else port.parent
+    graph = owner.parent
+    upstream = _graph_node(graph, port.get("nodename"))
+    if upstream is None or graph is None:
+        return True  # nothing to reorder: the value is read as written
+    swizzle = Element("swizzle", {"name": f"{owner.name}_{port.name}_swizzle", "type": port.get("type")})
+    source = {"name": "in", "type": upstream.get("type"), "nodename": upstream.name}
+    if port.get("output"):
+        source["output"] = port.attrs.pop("output")
+    swizzle.add_child(Element("input", source))
+    swizzle.add_child(Element("input", {"name": "channels", "type": "string", "value": channels}))
+    graph.add_child(swizzle, graph.children.index(owner))
+    port.attrs["nodename"] = swizzle.name
+    return True
+
+
+def _atan2(node: Element) -> bool:
+    """1.38 named atan2's inputs for what they are: in1 is y, in2 is x."""
+    if node.category != "atan2" or node.child("in1") is None and node.child("in2") is None:
+        return False
+    for old, new in (("in1", "iny"), ("in2", "inx")):
+        port = node.child(old)
+        if port is not None:
+            port.name = port.attrs["name"] = new
+    node._by_name = None
+    return True
+
+
+# -- before 1.39 -------------------------------------------------------------------------------
 
 def _normalmap(node: Element) -> bool:
     """1.39 removed normalmap's `space` input and the generic ND_normalmap."""
@@ -31,7 +218,8 @@ def _normalmap(node: Element) -> bool:
 
 def _swizzle(node: Element) -> bool:
     """1.39 removed `swizzle`: one channel becomes `extract`, several become a `combineN` of extracts
-    (constants for the 0/1 channel letters)."""
+    (constants for the 0/1 channel letters). A float source has no channels to extract: it is
+    read as it is (a `dot`, or every input of the combine)."""
     if node.category != "swizzle":
         return False
     channels_input = node.child("channels")
@@ -40,6 +228,10 @@ def _swizzle(node: Element) -> bool:
     node.attrs.pop("nodedef", None)
     if channels_input is not None:
         node.remove_child(channels_input)
+    scalar = source is not None and source.get("type") == "float"
+    if len(channels) <= 1 and scalar:
+        node.category = "dot"
+        return True
     if len(channels) <= 1:
         node.category = "extract"
         node.add_child(Element("input", {"name": "index", "type": "integer",
@@ -56,6 +248,8 @@ def _swizzle(node: Element) -> bool:
         inp = Element("input", {"name": f"in{i + 1}", "type": "float"})
         if ch in "01":
             inp.attrs["value"] = ch + ".0"
+        elif scalar:
+            inp.attrs |= {k: v for k, v in source.attrs.items() if k not in ("name", "type")}
         elif source is not None:
             extract = Element("extract", {"name": f"{node.name}_{ch}{i}", "type": "float"})
             moved = Element("input", {k: v for k, v in source.attrs.items() if k != "name"} | {"name": "in"})
@@ -68,14 +262,19 @@ def _swizzle(node: Element) -> bool:
     return True
 
 
-RULES_BEFORE_1_39 = (_normalmap, _swizzle)
+# (the version a step upgrades to, its rules), in order
+STEPS = (((1, 26), (_opgraph, _opgraphnode, _shader)),
+         ((1, 38), (_material, _bsdf_1_37, _channels, _atan2)),
+         ((1, 39), (_normalmap, _swizzle)))
 
 
 def upgrade(doc) -> None:
-    if doc.version >= (1, 39):
-        return
-    for elem in list(_walk(doc.root)):
-        for rule in RULES_BEFORE_1_39:
-            if rule(elem):
-                doc.warnings.append(f"upgraded {elem.path} to MaterialX 1.39 ({rule.__name__.strip('_')})")
+    for version, rules in STEPS:
+        if doc.version >= version:
+            continue
+        for elem in list(_walk(doc.root)):
+            for rule in rules:
+                if elem.parent is not None and rule(elem):
+                    doc.warnings.append(f"upgraded {elem.path} to MaterialX {version[0]}.{version[1]} "
+                                        f"({rule.__name__.strip('_')})")
     doc.root.attrs["version"] = "1.39"

@@ -3,7 +3,7 @@ import pytest
 from shadergen.document import parse_document, read_document
 from shadergen.errors import ShaderGenError
 
-from .conftest import doc
+from .conftest import doc, glslang
 
 
 def test_entity_expansion_is_refused():
@@ -55,3 +55,73 @@ def test_upgrade_from_1_38_renames_swizzle():
                            '<input name="channels" type="string" value="g"/></swizzle>', version="1.38"))
     s = d.root.child("s")
     assert s.category == "extract" and s.child("index").get("value") == "1"
+
+
+def test_fileprefix_of_an_included_document_applies_to_its_elements(tmp_path, gen):
+    (tmp_path / "inc.mtlx").write_text(
+        '<?xml version="1.0"?>\n<materialx version="1.39" fileprefix="tex/">'
+        '<image name="img" type="color3"><input name="file" type="filename" value="a.png"/></image>'
+        '<output name="o" type="color3" nodename="img"/></materialx>')
+    main = tmp_path / "main.mtlx"
+    main.write_text(doc('<xi:include xmlns:xi="http://www.w3.org/2001/XInclude" href="inc.mtlx"/>'))
+    for path in (main, tmp_path / "inc.mtlx"):
+        rec = gen.prepare(path).emit()
+        files = [v["value"] for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["type"] == "filename"]
+        assert files == ["tex/a.png"], path.name
+
+
+V1_22 = '''<opgraph name="paint_graph">
+  <constant name="base_constant" type="float"><parameter name="color" type="float" value="0.5"/></constant>
+  <output name="base_output" type="float"><parameter name="in" type="opgraphnode" value="base_constant"/></output>
+</opgraph>
+<shader name="paint_shader" shadertype="surface" shadername="standard_surface">
+  <input name="base" graphoutput="base_output" graphname="paint_graph" type="float"/>
+</shader>
+<material name="paint_material"><shaderref name="paint_shader" shadertype="surface"/></material>'''
+
+V1_25 = '''<shader name="surf" shadertype="surface" shaderprogram="standard_surface">
+  <input name="base" type="float" value="1.0" publicname="base_public"/>
+</shader>
+<material name="paint"><shaderref name="surf" shadertype="surface"/>
+  <override name="base_public" type="float" value="0.25"/></material>'''
+
+V1_37 = '''<nodedef name="ND_old_surface" node="old_surface">
+  <input name="tint" type="color3" value="0.18, 0.18, 0.18"/><input name="ior" type="float" value="1.5"/>
+  <output name="out" type="surfaceshader"/>
+</nodedef>
+<nodegraph name="NG_old_surface" nodedef="ND_old_surface">
+  <diffuse_brdf name="diffuse" type="BSDF"><input name="color" type="color3" interfacename="tint"/></diffuse_brdf>
+  <dielectric_btdf name="transmission" type="BSDF"><input name="ior" type="float" interfacename="ior"/></dielectric_btdf>
+  <multiply name="f0" type="float"><input name="in1" type="float" interfacename="ior"/><input name="in2" type="float" value="0.1"/></multiply>
+  <generalized_schlick_brdf name="specular" type="BSDF">
+    <input name="color0" type="color3" nodename="f0" channels="rrr"/><input name="base" type="BSDF" nodename="diffuse"/>
+  </generalized_schlick_brdf>
+  <conductor_brdf name="metal" type="BSDF"><input name="reflectivity" type="color3" interfacename="tint"/></conductor_brdf>
+  <mix name="blend" type="BSDF"><input name="fg" type="BSDF" nodename="metal"/><input name="bg" type="BSDF" nodename="specular"/></mix>
+  <mix name="clear" type="BSDF"><input name="fg" type="BSDF" nodename="transmission"/><input name="bg" type="BSDF" nodename="blend"/></mix>
+  <surface name="surface" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="clear"/></surface>
+  <output name="out" type="surfaceshader" nodename="surface"/>
+</nodegraph>
+<material name="M_old"><shaderref name="SR_old" node="old_surface">
+  <bindinput name="tint" type="color3" value="0.2, 0.2, 0.6"/></shaderref></material>
+<atan2 name="angle" type="float"><input name="in1" type="float" value="0.5"/><input name="in2" type="float" value="1.0"/></atan2>'''
+
+
+@pytest.mark.parametrize("version, body, element, path, value", [
+    ("1.22", V1_22, "paint_material", "paint_graph/base_constant/value", 0.5),
+    ("1.25", V1_25, "paint", "surf/base", 0.25),
+    ("1.37", V1_37, "M_old", "SR_old/tint", [0.2, 0.2, 0.6]),
+])
+def test_old_documents_are_upgraded_and_generate(gen, glslang_validator, version, body, element, path, value):
+    rec = gen.prepare(doc(body, version=version)).emit()
+    assert rec["element"] == element
+    public = {v["path"]: v["value"] for v in rec["blocks"]["pixel"]["PublicUniforms"]}
+    assert public[path] == pytest.approx(value)
+    ok, log = glslang(rec["stages"]["pixel"], "pixel")
+    assert ok, log
+
+
+def test_1_37_atan2_inputs_are_named_y_and_x():
+    d = parse_document(doc(V1_37, version="1.37"))
+    angle = d.root.child("angle")
+    assert angle.child("iny").get("value") == "0.5" and angle.child("inx").get("value") == "1.0"
