@@ -5,19 +5,17 @@ Each light's `type` is the id the shader's light dispatch compares against. Our 
 ids (the `enum`/`enumvalues` of LightData's `type` member); for other shaders it is the id
 MaterialX's light handler gives: 1, 2, ... in order of first appearance in the rig, which must then
 be the rig the shader was generated with. A shader generated without lights ignores them.
-Inputs the node does not set take their nodedef's default from the data libraries.
+Inputs the node does not set take their nodedef's default, read through `document` and
+`library` like every other definition (includes, inheritance, the library's disk cache).
 """
-import functools
-import os
 from dataclasses import dataclass
-from pathlib import Path
 
-from defusedxml import DefusedXmlException, ElementTree
-
+from ..document import read_document
+from ..element import Element
+from ..errors import ShaderGenError
+from ..library import Library, Scope, default_library
 from .errors import RenderError
 from .values import numbers
-
-LIBRARY_DIR = Path(__file__).resolve().parents[2] / "libraries"
 
 
 @dataclass
@@ -37,50 +35,50 @@ def light_type_ids(record: dict) -> dict[str, int] | None:
     return None
 
 
-def load_lights(path: str, library_dir: Path = LIBRARY_DIR, type_ids: dict[str, int] | None = None) -> list[Light]:
+def load_lights(path: str, library: Library | None = None, type_ids: dict[str, int] | None = None) -> list[Light]:
+    """The rig's lights, read like any document (includes, upgrades, its own nodedefs) over the
+    data libraries (default: the generator's)."""
     try:
-        root = ElementTree.parse(path).getroot()
-    except (OSError, ElementTree.ParseError, DefusedXmlException) as exc:
-        raise RenderError("invalid_lights", f"cannot read light rig {path}: {exc}", path) from exc
-    defaults = _light_defaults(str(library_dir))
-    ids: dict[str, int] = {}
-    lights = []
-    for node in root:
-        if node.get("type") != "lightshader":
-            continue
-        category = node.tag
-        if type_ids is not None and category not in type_ids:
-            raise RenderError("invalid_lights", f"the shader has no {category} lights", node.get("name"))
-        ids.setdefault(category, type_ids[category] if type_ids is not None else len(ids) + 1)
-        inputs = dict(defaults.get(category, {}))
-        for inp in node.findall("input"):
-            value = numbers(inp.get("type", ""), inp.get("value"))
-            if value is None:
-                raise RenderError("invalid_lights", f"light input {inp.get('name')} has no constant value "
-                                  "(connected light inputs are not supported)", f"{node.get('name')}/{inp.get('name')}")
-            inputs[inp.get("name")] = value
-        lights.append(Light(node.get("name", category), category, ids[category], inputs))
+        doc = read_document(str(path))
+        lights = _lights(doc.root, Scope(library or default_library(), doc.root), type_ids)
+    except ShaderGenError as exc:
+        raise RenderError("invalid_lights", f"cannot read light rig {path}: {exc.message}", exc.where or str(path)) \
+            from None
     if not lights:
-        raise RenderError("invalid_lights", "the light rig has no lightshader nodes", path)
+        raise RenderError("invalid_lights", "the light rig has no lightshader nodes", str(path))
     return lights
 
 
-@functools.lru_cache(maxsize=4)
-def _light_defaults(library_dir: str) -> dict[str, dict[str, list[float]]]:
-    """category -> {input: default numbers} of every nodedef with a lightshader output."""
-    found: dict[str, dict[str, list[float]]] = {}
-    for folder, _, files in os.walk(library_dir):
-        for file in sorted(f for f in files if f.endswith(".mtlx")):
-            try:
-                root = ElementTree.parse(os.path.join(folder, file)).getroot()
-            except (OSError, ElementTree.ParseError, DefusedXmlException):
-                continue  # the generator reports broken libraries; lights only lose defaults
-            for nodedef in root.iter("nodedef"):
-                if any(o.get("type") == "lightshader" for o in nodedef.findall("output")):
-                    found[nodedef.get("node")] = {
-                        i.get("name"): value for i in nodedef.findall("input")
-                        if (value := numbers(i.get("type", ""), i.get("value"))) is not None}
-    return found
+def _lights(root: Element, scope: Scope, type_ids: dict[str, int] | None) -> list[Light]:
+    ids: dict[str, int] = {}
+    lights = []
+    for node in root.children:
+        if node.get("type") != "lightshader":
+            continue
+        category = node.category
+        if type_ids is not None and category not in type_ids:
+            raise RenderError("invalid_lights", f"the shader has no {category} lights", node.path)
+        ids.setdefault(category, type_ids[category] if type_ids is not None else len(ids) + 1)
+        inputs = _defaults(scope, node)
+        for inp in node.children_of("input"):
+            value = numbers(inp.get("type", ""), inp.get("value"))
+            if value is None:
+                raise RenderError("invalid_lights", f"light input {inp.name} has no constant value "
+                                  "(connected light inputs are not supported)", inp.path)
+            inputs[inp.name] = value
+        lights.append(Light(node.name or category, category, ids[category], inputs))
+    return lights
+
+
+def _defaults(scope: Scope, node: Element) -> dict[str, list[float]]:
+    """Input -> default numbers from the light's nodedef (inherited inputs included)."""
+    nodedef = scope.nodedef(node.get("nodedef")) if node.get("nodedef") else next(
+        (nd for nd in scope.nodedefs_for(node.category)
+         if any(o.get("type") == "lightshader" for o in scope.nodedef_outputs(nd))), None)
+    if nodedef is None:
+        return {}
+    return {i.name: value for i in scope.nodedef_inputs(nodedef)
+            if (value := numbers(i.get("type", ""), i.get("value"))) is not None}
 
 
 def light_uniforms(lights: list[Light]) -> dict[str, list[float]]:

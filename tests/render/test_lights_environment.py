@@ -4,13 +4,14 @@ import pytest
 
 from shadergen.render import RenderError
 from shadergen.render.environment import map_directions, procedural_sky, sh_irradiance
+from shadergen.library import Library
 from shadergen.render.lights import light_uniforms, load_lights
 
 from .conftest import DATA
 
 
 def test_light_ids_follow_first_appearance_of_each_light_kind(tmp_path):
-    lights = load_lights(str(DATA / "rig.mtlx"), library_dir=tmp_path)
+    lights = load_lights(str(DATA / "rig.mtlx"), library=Library.load(tmp_path))
     assert [(l.name, l.category, l.type_id) for l in lights] == [("key", "directional_light", 1), ("fill", "point_light", 2)]
     uniforms = light_uniforms(lights)
     assert uniforms["u_numActiveLightSources"] == [2.0]
@@ -23,8 +24,25 @@ def test_unset_light_inputs_take_the_library_defaults(tmp_path):
         '<materialx version="1.39"><nodedef name="ND_point_light" node="point_light">'
         '<input name="decay_rate" type="float" value="2.0"/><input name="color" type="color3"/>'
         '<output name="out" type="lightshader"/></nodedef></materialx>')
-    lights = load_lights(str(DATA / "rig.mtlx"), library_dir=tmp_path)
+    lights = load_lights(str(DATA / "rig.mtlx"), library=Library.load(tmp_path))
     assert lights[1].inputs["decay_rate"] == [2.0] and "decay_rate" not in lights[0].inputs
+
+
+def test_rigs_are_read_as_documents_with_includes_and_inherited_defaults(tmp_path):
+    (tmp_path / "defs.mtlx").write_text(
+        '<materialx version="1.39"><nodedef name="ND_lamp_base" node="lamp_base">'
+        '<input name="intensity" type="float" value="3.0"/><output name="out" type="lightshader"/></nodedef>'
+        '<nodedef name="ND_lamp" node="lamp" inherit="ND_lamp_base"><input name="color" type="color3" '
+        'value="1, 0.5, 0.25"/></nodedef>'
+        '<lamp name="included" type="lightshader"/></materialx>')
+    (tmp_path / "rig.mtlx").write_text(
+        '<materialx version="1.39" xmlns:xi="http://www.w3.org/2001/XInclude"><xi:include href="defs.mtlx"/>'
+        '<lamp name="own" type="lightshader"><input name="color" type="color3" value="0, 1, 0"/></lamp></materialx>')
+    lights = load_lights(str(tmp_path / "rig.mtlx"))
+    assert [l.name for l in lights] == ["included", "own"]
+    assert lights[0].inputs == {"intensity": [3.0], "color": [1.0, 0.5, 0.25]}
+    assert lights[1].inputs == {"intensity": [3.0], "color": [0.0, 1.0, 0.0]}
+    assert load_lights(str(DATA / "rig.mtlx"))[1].inputs["decay_rate"] == [2.0]  # the generator's libraries
 
 
 def test_bad_rigs_fail_clearly(tmp_path):
