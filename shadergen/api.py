@@ -127,7 +127,8 @@ class Generator:
         place, so one bad material does not hide the others."""
         syntax_for(target)  # unknown targets fail before any work
         if interface not in INTERFACES:
-            raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'", interface)
+            raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
+                                 + ", ".join(INTERFACES), interface)
         doc = source if isinstance(source, Document) else self.load(
             source, base_dir=base_dir, allow_includes=allow_includes, document_format=document_format)
         scope = Scope(self.library, doc.root)

@@ -4,24 +4,43 @@ import argparse
 import importlib
 import sys
 
-# subcommand -> module with add_arguments(parser) and run(args) -> exit code
+# subcommand -> module with add_arguments(parser) and run(args) -> exit code (and EXAMPLES, shown by --help)
 SUBCOMMANDS = {
     "generate": ("shadergen.cli_generate", "generate shaders and variable listings (JSON Lines)"),
     "render": ("shadergen.render.cli", "render a material thumbnail on headless EGL"),
     "serve": ("service.cli", "run the HTTP service"),
     "worker": ("service.worker_cli", "run a render worker for the Redis job back end"),
 }
+EXAMPLES = """examples:
+  shadergen generate examples/marble_checker.mtlx
+  shadergen render examples/marble_checker.mtlx -o marble.png
+  shadergen serve --workers 2
+run `shadergen COMMAND --help` for the options of each command."""
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Every option's help ends with its default (when it has one worth saying); examples keep
+    their line breaks."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if action.default in (None, False, [], argparse.SUPPRESS) or "default" in text or not action.option_strings:
+            return text
+        return f"{text} (default: %(default)s)"
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    parser = argparse.ArgumentParser(prog="shadergen", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="shadergen", description=__doc__.split("\n")[0], epilog=EXAMPLES,
+                                     formatter_class=HelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     chosen = argv[0] if argv and argv[0] in SUBCOMMANDS else None
     for name, (module, help_text) in SUBCOMMANDS.items():
-        p = sub.add_parser(name, help=help_text)
+        p = sub.add_parser(name, help=help_text, description=help_text, formatter_class=HelpFormatter)
         if name == chosen:
-            importlib.import_module(module).add_arguments(p)
+            loaded = importlib.import_module(module)
+            loaded.add_arguments(p)
+            p.epilog = getattr(loaded, "EXAMPLES", None)
     args = parser.parse_args(argv)
     return importlib.import_module(SUBCOMMANDS[args.command][0]).run(args)
 

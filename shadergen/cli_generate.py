@@ -4,28 +4,57 @@ import os
 import sys
 from pathlib import Path
 
-STAGE_SUFFIX = {"glsl": {"vertex": "vert", "pixel": "frag"}, "essl": {"vertex": "vert", "pixel": "frag"}}
+STAGE_SUFFIX = {"vertex": "vert", "pixel": "frag"}
+EXAMPLES = """examples:
+  shadergen generate examples/marble_checker.mtlx                 # first renderable element, GLSL
+  shadergen generate --all --target essl --out shaders/ a.mtlx b.mtlx
+  cat doc.mtlx | shadergen generate -                             # the document on stdin
+
+--out DIR writes DIR/<document>/<element>.<target>.vert, .frag and .json (the listings), so
+documents, elements and targets never overwrite each other's files."""
 
 
 def add_arguments(p) -> None:
-    p.add_argument("documents", nargs="+", metavar="DOC.mtlx")
+    p.add_argument("documents", nargs="+", metavar="DOC.mtlx",
+                   help="MaterialX documents; - reads one from stdin (its includes relative to the current folder)")
     p.add_argument("--target", default="glsl", help="glsl (desktop #version 400) or essl (#version 300 es)")
-    p.add_argument("--element", help="name path of the element to generate (default: the first renderable)")
-    p.add_argument("--all", action="store_true", help="every renderable element")
-    p.add_argument("--interface", default="complete", help="complete | reduced")
-    p.add_argument("--out", metavar="DIR", help="write <element>.<stage> files and <element>.json listings here")
-    p.add_argument("--no-source", action="store_true", help="listings only")
+    p.add_argument("--element", metavar="NAMEPATH",
+                   help="name path of the element to generate (default: the first renderable element)")
+    p.add_argument("--all", action="store_true", help="every renderable element instead of the first")
+    p.add_argument("--interface", default="complete",
+                   help="complete (every input a uniform) or reduced (only connected inputs and filenames)")
+    p.add_argument("--out", metavar="DIR", help="also write stage files and listings under DIR (see below)")
+    p.add_argument("--no-source", action="store_true", help="records without stage source (listings only)")
 
 
-def write_files(record: dict, out_dir: str) -> None:
-    os.makedirs(out_dir, exist_ok=True)
-    stem = (record["element"] or "shader").replace("/", "_")
-    for stage, src in record["stages"].items():
-        ext = STAGE_SUFFIX.get(record["target"], {}).get(stage, stage)
-        with open(os.path.join(out_dir, f"{stem}.{ext}"), "w") as f:
-            f.write(src)
-    with open(os.path.join(out_dir, f"{stem}.json"), "w") as f:
-        json.dump({k: v for k, v in record.items() if k != "stages"}, f, indent=1)
+class OutputFiles:
+    """Stage files and listings under --out: one folder per document, files named by element and
+    target. Two records of one run that would share a file (documents with the same name in
+    different folders, elements whose paths differ only in '/' and '_') are refused, never
+    overwritten."""
+
+    def __init__(self, out_dir: str):
+        self.out_dir = out_dir
+        self.written: dict[str, str] = {}  # file -> the "document element" that wrote it
+
+    def write(self, record: dict, document: str) -> dict | None:
+        """Writes the record's files; returns an error record instead when they are taken."""
+        folder = os.path.join(self.out_dir, Path(document).stem if document != "-" else "stdin")
+        stem = os.path.join(folder, f"{(record['element'] or 'shader').replace('/', '_')}.{record['target']}")
+        files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage)}": src for stage, src in record["stages"].items()}
+        files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k != "stages"}, indent=1)
+        owner = f"{document} {record['element']}"
+        taken = next((f for f in files if self.written.get(f, owner) != owner), None)
+        if taken is not None:
+            return {k: record[k] for k in ("document", "element", "target", "interface")} | {"error": {
+                "code": "output_collision", "message": f"{taken} was already written for {self.written[taken]}",
+                "where": taken}}
+        os.makedirs(folder, exist_ok=True)
+        for path, text in files.items():
+            with open(path, "w") as f:
+                f.write(text)
+            self.written[path] = owner
+        return None
 
 
 def run(args) -> int:
@@ -38,13 +67,18 @@ def run(args) -> int:
     except ShaderGenError as e:  # a broken library is reported like any other error
         print(json.dumps({"document": None, "element": None, "target": args.target, "error": e.to_dict()}))
         return 1
+    out = OutputFiles(args.out) if args.out else None
     for doc in args.documents:
-        for rec in gen.records(Path(doc), target=args.target, element=args.element, all=args.all,
-                               interface=args.interface):
+        options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface)
+        if doc == "-":
+            records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
+        else:
+            records = gen.records(Path(doc), **options)
+        for rec in records:
+            if "error" not in rec and out is not None:
+                rec = out.write(rec, doc) or rec
             if "error" in rec:
                 ok = False
-            elif args.out:
-                write_files(rec, args.out)
             if args.no_source and "stages" in rec:
                 rec["stages"] = {k: None for k in rec["stages"]}
             sys.stdout.write(json.dumps(rec) + "\n")

@@ -2,11 +2,17 @@ import json
 import subprocess
 import sys
 
+import pytest
+
 from .conftest import doc
 
 
-def run(*args):
-    return subprocess.run([sys.executable, "-m", "shadergen.cli", *args], capture_output=True, text=True)
+def run(*args, stdin: str | None = None):
+    return subprocess.run([sys.executable, "-m", "shadergen.cli", *args], capture_output=True, text=True,
+                          input=stdin, timeout=300)
+
+
+SIN = doc('<sin name="s" type="float"/><output name="o" type="float" nodename="s"/>')
 
 
 def test_generate_writes_stage_files(tmp_path):
@@ -16,8 +22,8 @@ def test_generate_writes_stage_files(tmp_path):
     assert p.returncode == 0, p.stderr
     rec = json.loads(p.stdout)
     assert rec["element"] == "o" and set(rec["blocks"]) == {"vertex", "pixel"}
-    assert (tmp_path / "out" / "o.frag").read_text() == rec["stages"]["pixel"]
-    assert (tmp_path / "out" / "o.vert").exists() and (tmp_path / "out" / "o.json").exists()
+    assert (tmp_path / "out" / "d" / "o.glsl.frag").read_text() == rec["stages"]["pixel"]
+    assert (tmp_path / "out" / "d" / "o.glsl.vert").exists() and (tmp_path / "out" / "d" / "o.glsl.json").exists()
 
 
 def test_errors_are_records_and_exit_1(tmp_path):
@@ -36,3 +42,43 @@ def test_document_without_renderable_element_is_an_error_record(tmp_path):
     assert p.returncode == 1 and "Traceback" not in p.stderr
     rec = json.loads(p.stdout)
     assert rec["error"]["code"] == "no_renderable_element" and rec["element"] is None
+
+
+def test_out_keeps_every_document_element_and_target_apart(tmp_path):
+    for folder in ("a", "b"):
+        (tmp_path / folder).mkdir()
+    (tmp_path / "a" / "one.mtlx").write_text(SIN)
+    (tmp_path / "a" / "two.mtlx").write_text(SIN.replace("sin", "cos"))
+    out = tmp_path / "out"
+    for target in ("glsl", "essl"):
+        p = run("generate", "--target", target, "--out", str(out), str(tmp_path / "a" / "one.mtlx"),
+                str(tmp_path / "a" / "two.mtlx"))
+        assert p.returncode == 0, p.stdout
+    written = sorted(str(f.relative_to(out)) for f in out.rglob("*.frag"))
+    assert written == ["one/o.essl.frag", "one/o.glsl.frag", "two/o.essl.frag", "two/o.glsl.frag"]
+    assert "cos(" in (out / "two" / "o.glsl.frag").read_text() and "sin(" in (out / "one" / "o.glsl.frag").read_text()
+    (tmp_path / "b" / "one.mtlx").write_text(SIN.replace("sin", "tan"))  # same name, another folder: refused
+    p = run("generate", "--out", str(tmp_path / "again"), str(tmp_path / "a" / "one.mtlx"), str(tmp_path / "b" / "one.mtlx"))
+    records = [json.loads(line) for line in p.stdout.splitlines()]
+    assert p.returncode == 1 and records[1]["error"]["code"] == "output_collision"
+    assert "sin(" in (tmp_path / "again" / "one" / "o.glsl.frag").read_text()
+
+
+def test_dash_reads_the_document_from_stdin():
+    p = run("generate", "-", stdin=SIN)
+    assert p.returncode == 0, p.stdout
+    assert "sin(" in json.loads(p.stdout)["stages"]["pixel"]
+
+
+@pytest.mark.parametrize("option, value, listed", [("--interface", "full", "complete, reduced"),
+                                                   ("--target", "hlsl", "essl, glsl")])
+def test_unsupported_options_list_the_valid_values(tmp_path, option, value, listed):
+    (tmp_path / "d.mtlx").write_text(SIN)
+    rec = json.loads(run("generate", option, value, str(tmp_path / "d.mtlx")).stdout)
+    assert rec["error"]["code"] == f"unsupported_{option[2:]}" and listed in rec["error"]["message"]
+
+
+def test_help_gives_defaults_and_examples():
+    p = run("generate", "--help")
+    assert p.returncode == 0 and "(default: glsl)" in p.stdout and "(default: complete)" in p.stdout
+    assert "examples:" in p.stdout and "shadergen generate -" in p.stdout
