@@ -12,6 +12,18 @@ from . import Environment, RenderError, Renderer
 from .imageio import write_image
 
 
+TEXTURE_ROOTS_VARIABLE = "SHADERGEN_TEXTURE_ROOTS"
+EXAMPLES = f"""examples:
+  shadergen render examples/marble_checker.mtlx -o marble.png
+  shadergen render brass.mtlx --element Tiled_Brass --env studio.hdr --lights rig.mtlx -o brass.png --exr brass.exr
+  shadergen generate doc.mtlx > rec.jsonl && shadergen render --record rec.jsonl --npy linear.npy
+
+textures: a relative file name is looked up in the document's folder, then in each --search-path,
+then in each folder of ${TEXTURE_ROOTS_VARIABLE} (':'-separated). The command line reads whatever
+file the document names (../../Images/ included); --confine reads only from those folders and
+--texture-root, as the service does."""
+
+
 def add_arguments(parser) -> None:
     parser.add_argument("document", nargs="?", help="MaterialX document (.mtlx) to generate and render")
     parser.add_argument("--record", metavar="REC.json",
@@ -20,18 +32,20 @@ def add_arguments(parser) -> None:
     parser.add_argument("-o", "--output", metavar="OUT.png", help="sRGB PNG composited on --background")
     parser.add_argument("--exr", metavar="OUT.exr", help="linear RGBA EXR")
     parser.add_argument("--npy", metavar="OUT.npy", help="the linear RGBA float32 framebuffer, top row first")
-    parser.add_argument("--size", type=int, default=256, help="image width and height in pixels (default 256)")
+    parser.add_argument("--size", type=int, default=256, help="image width and height in pixels")
     parser.add_argument("--ss", type=int, default=1, metavar="N", help="supersample N x N per pixel")
-    parser.add_argument("--mesh", default="sphere", help="sphere (default), plane, or a .obj file")
+    parser.add_argument("--mesh", default="sphere", help="sphere, plane, or a .obj file")
     parser.add_argument("--env", metavar="LATLONG", help="lat-long radiance map (.hdr/.exr); default: procedural sky")
     parser.add_argument("--irr", metavar="LATLONG", help="lat-long irradiance map; default: computed from --env")
-    parser.add_argument("--env-intensity", type=float, default=1.0, help="u_envLightIntensity (default 1)")
-    parser.add_argument("--env-samples", type=int, default=16, help="u_envRadianceSamples (default 16)")
+    parser.add_argument("--env-intensity", type=float, default=1.0, help="u_envLightIntensity")
+    parser.add_argument("--env-samples", type=int, default=16, help="u_envRadianceSamples")
     parser.add_argument("--lights", metavar="LIGHTS.mtlx", help="light rig: a document of lightshader nodes")
     parser.add_argument("--search-path", action="append", default=[], metavar="DIR",
                         help="folder to resolve texture names in after the document's own (repeatable)")
     parser.add_argument("--texture-root", action="append", default=[], metavar="DIR",
-                        help="further folder textures may be read from (repeatable)")
+                        help="further folder textures may be read from with --confine (repeatable)")
+    parser.add_argument("--confine", action="store_true",
+                        help="read textures only from the document's folder, search paths and texture roots")
     parser.add_argument("--background", type=float, default=0.18, help="linear grey behind the object in the PNG")
     parser.add_argument("--repeat", type=int, default=1, metavar="N", help="draw N frames to time a steady frame")
     parser.add_argument("--json", action="store_true", help="print a JSON summary (or error) on stdout")
@@ -65,7 +79,9 @@ def _run(args) -> int:
         raise RenderError("invalid_request", "--irr needs --env (the procedural sky computes its own)")
     env = Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
     document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
-    renderer = Renderer(texture_roots=args.texture_root, search_paths=args.search_path)
+    env_roots = [p for p in os.environ.get(TEXTURE_ROOTS_VARIABLE, "").split(os.pathsep) if p]
+    renderer = Renderer(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
+                        confined=args.confine)
     result = renderer.render(record, size=args.size, mesh=args.mesh, env=env, env_samples=args.env_samples,
                              lights=args.lights, supersample=args.ss, document_dir=document_dir,
                              frames=args.repeat)

@@ -39,14 +39,16 @@ class RenderResult:
 class Renderer:
     """Renders shader records. `search_paths`: folders where relative texture names are looked up
     (after the document's folder); `texture_roots`: further folders textures may be read from.
-    Nothing outside the document's folder, the search paths and the roots is ever read.
+    Unless `confined` is False (the command line, reading a user's own files), nothing outside the
+    document's folder, the search paths and the roots is ever read.
     `lp_threads` caps llvmpipe's threads (LP_NUM_THREADS) when this renderer creates the
     process's context, so that several worker processes share the cores."""
 
-    def __init__(self, texture_roots=(), search_paths=(), *, lp_threads: int | None = None,
+    def __init__(self, texture_roots=(), search_paths=(), *, confined: bool = True, lp_threads: int | None = None,
                  max_programs: int = 64, texture_budget_bytes: int = 512 << 20):
         self.texture_roots = [os.path.abspath(p) for p in texture_roots]
         self.search_paths = [os.path.abspath(p) for p in search_paths]
+        self.confined = confined
         self.lp_threads = lp_threads
         self.max_programs = max_programs
         self._programs: OrderedDict[str, Program] = OrderedDict()
@@ -203,7 +205,8 @@ class Renderer:
             texture, problem = None, None
             filename = variable.get("value")
             if isinstance(filename, str) and filename:
-                path, problem = resolve_file(filename, document_dir, self.search_paths, self.texture_roots)
+                path, problem = resolve_file(filename, document_dir, self.search_paths, self.texture_roots,
+                                             self.confined)
                 if path:
                     try:
                         texture = self._textures.file(ctx, path)

@@ -70,12 +70,13 @@ def sampling_from(siblings: dict[str, object]) -> Sampling:
 
 
 def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
-                 texture_roots: list[str]) -> tuple[str | None, str | None]:
+                 texture_roots: list[str], confined: bool = True) -> tuple[str | None, str | None]:
     """(path, None) for a readable file, or (None, why not). A relative name is looked up in the
-    document's folder, then in each search path; whatever it resolves to (symbolic links
-    followed) must lie inside the document's folder, a search path or a texture root, so a
-    document cannot make the renderer read arbitrary files. `package.usdz[member]` names a
-    member of a package, the package being found as any file is."""
+    document's folder, then in each search path. When `confined` (a service rendering what clients
+    send), whatever it resolves to (symbolic links followed) must lie inside the document's
+    folder, a search path or a texture root, so a document cannot make the renderer read
+    arbitrary files; a local user rendering their own document reads what it names.
+    `package.usdz[member]` names a member of a package, the package being found as any file is."""
     name, member = split_member(name)
     if any(token in name for token in UNRESOLVABLE_TOKENS):
         return None, f"{name}: UDIM/UVTILE file sets are not supported by the thumbnail renderer"
@@ -91,7 +92,7 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
             continue
         if not exists:
             continue
-        if any(os.path.commonpath([real, root]) == root for root in roots):
+        if not confined or any(os.path.commonpath([real, root]) == root for root in roots):
             if member is None:
                 return real, None
             if has_member(real, member):

@@ -67,3 +67,31 @@ def test_bad_inputs_exit_1_with_a_message_and_no_traceback(tmp_path):
         assert code in run.stderr and "Traceback" not in run.stderr, (args, run.stderr)
     run = shadergen("--record", "bad.json", "-o", "x.png", "--json", cwd=tmp_path)
     assert json.loads(run.stdout)["error"]["code"] == "invalid_record"
+
+
+def test_the_command_line_reads_what_the_document_names_and_the_texture_roots(tmp_path):
+    import os
+    import shutil
+    (tmp_path / "Images").mkdir()
+    shutil.copy(DATA / "quads.png", tmp_path / "Images" / "quads.png")
+    rec = record("texture")
+    rec["document"] = str(tmp_path / "Materials" / "doc.mtlx")
+    rec["blocks"]["pixel"]["PublicUniforms"][0]["value"] = "../Images/quads.png"  # MaterialX's example layout
+    (tmp_path / "rec.json").write_text(json.dumps(rec))
+    args = ("--record", "rec.json", "--npy", "t.npy", "--mesh", "plane", "--size", 16)
+    run = shadergen(*args, cwd=tmp_path)
+    assert run.returncode == 0 and "warning" not in run.stderr, run.stderr
+    run = shadergen(*args, "--confine", cwd=tmp_path)
+    assert run.returncode == 0 and "outside the allowed folders" in run.stderr, run.stderr
+    rec["blocks"]["pixel"]["PublicUniforms"][0]["value"] = "quads.png"  # found only through the roots
+    (tmp_path / "rec.json").write_text(json.dumps(rec))
+    env = dict(os.environ, SHADERGEN_TEXTURE_ROOTS=f"{tmp_path / 'nowhere'}{os.pathsep}{tmp_path / 'Images'}")
+    run = subprocess.run([sys.executable, "-m", "shadergen.cli", "render", *map(str, args), "--confine"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=300, env=env)
+    assert run.returncode == 0 and "warning" not in run.stderr, run.stderr
+
+
+def test_help_gives_defaults_and_an_example():
+    run = subprocess.run([sys.executable, "-m", "shadergen.cli", "render", "--help"], capture_output=True, text=True)
+    assert run.returncode == 0 and "(default: sphere)" in run.stdout and "examples:" in run.stdout
+    assert "SHADERGEN_TEXTURE_ROOTS" in run.stdout
