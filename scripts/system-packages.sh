@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Debian packages the project needs: Mesa EGL (llvmpipe) for headless thumbnails,
-# glslang-tools to validate generated GLSL/ESSL, redis-server for the multi-machine back ends' tests.
+# Debian packages the project needs: Mesa EGL (llvmpipe) for headless thumbnails (moderngl's EGL
+# back end loads libEGL.so.1 and libGL.so.1: libegl1, libgl1), glslang-tools to validate generated
+# GLSL/ESSL, redis-server for the multi-machine back ends' tests.
 set -euo pipefail
-pkgs=(libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1 glslang-tools redis-server python3-venv)
+pkgs=(libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri libgbm1 glslang-tools redis-server python3-venv)
 missing=()
 for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then

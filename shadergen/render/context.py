@@ -36,10 +36,23 @@ def gl_context(lp_threads: int | None = None):
         _context = moderngl.create_standalone_context(backend="egl", require=400)
     except Exception as exc:  # moderngl raises plain Exception subclasses for every EGL failure
         raise RenderError("no_gl_context", f"cannot create a headless EGL OpenGL 4.0 context: {exc}. "
-                          "Needs Mesa EGL (libegl1 libegl-mesa0 libgl1-mesa-dri libgbm1); "
-                          "EGL_PLATFORM=surfaceless may help") from exc
+                          + install_hint(str(exc))) from exc
     _owner = here
     return _context
+
+
+# The Debian package of each shared library the EGL back end loads.
+LIBRARY_PACKAGES = {"libGL.so": "libgl1", "libEGL.so": "libegl1", "libgbm.so": "libgbm1"}
+MESA_PACKAGES = "libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri libgbm1"
+
+
+def install_hint(error: str) -> str:
+    """What to install for a failed context: the package of the library the error names, else all
+    of Mesa's headless stack."""
+    for library, package in LIBRARY_PACKAGES.items():
+        if library in error:
+            return f"{library} is missing: install the Debian package {package} (scripts/system-packages.sh)"
+    return f"Needs Mesa EGL ({MESA_PACKAGES}: scripts/system-packages.sh); EGL_PLATFORM=surfaceless may help"
 
 
 class _GL:
