@@ -1,7 +1,6 @@
 """Helpers that start real things on 127.0.0.1 (redis-server, `shadergen serve`) for the service
 tests. Every process started here is stopped by its owner, and every wait is bounded."""
 import os
-import shutil
 import socket
 import subprocess
 import sys
@@ -10,6 +9,8 @@ from pathlib import Path
 
 import httpx
 import pytest
+
+from required_tools import tool_path
 
 ROOT = Path(__file__).resolve().parents[2]
 HOST = "127.0.0.1"
@@ -42,17 +43,10 @@ def stop(proc: subprocess.Popen, timeout_s: float = 20) -> None:
             proc.wait()
 
 
-def renderer_available() -> bool:
-    probe = "from shadergen.render import Renderer; Renderer(texture_roots=[], search_paths=[])"
-    return subprocess.run([sys.executable, "-c", probe], capture_output=True, timeout=60).returncode == 0
-
-
 # -- redis ------------------------------------------------------------------------------------
 class RedisServer:
     def __init__(self, tmp: Path):
-        exe = shutil.which("redis-server")
-        if exe is None:
-            pytest.skip("redis-server is not installed (scripts/system-packages.sh installs it)")
+        exe = tool_path("redis-server")
         self.port = free_port()
         self.url = f"redis://{HOST}:{self.port}/0"
         self.proc = subprocess.Popen(

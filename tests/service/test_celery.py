@@ -7,9 +7,9 @@ import pytest
 import redis
 
 from service_testing import (ROOT, Server, descendants, document, is_png, kill_while_running,
-                             renderer_available, stop, wait_for_job, wait_until)
+                             stop, wait_for_job, wait_until)
 
-needs_renderer = pytest.mark.skipif(not renderer_available(), reason="shadergen.render.Renderer is not available")
+needs_renderer = pytest.mark.usefixtures("renderer_required")
 
 
 @pytest.fixture(scope="module")

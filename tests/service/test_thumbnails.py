@@ -5,9 +5,9 @@ import time
 import pytest
 
 from service_testing import (Server, cmdline, descendants, document, is_png, kill_while_running,
-                             renderer_available, wait_for_job)
+                             wait_for_job)
 
-pytestmark = pytest.mark.skipif(not renderer_available(), reason="shadergen.render.Renderer is not available")
+pytestmark = pytest.mark.usefixtures("renderer_required")
 
 
 def thumbnail(client, name="textured.mtlx", **params):
