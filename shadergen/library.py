@@ -143,11 +143,16 @@ class Scope:
             self.local.add(document_root)
         self.layers = (self.local, library)
 
-    def nodedef(self, name: str) -> Element | None:
+    def _first(self, table: str, name: str) -> Element | None:
+        """The document's definition of that name, else the library's."""
         for layer in self.layers:
-            if name in layer.nodedefs:
-                return layer.nodedefs[name]
+            found = getattr(layer, table).get(name)
+            if found is not None:
+                return found
         return None
+
+    def nodedef(self, name: str) -> Element | None:
+        return self._first("nodedefs", name)
 
     def nodedefs_for(self, node: str) -> list[Element]:
         out = []
@@ -156,10 +161,7 @@ class Scope:
         return out
 
     def geompropdef(self, name: str) -> Element | None:
-        for layer in self.layers:
-            if name in layer.geompropdefs:
-                return layer.geompropdefs[name]
-        return None
+        return self._first("geompropdefs", name)
 
     def unit_scale(self, unittype: str, unit: str) -> float | None:
         for layer in self.layers:
@@ -169,10 +171,7 @@ class Scope:
         return None
 
     def nodegraph(self, name: str) -> Element | None:
-        for layer in self.layers:
-            if name in layer.nodegraphs:
-                return layer.nodegraphs[name]
-        return None
+        return self._first("nodegraphs", name)
 
     def inheritance(self, nodedef: Element) -> list[Element]:
         """The nodedef, its parent, its grandparent...: every inherited fact is read along this
