@@ -7,6 +7,8 @@
 `prepare` is separate from `emit` so a cache can be asked by hash before any code is written.
 Errors are ShaderGenError everywhere; `records` turns them into error records for the CLI.
 """
+import hashlib
+import json
 import os
 import time
 from dataclasses import dataclass, field
@@ -222,6 +224,8 @@ class Generator:
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         h = graph_hash(graph, target=target, interface=interface, library_hash=self.library.content_hash,
                        local_ids=local)
+        if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
+            h = hashlib.sha256(json.dumps([h, doc.labels], sort_keys=True).encode()).hexdigest()
         return Prepared(self, doc, doc.label(elem.path), target, interface, h, graph, scope,
                         doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
 

@@ -181,3 +181,18 @@ def test_cli_render_usdz(scenes, tmp_path):
     assert done.returncode == 0, done.stderr
     assert "warning" not in done.stderr  # the texture inside the package was read
     assert out.stat().st_size > 1000
+
+
+def test_prim_paths_key_the_record(gen, tmp_path):
+    """/Looks/A_B and /Looks/A/B make the same MaterialX names and graph; their records name
+    different prims, so a cache keyed by the hash must not give one for the other."""
+    def material_at(root):
+        def build(stage):
+            material = UsdShade.Material.Define(stage, root)
+            surface = _shader(stage, f"{root}/S", "UsdPreviewSurface")
+            material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
+        return build
+    first = records(gen, write_scene(tmp_path, "first.usda", material_at("/Looks/A_B")))[0]
+    second = records(gen, write_scene(tmp_path, "second.usda", material_at("/Looks/A/B")))[0]
+    assert (first["element"], second["element"]) == ("/Looks/A_B", "/Looks/A/B")
+    assert first["stages"] == second["stages"] and first["hash"] != second["hash"]
