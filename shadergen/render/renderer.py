@@ -230,11 +230,13 @@ class Renderer:
 
 def _siblings(variable: dict, variables: list[dict]) -> dict[str, object]:
     """Values of the other inputs of the node a filename uniform belongs to: by element path
-    (`NG/image1/file` -> `NG/image1/*`), or by MaterialX's variable naming (`image1_file` ->
-    `image1_*`) when the record gives no paths."""
+    (`NG/image1/file` -> `NG/image1/*`; a USD attribute path `/Looks/Image.inputs:file` ->
+    `/Looks/Image.inputs:*`), or by MaterialX's variable naming (`image1_file` -> `image1_*`)
+    when the record gives no paths."""
     path = variable.get("path")
     if isinstance(path, str) and "/" in path:
-        node = path.rsplit("/", 1)[0] + "/"
+        usd_inputs = path.rfind(".inputs:")
+        node = path[:usd_inputs + len(".inputs:")] if usd_inputs >= 0 else path.rsplit("/", 1)[0] + "/"
         return {v["path"][len(node):]: v.get("value") for v in variables
                 if isinstance(v.get("path"), str) and v["path"].startswith(node)}
     prefix = variable["name"][: -len("file")] if variable["name"].endswith("file") else None

@@ -88,6 +88,12 @@ def standard_surface_stage(stage, root: str = "/World/Looks/Brick") -> None:
     file.Set(TEXTURE)
     file.GetAttr().SetColorSpace("srgb_texture")
     image.CreateInput("uaddressmode", Sdf.ValueTypeNames.String).Set("mirror")
+    image.CreateInput("filtertype", Sdf.ValueTypeNames.String).Set("closest")  # sampler state, set by the renderer
+    uv = _shader(stage, f"{root}/Textures/UV", "ND_texcoord_vector2")
+    tiled = _shader(stage, f"{root}/Textures/Tiled", "ND_multiply_vector2FA")
+    tiled.CreateInput("in1", Sdf.ValueTypeNames.Float2).ConnectToSource(uv.ConnectableAPI(), "out")
+    tiled.CreateInput("in2", Sdf.ValueTypeNames.Float).Set(2.5)  # so the address mode shows past u = 1
+    image.CreateInput("texcoord", Sdf.ValueTypeNames.Float2).ConnectToSource(tiled.ConnectableAPI(), "out")
     image.CreateOutput("out", Sdf.ValueTypeNames.Color3f)
     graph.CreateOutput("base_color", Sdf.ValueTypeNames.Color3f).ConnectToSource(image.ConnectableAPI(), "out")
     surface = _shader(stage, f"{root}/Surface", "ND_standard_surface_surfaceshader")
@@ -104,9 +110,16 @@ def standard_surface_stage(stage, root: str = "/World/Looks/Brick") -> None:
 
 STANDARD_SURFACE_MTLX = f"""<?xml version="1.0"?>
 <materialx version="1.39" colorspace="lin_rec709">
+  <texcoord name="uv" type="vector2" />
+  <multiply name="tiled" type="vector2">
+    <input name="in1" type="vector2" nodename="uv" />
+    <input name="in2" type="float" value="2.5" />
+  </multiply>
   <image name="image" type="color3">
     <input name="file" type="filename" value="{TEXTURE}" colorspace="srgb_texture" />
     <input name="uaddressmode" type="string" value="mirror" />
+    <input name="filtertype" type="string" value="closest" />
+    <input name="texcoord" type="vector2" nodename="tiled" />
   </image>
   <standard_surface name="surface" type="surfaceshader">
     <input name="base" type="float" value="0.9" />
