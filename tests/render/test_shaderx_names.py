@@ -131,6 +131,11 @@ PAIRS = {
                  '<multiply name="s" type="EDF"><input name="in1" type="EDF" nodename="c"/><input name="in2" type="color3" value="1, 2, 3"/></multiply>'
                  '<mix name="e" type="EDF"><input name="fg" type="EDF" nodename="s"/><input name="bg" type="EDF" nodename="u"/>'
                  '<input name="mix" type="float" value="0.6"/></mix>', "under", "e")),
+    "measurededf": (
+        material(DIFFUSE_SEED + '<measurededf name="e" type="EDF"><input name="color" type="color3" value="0.4, 0.3, 0.2"/></measurededf>',
+                 "under", "e"),
+        material(DIFFUSE_MODERN + '<measured_edf name="e" type="EDF"><input name="color" type="color3" value="0.4, 0.3, 0.2"/></measured_edf>',
+                 "under", "e")),
     "mixsurface": (
         material(DIFFUSE_SEED + '<surface name="s1" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="under"/></surface>'
                  '<conductorbrdf name="m" type="BSDF"/><surface name="s2" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="m"/></surface>'
