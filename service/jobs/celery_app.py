@@ -22,8 +22,19 @@ def make_celery(settings) -> Celery:
         task_acks_late=True, task_reject_on_worker_lost=True, worker_prefetch_multiplier=1,
         task_time_limit=settings.render_timeout_s,
         broker_connection_retry_on_startup=True,
+        broker_transport_options=redelivery_options(settings.render_timeout_s),
     )
     return app
+
+
+def redelivery_options(render_timeout_s: float) -> dict:
+    """When a whole worker dies (its machine or container gone, not one of its processes), the jobs
+    it held are acknowledged by no one; Redis gives them to another worker once they are older than
+    the visibility timeout. No job runs past its time limit, so twice that limit only ever catches
+    abandoned jobs (kombu's default, an hour, would leave the job waiting that long); every worker
+    looks for them every few seconds."""
+    return {"visibility_timeout": max(2 * render_timeout_s, 10.0),
+            "unacked_restore_interval": 5, "unacked_restore_throttle": 1}
 
 
 def register_tasks(app: Celery, settings, processes: int) -> None:
