@@ -2,7 +2,7 @@
 # The test command: installs what the tests need, then runs them. pytest's exit 5 (no tests) is a failure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/system-packages.sh || exit 1
+bash scripts/system-packages.sh --containers || exit 1
 [ -x .venv/bin/python ] || python3 -m venv .venv || exit 1
 .venv/bin/pip install -q --upgrade pip || exit 1
 .venv/bin/pip install -q -e ".[render,service,usd,dev]" || exit 1
