@@ -14,7 +14,8 @@ from pathlib import Path
 import httpx
 import pytest
 
-from service_testing import ROOT, HOST, document, free_port, is_png, stop, wait_for_job, wait_until
+from required_tools import missing, tool_path
+from service_testing import ROOT, HOST, document, free_port, is_png, stop, wait_until
 
 BUILD = "bash docker/build.sh"
 COMPOSE_FILE = "docker/compose.yaml"
@@ -27,12 +28,6 @@ BUILD_TIMEOUT_S = 1200
 pytestmark = pytest.mark.timeout(BUILD_TIMEOUT_S + 600)
 
 
-def missing(what: str):
-    if os.environ.get("CI") == "true":
-        pytest.fail(f"{what} (under CI=true a missing tool fails the run)")
-    pytest.skip(what)
-
-
 def docker(*args: str, timeout_s: float = 120, **kwargs) -> subprocess.CompletedProcess:
     return subprocess.run(["docker", *args], capture_output=True, text=True, timeout=timeout_s, **kwargs)
 
@@ -43,14 +38,13 @@ def engine_answers() -> bool:
 
 @pytest.fixture(scope="module")
 def engine(tmp_path_factory):
-    if shutil.which("docker") is None:
-        missing("docker is not installed (scripts/system-packages.sh --containers installs docker.io)")
+    tool_path("docker")
     if engine_answers():
         yield
         return
     dockerd = shutil.which("dockerd")
     if dockerd is None or os.geteuid() != 0:
-        missing("no Docker engine answers, and this user cannot start dockerd")
+        missing("a Docker engine", "none answers, and only root may start dockerd here")
     log = open(tmp_path_factory.mktemp("dockerd") / "dockerd.log", "wb")
     proc = subprocess.Popen([dockerd, "--bridge=none", "--iptables=false"], stdout=log, stderr=subprocess.STDOUT)
     try:
@@ -68,7 +62,7 @@ def compose_command() -> list[str]:
         return ["docker-compose"]
     if docker("compose", "version").returncode == 0:
         return ["docker", "compose"]
-    missing("neither docker-compose nor the compose plugin is installed")
+    missing("docker-compose (or the compose plugin)", "scripts/system-packages.sh --containers installs it")
 
 
 @pytest.fixture(scope="module")
