@@ -36,10 +36,10 @@ def run(args) -> int:
     settings = get_settings()
     pool = None
     if not settings.broker:
-        from .jobs.local import start_pool_server, stop_pool_server
+        from .jobs.local import PoolServerSupervisor
 
-        pool = start_pool_server(settings)
-        os.environ["SHADERGEN_RENDER_SOCKET"] = pool[1]  # every API worker connects to this one pool
+        pool = PoolServerSupervisor(settings)  # started again whenever it exits
+        os.environ["SHADERGEN_RENDER_SOCKET"] = pool.socket_path  # every API worker connects to this one pool
         get_settings.cache_clear()  # with one worker, uvicorn runs the app in this very process
     # uvicorn re-raises the SIGTERM it handled once it has stopped; as an exception instead of the
     # default action (death on the spot), it lets the pool and the metrics directory be cleaned up
@@ -49,7 +49,7 @@ def run(args) -> int:
                     http=BoundedHttpToolsProtocol, workers=args.workers, access_log=args.access_log, timeout_graceful_shutdown=10)
     finally:
         if pool is not None:
-            stop_pool_server(*pool)
+            pool.stop()
         if metrics_dir is not None:
             shutil.rmtree(metrics_dir, ignore_errors=True)
     return 0

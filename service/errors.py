@@ -43,6 +43,12 @@ class ServiceError(Exception):
         return cls(error.get("code", "internal_error"), error.get("message", ""), error.get("where"),
                    element=element, target=target)
 
+    @classmethod
+    def from_job(cls, exc, retry_after_s: int) -> "ServiceError":
+        """A job back end's JobError: a full queue or an absent pool is worth trying again."""
+        retry = exc.code in ("queue_full", "unavailable")
+        return cls(exc.code, exc.message, exc.where, headers={"Retry-After": str(retry_after_s)} if retry else None)
+
 
 def error_body(code: str, message: str, where: str | None = None, element=None, target=None) -> dict:
     return {"document": None, "element": element, "target": target,

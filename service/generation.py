@@ -13,7 +13,8 @@ import hashlib
 import json
 from dataclasses import dataclass
 
-from .cache import Store
+from .cache import CacheUnavailable, GuardedStore
+from .cache.entries import is_graph_hash, is_record
 from .errors import ServiceError
 from .metrics import CACHE, GENERATE_SECONDS
 from .safety import check_document
@@ -54,7 +55,7 @@ def without_source(record_json: bytes) -> bytes:
 
 
 class GenerationService:
-    def __init__(self, pool: ProcessPool, store: Store, retry_after_s: int = 2):
+    def __init__(self, pool: ProcessPool, store: GuardedStore, retry_after_s: int = 2):
         self.pool = pool
         self.store = store
         self.retry_after_s = retry_after_s
@@ -84,10 +85,15 @@ class GenerationService:
         return record if params.source else without_source(record)
 
     async def _cached(self, digest: str) -> bytes | None:
+        """A sound record for the request, else None: a failed lookup or a value that is not
+        what its key promises is a miss, which the generator answers and overwrites."""
         graph_hash = await self.store.aget("req:" + digest)
-        record = await self.store.aget("rec:" + graph_hash.decode()) if graph_hash else None
-        if record is not None:
-            RECORD_HITS.inc()
+        if not is_graph_hash(graph_hash):
+            return None
+        record = await self.store.aget("rec:" + graph_hash.decode())
+        if not is_record(record, graph_hash.decode()):
+            return None
+        RECORD_HITS.inc()
         return record
 
     async def _generate(self, document: bytes, params: GenerateParams, digest: str) -> bytes:
@@ -116,7 +122,13 @@ class GenerationService:
         return record
 
     async def record(self, graph_hash: str) -> bytes | None:
-        return await self.store.aget("rec:" + graph_hash)
+        """The cached record, None if there is none; 503 when the cache cannot be asked."""
+        try:
+            record = await self.store.aread("rec:" + graph_hash)
+        except CacheUnavailable as exc:
+            raise ServiceError("unavailable", f"the cache is not reachable: {exc}",
+                               headers={"Retry-After": str(self.retry_after_s)}) from None
+        return record if is_record(record, graph_hash) else None
 
     async def nodedefs(self) -> bytes:
         # the library is fixed for the life of the process: ask the generator once

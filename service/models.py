@@ -130,3 +130,15 @@ class Health(BaseModel):
     library_hash: str
     cache: str
     jobs: str
+
+
+class ComponentReadiness(BaseModel):
+    ready: bool
+    detail: str
+
+
+class Readiness(BaseModel):
+    status: Literal["ready", "not_ready"]
+    generator: ComponentReadiness = Field(description="this API worker's generator processes")
+    render: ComponentReadiness = Field(description="the render pool (or the Celery broker)")
+    cache: ComponentReadiness = Field(description="the shared cache answers a lookup")

@@ -2,7 +2,7 @@
 back end. Built in the app's lifespan, from settings, never at import time."""
 from dataclasses import dataclass
 
-from .cache import Store, open_store
+from .cache import GuardedStore, open_store
 from .config import Settings
 from .generation import GenerationService
 from .jobs import JobBackend, open_jobs
@@ -13,7 +13,7 @@ from .workers.pool import ProcessPool
 @dataclass
 class Services:
     settings: Settings
-    store: Store
+    store: GuardedStore
     generation: GenerationService
     jobs: JobBackend
     thumbnails: ThumbnailService
@@ -37,7 +37,5 @@ class Services:
     async def stop(self) -> None:
         await self.jobs.close()
         await self.generation.pool.close()
-        close = getattr(self.store, "aclose", None)
-        if close is not None:
-            await close()
+        await self.store.aclose()
         self.store.close()

@@ -4,7 +4,8 @@ import asyncio
 import hashlib
 import json
 
-from .cache import Store
+from .cache import GuardedStore
+from .cache.entries import is_png
 from .errors import ServiceError
 from .generation import GenerateParams, GenerationService
 from .jobs import JobBackend, JobError
@@ -14,7 +15,7 @@ from .safety import check_texture_paths
 
 
 class ThumbnailService:
-    def __init__(self, generation: GenerationService, jobs: JobBackend, store: Store,
+    def __init__(self, generation: GenerationService, jobs: JobBackend, store: GuardedStore,
                  texture_roots: list[str], retry_after_s: int = 2):
         self.generation, self.jobs, self.store = generation, jobs, store
         self.texture_roots = texture_roots
@@ -31,20 +32,18 @@ class ThumbnailService:
         options = f'{request["record"]["hash"]}:{request["size"]}:{request["mesh"]}'
         return "png:" + hashlib.sha256(options.encode()).hexdigest()
 
-    def job_error(self, exc: JobError) -> ServiceError:
-        headers = {"Retry-After": str(self.retry_after_s)} if exc.code in ("queue_full", "unavailable") else None
-        return ServiceError(exc.code, exc.message, exc.where, headers=headers)
-
     async def thumbnail(self, req: ThumbnailRequest) -> bytes:
         request = await self._render_request(req)
         key = self._key(request)
         png = await self.store.aget(key)
+        if not is_png(png):
+            png = None
         CACHE.labels("thumbnail", "miss" if png is None else "hit").inc()
         if png is None:
             try:
                 png = (await self.jobs.render(request)).png
             except JobError as exc:
-                raise self.job_error(exc) from None
+                raise ServiceError.from_job(exc, self.retry_after_s) from None
             await asyncio.to_thread(self.store.put, key, png)
         return png
 
@@ -53,4 +52,4 @@ class ThumbnailService:
         try:
             return await self.jobs.submit(request)
         except JobError as exc:
-            raise self.job_error(exc) from None
+            raise ServiceError.from_job(exc, self.retry_after_s) from None

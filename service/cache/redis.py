@@ -6,12 +6,14 @@ import redis.asyncio
 from .base import Store
 
 PREFIX = "shadergen:cache:"
+# a Redis that hangs must cost a request this much at most: then the request goes on uncached
+TIMEOUTS = {"socket_timeout": 2.0, "socket_connect_timeout": 2.0}
 
 
 class RedisStore(Store):
     def __init__(self, url: str):
         self.url = url
-        self._sync = redis.Redis.from_url(url)
+        self._sync = redis.Redis.from_url(url, **TIMEOUTS)
         self._async: redis.asyncio.Redis | None = None  # made in the event loop that uses it
 
     def get(self, key: str) -> bytes | None:
@@ -19,7 +21,7 @@ class RedisStore(Store):
 
     async def aget(self, key: str) -> bytes | None:
         if self._async is None:
-            self._async = redis.asyncio.Redis.from_url(self.url)
+            self._async = redis.asyncio.Redis.from_url(self.url, **TIMEOUTS)
         return await self._async.get(PREFIX + key)
 
     def put(self, key: str, value: bytes) -> None:

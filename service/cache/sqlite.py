@@ -54,7 +54,10 @@ class SQLiteStore(Store):
         self._local = threading.local()
         self._generation = 0  # bumped on rebuild so every thread reopens
         self._lock = threading.Lock()
-        self._connect()
+        try:
+            self._connect()  # creates the file now, before the service's processes share it
+        except sqlite3.Error as exc:  # later operations try again (and fail as misses meanwhile)
+            log.warning("cache file %s not usable yet: %s", self.path, exc)
 
     # -- connections ------------------------------------------------------------------------
     def _connect(self) -> sqlite3.Connection:
@@ -109,24 +112,31 @@ class SQLiteStore(Store):
 
     def _rebuild(self, reason: str) -> None:
         """Replace a broken file by an empty store. A file lock keeps two processes from
-        rebuilding at once; whoever comes second finds a sound file and keeps it."""
+        rebuilding at once; whoever comes second finds a sound file and keeps it. Either way every
+        connection of this process is reopened: the ones it holds saw the broken file."""
         lock_path = self.path.with_name(self.path.name + ".rebuild-lock")
         with open(lock_path, "w") as lock_file:
             fcntl.flock(lock_file, fcntl.LOCK_EX)
             try:
-                probe = sqlite3.connect(self.path, timeout=BUSY_TIMEOUT_S)
-                try:
-                    if probe.execute("PRAGMA quick_check").fetchone()[0] == "ok":
-                        return  # someone else already rebuilt it
-                finally:
-                    probe.close()
-            except sqlite3.DatabaseError:
-                pass
-            log.warning("cache file %s unusable (%s): rebuilding it empty", self.path, reason)
-            for suffix in ("", "-wal", "-shm"):
-                Path(str(self.path) + suffix).unlink(missing_ok=True)
-            with self._lock:
-                self._generation += 1
+                if not self._sound():
+                    log.warning("cache file %s unusable (%s): rebuilding it empty", self.path, reason)
+                    for suffix in ("", "-wal", "-shm"):
+                        Path(str(self.path) + suffix).unlink(missing_ok=True)
+            finally:
+                with self._lock:
+                    self._generation += 1
+
+    def _sound(self) -> bool:
+        """Whether the file is a store: a truncated (empty) file passes quick_check but has no table."""
+        try:
+            probe = sqlite3.connect(self.path, timeout=BUSY_TIMEOUT_S)
+            try:
+                return (probe.execute("PRAGMA quick_check").fetchone()[0] == "ok" and
+                        probe.execute("SELECT count(*) FROM sqlite_master WHERE name='entries'").fetchone()[0] == 1)
+            finally:
+                probe.close()
+        except sqlite3.DatabaseError:
+            return False
 
     def _run(self, op):
         """Run op(conn); on corruption rebuild the file and try once more."""

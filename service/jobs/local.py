@@ -1,87 +1,162 @@
 """The local back end: a client of the render pool server (pool_server.py) on a Unix socket.
 Under `shadergen serve` the serve command starts one pool for all API workers; an app started
-any other way (`uvicorn service.main:app`, tests) starts its own."""
+any other way (`uvicorn service.main:app`, tests) starts its own. Either way a supervisor starts
+the pool server again whenever it exits, and the jobs it held are submitted again by the API
+worker that accepted them (under the same id, so polling goes on), once."""
 import asyncio
+import logging
 import os
 import subprocess
 import sys
 import tempfile
+import threading
 import time
+import uuid
 from pathlib import Path
 
 from ..workers import protocol
 from . import JobBackend, JobError, JobState, RenderResult
 
-READY_TIMEOUT_S = 60.0
+log = logging.getLogger(__name__)
+
+READY_TIMEOUT_S = 60.0  # a fresh pool (and its first render worker) at start-up
+RETURN_TIMEOUT_S = 15.0  # how long a request waits for a restarted pool before answering 503
+RESTART_BACKOFF_S = (0.2, 30.0)  # first and longest pause before starting a failed pool again
+STABLE_S = 10.0  # a pool that ran this long before exiting is restarted after the shortest pause
 
 
-def start_pool_server(settings, socket_path: str | None = None) -> tuple[subprocess.Popen, str]:
-    """Start a render pool process; its socket lives in a private temporary directory."""
-    if socket_path is None:
-        socket_path = str(Path(tempfile.mkdtemp(prefix="shadergen-pool-")) / "render.sock")
-    env = {**os.environ, **settings.to_env()}
-    proc = subprocess.Popen([sys.executable, "-m", "service.jobs.pool_server", socket_path], env=env)
-    return proc, socket_path
+class PoolServerSupervisor:
+    """Keeps one render pool server process running on one socket, until stop().
 
+    A thread of the process that owns the pool (`shadergen serve`, or an app that started its
+    own) waits on the child and starts it again, with a pause that grows while it keeps failing.
+    A supervisor such as supervisord or circus would be one more daemon with its own config for
+    one child whose life must follow the serve command's; this is the wait loop they would run."""
 
-def stop_pool_server(proc: subprocess.Popen, socket_path: str) -> None:
-    if proc.poll() is None:
-        proc.terminate()
+    def __init__(self, settings, socket_path: str | None = None):
+        if socket_path is None:
+            socket_path = str(Path(tempfile.mkdtemp(prefix="shadergen-pool-")) / "render.sock")
+        self.socket_path = socket_path
+        self.env = {**os.environ, **settings.to_env()}
+        self.restarts = 0
+        self._lock = threading.Lock()
+        self._stopping = False
+        self.process = self._start()
+        self._thread = threading.Thread(target=self._watch, name="render-pool-supervisor", daemon=True)
+        self._thread.start()
+
+    def _start(self) -> subprocess.Popen:
+        restarted = ["--restarted"] if self.restarts else []
+        return subprocess.Popen([sys.executable, "-m", "service.jobs.pool_server", self.socket_path, *restarted],
+                                env=self.env)
+
+    def _watch(self) -> None:
+        pause = RESTART_BACKOFF_S[0]
+        while True:
+            started = time.monotonic()
+            status = self.process.wait()
+            with self._lock:
+                if self._stopping:
+                    return
+            if time.monotonic() - started > STABLE_S:
+                pause = RESTART_BACKOFF_S[0]
+            log.warning("render pool exited with status %s; starting it again in %.1f s", status, pause)
+            time.sleep(pause)
+            pause = min(pause * 2, RESTART_BACKOFF_S[1])
+            with self._lock:
+                if self._stopping:
+                    return
+                self.restarts += 1
+                self.process = self._start()
+
+    def stop(self) -> None:
+        with self._lock:
+            self._stopping = True
+            proc = self.process
+        if proc.poll() is None:
+            proc.terminate()
+            try:
+                proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+        self._thread.join(timeout=5)
+        Path(self.socket_path).unlink(missing_ok=True)
         try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
-    Path(socket_path).unlink(missing_ok=True)
-    try:
-        Path(socket_path).parent.rmdir()
-    except OSError:
-        pass
+            Path(self.socket_path).parent.rmdir()
+        except OSError:
+            pass
+
+
+class PoolGone(JobError):
+    """The pool could not be reached, or closed the connection before answering."""
+
+    def __init__(self, message: str):
+        super().__init__("unavailable", message)
 
 
 class LocalJobs(JobBackend):
     name = "local"
 
-    def __init__(self, socket_path: str, process: subprocess.Popen | None = None):
+    def __init__(self, socket_path: str, supervisor: PoolServerSupervisor | None = None, wait_s: float = 180.0):
         self.socket_path = socket_path
-        self.process = process  # set when this client started the pool and must stop it
+        self.supervisor = supervisor  # set when this client started the pool and must stop it
+        self.wait_s = wait_s  # the longest an answer about one job may take
+        self._followers: set[asyncio.Task] = set()
 
     @classmethod
     async def connect(cls, settings) -> "LocalJobs":
+        wait_s = settings.render_timeout_s * 3  # queueing, one retry, and the render itself
         if settings.render_socket:
-            jobs = cls(settings.render_socket)
+            jobs = cls(settings.render_socket, wait_s=wait_s)
         else:
-            process, socket_path = start_pool_server(settings)
-            jobs = cls(socket_path, process)
-        await jobs._wait_ready()
+            supervisor = await asyncio.to_thread(PoolServerSupervisor, settings)
+            jobs = cls(supervisor.socket_path, supervisor, wait_s=wait_s)
+        if not await jobs._wait_ready(READY_TIMEOUT_S):
+            await jobs.close()
+            raise RuntimeError(f"render pool at {jobs.socket_path} silent for {READY_TIMEOUT_S:g} s")
         return jobs
 
-    async def _wait_ready(self) -> None:
-        deadline = time.monotonic() + READY_TIMEOUT_S
-        while True:
+    async def _wait_ready(self, timeout_s: float) -> bool:
+        deadline = time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
             try:
                 await self.depth()
-                return
+                return True
             except JobError:
-                if self.process is not None and self.process.poll() is not None:
-                    raise RuntimeError(f"render pool exited with status {self.process.returncode}") from None
-                if time.monotonic() > deadline:
-                    raise RuntimeError(f"render pool at {self.socket_path} silent for {READY_TIMEOUT_S:g} s") from None
                 await asyncio.sleep(0.05)
+        return False
 
     async def _request(self, message: dict) -> tuple[dict, bytes]:
         try:
             reader, writer = await asyncio.open_unix_connection(self.socket_path)
         except OSError as exc:
-            raise JobError("unavailable", f"the render pool is not reachable: {exc.strerror}") from None
+            raise PoolGone(f"the render pool is not reachable: {exc.strerror}") from None
         try:
             writer.write(protocol.encode(message))
             await writer.drain()
-            return await protocol.read_frame(reader)
+            return await asyncio.wait_for(protocol.read_frame(reader), self.wait_s)
         except (asyncio.IncompleteReadError, ConnectionError):
-            raise JobError("unavailable", "the render pool closed the connection") from None
+            raise PoolGone("the render pool closed the connection") from None
+        except asyncio.TimeoutError:
+            raise JobError("timeout", f"the render pool gave no answer within {self.wait_s:g} s") from None
         finally:
             writer.close()
+
+    async def _submit(self, job_id: str, request: dict, wait: bool) -> tuple[dict, bytes]:
+        """Submit (and with `wait`, run) a job; if the pool is gone (it died, the supervisor is
+        starting it again) wait for it to return and submit the job once more, same id."""
+        message = {"op": "submit", "id": job_id, "request": request, "wait": wait}
+        try:
+            reply, payload = await self._request(message)
+        except PoolGone as exc:
+            log.warning("%s; job %s is submitted again once the pool is back", exc.message, job_id)
+            if not await self._wait_ready(RETURN_TIMEOUT_S):
+                raise
+            reply, payload = await self._request({**message, "attempts": 1})
+        if "error" in reply and "state" not in reply:
+            raise JobError(**reply["error"])
+        return reply, payload
 
     @staticmethod
     def _state(reply: dict, png: bytes) -> JobState:
@@ -91,28 +166,47 @@ class LocalJobs(JobBackend):
         return JobState(reply["id"], reply["state"], reply.get("error"), result, reply.get("attempts", 0))
 
     async def render(self, request: dict) -> RenderResult:
-        reply, png = await self._request({"op": "submit", "request": request, "wait": True})
-        if "error" in reply and "state" not in reply:
-            raise JobError(**reply["error"])
-        state = self._state(reply, png)
+        state = self._state(*await self._submit(uuid.uuid4().hex, request, wait=True))
         if state.state != "done":
             raise JobError(**state.error)
         return state.result
 
     async def submit(self, request: dict) -> str:
-        reply, _ = await self._request({"op": "submit", "request": request, "wait": False})
-        if "error" in reply:
-            raise JobError(**reply["error"])
-        return reply["id"]
+        job_id = uuid.uuid4().hex
+        await self._submit(job_id, request, wait=False)
+        # this worker follows the job to its end, to submit it again should the pool die meanwhile
+        follower = asyncio.create_task(self._follow(job_id, request))
+        self._followers.add(follower)
+        follower.add_done_callback(self._followers.discard)
+        return job_id
+
+    async def _follow(self, job_id: str, request: dict) -> None:
+        try:
+            await self._submit(job_id, request, wait=True)
+        except JobError as exc:
+            log.warning("job %s lost: %s", job_id, exc.message)
 
     async def status(self, job_id: str) -> JobState | None:
         reply, png = await self._request({"op": "status", "id": job_id})
+        if "state" not in reply:  # the pool cannot tell yet (it has just restarted)
+            raise JobError(**reply["error"])
         return None if reply["state"] == "unknown" else self._state(reply, png)
 
     async def depth(self) -> int:
         reply, _ = await self._request({"op": "depth"})
         return reply["depth"]
 
+    async def health(self) -> tuple[bool, str]:
+        try:
+            reply, _ = await self._request({"op": "depth"})
+        except JobError as exc:
+            return False, exc.message
+        detail = f'{reply["alive"]}/{reply["workers"]} render processes, {reply["depth"]} jobs queued'
+        return reply["alive"] == reply["workers"], detail
+
     async def close(self) -> None:
-        if self.process is not None:
-            await asyncio.to_thread(stop_pool_server, self.process, self.socket_path)
+        for follower in list(self._followers):
+            follower.cancel()
+        await asyncio.gather(*self._followers, return_exceptions=True)
+        if self.supervisor is not None:
+            await asyncio.to_thread(self.supervisor.stop)

@@ -2,7 +2,10 @@
 socket so that every API worker process of `shadergen serve` shares the same pool and the same
 job table (an async job submitted through one API worker can be polled through another).
 
-Run as `python -m service.jobs.pool_server SOCKET`; settings come from SHADERGEN_* variables."""
+Run as `python -m service.jobs.pool_server SOCKET [--restarted]`; settings come from SHADERGEN_*
+variables. `--restarted`: a supervisor started it again after the last one died; the API workers
+are submitting the jobs that died with it again, so for a grace period an unknown job id is
+"unavailable, try again" (503) rather than "no such job" (404)."""
 import asyncio
 import logging
 import os
@@ -19,6 +22,7 @@ log = logging.getLogger("service.render_pool")
 
 JOB_TTL_S = 600.0  # finished async jobs (and their PNG) are kept this long for polling
 MAX_JOBS = 1024
+RESUBMIT_GRACE_S = 10.0
 
 
 def _error_of(exc: BaseException) -> dict:
@@ -28,9 +32,10 @@ def _error_of(exc: BaseException) -> dict:
 
 
 class PoolServer:
-    def __init__(self, pool: ProcessPool):
+    def __init__(self, pool: ProcessPool, restarted: bool = False):
         self.pool = pool
         self.jobs: dict[str, Job] = {}
+        self.grace_until = time.monotonic() + RESUBMIT_GRACE_S if restarted else 0.0
 
     def _forget_old(self) -> None:
         cutoff = time.time() - JOB_TTL_S
@@ -55,17 +60,27 @@ class PoolServer:
     async def handle(self, message: dict) -> tuple[dict, bytes]:
         op = message.get("op")
         if op == "depth":
-            return {"depth": self.pool.depth, "workers": self.pool.size}, b""
+            return {"depth": self.pool.depth, "workers": self.pool.size, "alive": self.pool.alive}, b""
         if op == "status":
             job = self.jobs.get(message.get("id", ""))
-            return self._outcome(job) if job else ({"state": "unknown"}, b"")
+            if job is not None:
+                return self._outcome(job)
+            if time.monotonic() < self.grace_until:
+                return {"error": {"code": "unavailable", "message": "the render pool restarted; its jobs are "
+                                  "being submitted again", "where": None}}, b""
+            return {"state": "unknown"}, b""
         if op == "submit":
-            self._forget_old()
-            try:
-                job = self.pool.submit({"op": "render", **message["request"]})
-            except QueueFull as exc:
-                return {"error": {"code": "queue_full", "message": f"render queue full: {exc}"}}, b""
-            self.jobs[job.id] = job
+            # the client names the job, so that after a restart of this pool it can submit the
+            # same job again under the same id; a job submitted twice to one pool runs once
+            job = self.jobs.get(message["id"])
+            if job is None:
+                self._forget_old()
+                try:
+                    job = self.pool.submit({"op": "render", **message["request"]}, job_id=message["id"],
+                                           attempts=message.get("attempts", 0))
+                except QueueFull as exc:
+                    return {"error": {"code": "queue_full", "message": f"render queue full: {exc}"}}, b""
+                self.jobs[job.id] = job
             if not message.get("wait"):
                 return {"id": job.id, "state": job.state}, b""
             try:
@@ -87,13 +102,13 @@ class PoolServer:
             writer.close()
 
 
-async def serve(socket_path: str) -> None:
+async def serve(socket_path: str, restarted: bool) -> None:
     settings = get_settings()
     pool = ProcessPool("service.workers.render_worker", size=settings.render_workers,
                        queue_size=settings.render_queue_size, timeout_s=settings.render_timeout_s,
                        on_result=lambda job, seconds: RENDER_SECONDS.observe(seconds))
     await pool.start(wait=False)
-    server = PoolServer(pool)
+    server = PoolServer(pool, restarted)
     unix = await asyncio.start_unix_server(server.serve_connection, path=socket_path)
     os.chmod(socket_path, 0o600)  # only this user's processes may submit renders
     log.info("render pool: %d workers on %s", pool.size, socket_path)
@@ -119,7 +134,7 @@ async def _stop_when_orphaned(stop: asyncio.Event) -> None:
 def main() -> None:
     logging.basicConfig(level=logging.INFO, format="%(name)s: %(message)s")
     try:
-        asyncio.run(serve(sys.argv[1]))
+        asyncio.run(serve(sys.argv[1], "--restarted" in sys.argv[2:]))
     except KeyboardInterrupt:
         pass
 

@@ -1,18 +1,42 @@
-"""GET /healthz and GET /metrics (Prometheus text format)."""
+"""GET /healthz (liveness: cheap, answers while the process runs), GET /readyz (readiness: the
+generator pool, the render pool and the cache each checked) and GET /metrics (Prometheus)."""
 from fastapi import APIRouter, Response
+from fastapi.responses import JSONResponse
 
+from ..cache import CacheUnavailable
 from ..deps import ServicesDep
 from ..jobs import JobError
 from ..metrics import CONTENT_TYPE, QUEUE_DEPTH, exposition
-from ..models import Health
+from ..models import ComponentReadiness, Health, Readiness
 
 router = APIRouter(tags=["operations"])
 
+READINESS_PROBE_KEY = "health:probe"
+
 
 @router.get("/healthz", response_model=Health, summary="Liveness and configuration")
+@router.head("/healthz", response_model=Health, operation_id="healthz_head", summary="Liveness, without the body")
 async def healthz(services: ServicesDep) -> Health:
     return Health(status="ok", library_hash=services.generation.library_hash,
-                  cache=type(services.store).__name__, jobs=services.jobs.name)
+                  cache=services.store.name, jobs=services.jobs.name)
+
+
+@router.get("/readyz", response_model=Readiness, responses={503: {"model": Readiness}},
+            summary="Readiness: 503 while the generator pool, the render pool or the cache is down")
+async def readyz(services: ServicesDep) -> JSONResponse:
+    pool = services.generation.pool
+    generator = ComponentReadiness(ready=pool.alive == pool.size,
+                                   detail=f"{pool.alive}/{pool.size} generator processes, {pool.depth} jobs queued")
+    render_ready, render_detail = await services.jobs.health()
+    try:
+        await services.store.aread(READINESS_PROBE_KEY)
+        cache = ComponentReadiness(ready=True, detail=f"{services.store.name} answers")
+    except CacheUnavailable as exc:
+        cache = ComponentReadiness(ready=False, detail=f"{services.store.name}: {exc}")
+    render = ComponentReadiness(ready=render_ready, detail=render_detail)
+    ready = generator.ready and render.ready and cache.ready
+    body = Readiness(status="ready" if ready else "not_ready", generator=generator, render=render, cache=cache)
+    return JSONResponse(body.model_dump(), status_code=200 if ready else 503)
 
 
 @router.get("/metrics", response_class=Response, summary="Prometheus metrics",

@@ -3,9 +3,10 @@ from typing import Annotated
 
 from fastapi import APIRouter, Path, Response
 
+from ..config import get_settings
 from ..deps import JobsDep
 from ..errors import ServiceError
-from ..jobs import JobBackend, JobState
+from ..jobs import JobBackend, JobError, JobState
 from ..models import ErrorDetail, ErrorResponse, JobStatus
 from .common import ERRORS, PNG, PNG_RESPONSE
 
@@ -15,7 +16,10 @@ JobId = Annotated[str, Path(pattern="^[0-9a-f]{32}$")]
 
 
 async def _job(jobs: JobBackend, job_id: str) -> JobState:
-    state = await jobs.status(job_id)
+    try:
+        state = await jobs.status(job_id)
+    except JobError as exc:  # the pool is restarting, or Redis is away
+        raise ServiceError.from_job(exc, get_settings().retry_after_s) from None
     if state is None:
         raise ServiceError("not_found", f"no job {job_id} (jobs are kept for a limited time)")
     return state

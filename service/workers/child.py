@@ -24,4 +24,7 @@ def serve(handler, hello: dict) -> None:
         except Exception as exc:  # the parent turns this into a clear error, the child lives on
             traceback.print_exc()
             reply, blob = {"error": {"code": "internal_error", "message": f"{type(exc).__name__}: {exc}"}}, b""
-        protocol.write_frame_sync(out, reply, blob)
+        try:
+            protocol.write_frame_sync(out, reply, blob)
+        except BrokenPipeError:
+            return  # the parent died while this job ran (its supervisor starts a new one): nobody to answer

@@ -14,6 +14,7 @@ from shadergen.api import Generator
 from shadergen.errors import ShaderGenError
 
 from ..cache import open_store
+from ..cache.entries import is_record
 from ..config import get_settings
 from .child import serve
 
@@ -46,7 +47,7 @@ class GenerateHandler:
             )
             key = "rec:" + prepared.hash
             stored = self.store.get(key)
-            if stored is None:
+            if not is_record(stored, prepared.hash):  # absent, or garbage to overwrite
                 record = prepared.emit(source=True)
                 record["document"] = None  # uploads have no path
                 self.store.put(key, _dumps({**record, "cached": True}))

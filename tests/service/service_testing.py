@@ -47,11 +47,16 @@ def stop(proc: subprocess.Popen, timeout_s: float = 20) -> None:
 class RedisServer:
     def __init__(self, tmp: Path):
         exe = tool_path("redis-server")
+        self.exe, self.tmp = exe, tmp
         self.port = free_port()
         self.url = f"redis://{HOST}:{self.port}/0"
+        self.start()
+
+    def start(self) -> None:
+        """Start (or, once stopped, start again) the server on its port, empty."""
         self.proc = subprocess.Popen(
-            [exe, "--bind", HOST, "--port", str(self.port), "--save", "", "--appendonly", "no",
-             "--dir", str(tmp), "--maxmemory", "256mb", "--maxmemory-policy", "allkeys-lru"],
+            [self.exe, "--bind", HOST, "--port", str(self.port), "--save", "", "--appendonly", "no",
+             "--dir", str(self.tmp), "--maxmemory", "256mb", "--maxmemory-policy", "allkeys-lru"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
         )
         wait_until(self._ping, 15, "redis-server")
@@ -167,6 +172,17 @@ def kill_while_running(client, job_id: str, find_workers, kills: int, timeout_s:
             killed.extend(fresh)
         time.sleep(0.01)
     return killed
+
+
+def receive_head(s: socket.socket) -> bytes:
+    """The status line and headers of the answer on a raw socket."""
+    response = b""
+    while b"\r\n\r\n" not in response:
+        data = s.recv(65536)
+        if not data:
+            break
+        response += data
+    return response
 
 
 def is_png(data: bytes, side: int) -> bool:

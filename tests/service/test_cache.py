@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from service.cache import SQLiteStore, open_store
+from service.cache import CacheUnavailable, SQLiteStore, open_store
 from service.cache import sqlite as sqlite_module
 
 
@@ -107,7 +107,8 @@ def test_deleted_file_is_recreated(tmp_path, monkeypatch):
 
 def test_open_store_by_url(tmp_path):
     store = open_store(f"sqlite:///{tmp_path / 'x.sqlite3'}", 1000)
-    assert isinstance(store, SQLiteStore) and store.path == tmp_path / "x.sqlite3"
+    assert isinstance(store.inner, SQLiteStore) and store.inner.path == tmp_path / "x.sqlite3"
+    assert store.name == "SQLiteStore"
 
 
 def test_redis_store(redis_server):
@@ -132,9 +133,29 @@ async def _aget_and_close(store, key):
 
 
 @pytest.mark.parametrize("url", ["redis://127.0.0.1:1/0"])
-def test_redis_store_unreachable_is_an_error_not_a_hang(url):
-    import redis
-
+def test_redis_store_unreachable_is_a_miss_not_an_error_nor_a_hang(url):
     store = open_store(url, 0)
-    with pytest.raises(redis.ConnectionError):
-        store.get("k")
+    started = time.monotonic()
+    assert store.get("k") is None
+    store.put("k", b"v")  # skipped, not raised
+    assert asyncio.run(store.aget("k")) is None
+    with pytest.raises(CacheUnavailable):
+        asyncio.run(store.aread("k"))
+    assert "ConnectionError" in store.last_error and time.monotonic() - started < 10
+
+
+def test_file_truncated_to_zero_under_open_connections_heals(tmp_path):
+    """Issue 8: a 0-byte file passes `PRAGMA quick_check`; stale connections kept failing."""
+    path = tmp_path / "c.sqlite3"
+    store = open_store(f"sqlite:///{path}", 64 * 1024 * 1024)
+    other = open_store(f"sqlite:///{path}", 64 * 1024 * 1024)  # as another process would hold it
+    for i in range(16):  # enough for SQLite to checkpoint the WAL into the main file
+        store.put(f"k{i}", bytes([i]) * 400_000)
+    assert other.get("k3") == bytes([3]) * 400_000
+    with open(path, "r+b") as f:
+        f.truncate(0)
+    for s in (store, other):
+        s.get("k5")  # a miss or the value, never an exception
+    store.put("fresh", b"x")
+    assert store.get("fresh") == b"x" and other.get("fresh") == b"x"
+    assert asyncio.run(other.aread("fresh")) == b"x"

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from service.workers.pool import JobTimeout, ProcessPool, QueueFull, WorkerCrashed
+from service.workers.pool import JobTimeout, PoolError, ProcessPool, QueueFull, WorkerCrashed
 
 HERE = Path(__file__).parent
 ROOT = HERE.parents[1]
@@ -127,5 +127,83 @@ def test_jobs_spread_over_children_and_close_stops_them():
         for pid in pids:
             with pytest.raises(ProcessLookupError):
                 os.kill(pid, 0)
+
+    run(main())
+
+
+# -- supervision (issue 8): under uvloop as under `shadergen serve` --------------------------------
+def run_on(loop: str, coro):
+    if loop == "uvloop":
+        import uvloop
+
+        return uvloop.run(asyncio.wait_for(coro, 60))
+    return run(coro)
+
+
+@pytest.mark.parametrize("loop", ["asyncio", "uvloop"])
+def test_idle_child_that_dies_is_replaced_and_the_next_job_answered(loop):
+    async def main():
+        pool = await started_pool()
+        try:
+            first = pool.children[0].pid
+            os.kill(first, 9)
+            reply, _ = await pool.run({"echo": "after"})
+            assert reply["echo"] == "after" and reply["pid"] != first
+            assert pool.alive == 1
+        finally:
+            await pool.close()
+
+    run_on(loop, main())
+
+
+@pytest.mark.parametrize("loop", ["asyncio", "uvloop"])
+def test_job_sent_to_a_child_that_just_died_is_retried_on_a_fresh_one(loop):
+    async def main():
+        pool = await started_pool()
+        try:
+            child = pool.children[0]
+            os.kill(child.pid, 9)
+            await child.proc.wait()
+            # straight to the dead child, as a job taken just before its death would be
+            with pytest.raises(WorkerCrashed):
+                await child.call({"echo": 1}, b"", 5)
+            reply, _ = await pool.run({"echo": 2})
+            assert reply["echo"] == 2
+        finally:
+            await pool.close()
+
+    run_on(loop, main())
+
+
+def test_a_slot_that_fails_is_started_again_and_its_job_failed():
+    async def main():
+        pool = await started_pool()
+        try:
+            original = pool._on_result
+
+            def broken(job, seconds):  # a bug in the pool's own code, while a job runs
+                pool._on_result = original
+                raise RuntimeError("bug")
+
+            pool._on_result = broken
+            with pytest.raises(PoolError, match="slot"):
+                await pool.run({"echo": 1})
+            reply, _ = await pool.run({"echo": 2})
+            assert reply["echo"] == 2
+        finally:
+            await pool.close()
+
+    run(main())
+
+
+def test_every_wait_on_the_pool_has_a_deadline():
+    async def main():
+        pool = ProcessPool("pool_child", size=1, queue_size=4, timeout_s=30, env=CHILD_ENV, wait_s=0.5)
+        await pool.start()
+        try:
+            with pytest.raises(PoolError, match="no answer within"):
+                await pool.run({"action": "sleep", "seconds": 2})
+        finally:
+            await pool.close()
 
     run(main())
