@@ -7,7 +7,13 @@ Prints requests/s, p50/p99 latency and errors per scenario, and each p50 as a ra
     .venv/bin/python bench/load.py --url http://127.0.0.1:8000 --seconds 5
 
 Clients speak HTTP/1.1 with keep-alive over raw asyncio streams, so the client's own cost per
-request stays small next to the server's. Every scenario is bounded in time and in requests."""
+request stays small next to the server's. Every scenario is bounded in time and in requests.
+
+The last pair of scenarios measures what clients sending expensive bad documents (issue 8: deep
+XML and JSON, self-inheriting nodedefs, self-instantiating graphs, undecodable encodings, ...)
+cost everyone else: three quarters of the clients send uncached documents, alone and then beside
+a quarter that send the bad ones; the pair runs twice, interleaved, and the well-behaved clients'
+p50/p99 beside the bad ones are printed as ratios of their p50/p99 alone (goal: within 2x)."""
 import argparse
 import asyncio
 import json
@@ -32,11 +38,38 @@ def ramp(value: float) -> str:
 
 
 def request_bytes(host: str, method: str, path: str, body: dict | None = None) -> bytes:
-    payload = json.dumps(body).encode() if body is not None else b""
-    head = f"{method} {path} HTTP/1.1\r\nHost: {host}\r\nContent-Length: {len(payload)}\r\n"
-    if body is not None:
-        head += "Content-Type: application/json\r\n"
-    return (head + "\r\n").encode() + payload
+    return raw_request(host, method, path, json.dumps(body).encode() if body is not None else None)
+
+
+def raw_request(host: str, method: str, path: str, payload: bytes | None,
+                content_type: str = "application/json") -> bytes:
+    head = f"{method} {path} HTTP/1.1\r\nHost: {host}\r\nContent-Length: {len(payload or b'')}\r\n"
+    if payload is not None:
+        head += f"Content-Type: {content_type}\r\n"
+    return (head + "\r\n").encode() + (payload or b"")
+
+
+def bad_documents(host: str) -> list[bytes]:
+    """Cheap to send, once expensive to refuse (issue 8); each must get a 4xx, cheaply."""
+    def xml(text: str) -> bytes:
+        return raw_request(host, "POST", "/v1/generate", text.encode(), "application/xml")
+
+    head = '<?xml version="1.0"?><materialx version="1.39">'
+    return [
+        xml(head + '<nodedef name="ND_a" node="a" inherit="ND_a"><output name="out" type="float"/></nodedef>'
+            '<a name="n" type="float"/><output name="o" type="float" nodename="n"/></materialx>'),
+        xml(head + '<nodedef name="ND_a" node="a" inherit="ND_b"><output name="out" type="float"/></nodedef>'
+            '<nodedef name="ND_b" node="b" inherit="ND_a"><output name="out" type="float"/></nodedef>'
+            '<a name="n" type="float"/><output name="o" type="float" nodename="n"/></materialx>'),
+        xml(head + '<nodedef name="ND_loop" node="loop"><output name="out" type="float"/></nodedef>'
+            '<nodegraph name="NG_loop" nodedef="ND_loop"><loop name="inner" type="float"/>'
+            '<output name="out" type="float" nodename="inner"/></nodegraph>'
+            '<loop name="n" type="float"/><output name="o" type="float" nodename="n"/></materialx>'),
+        xml('<materialx version="1.39">' + "<a>" * 200_000 + "</a>" * 200_000 + "</materialx>"),
+        raw_request(host, "POST", "/v1/generate", b'{"document": ' + b"[" * 100_000 + b"]" * 100_000 + b"}"),
+        xml('<?xml version="1.0" encoding="x-bogus"?><materialx version="1.39"/>'),
+        request_bytes(host, "POST", "/v1/generate", {"document": head + "\ud800</materialx>"}),
+    ]
 
 
 @dataclass
@@ -47,6 +80,10 @@ class Result:
     errors: int = 0
     seconds: float = 0.0
     statuses: dict[int, int] = field(default_factory=dict)
+    refusals_expected: bool = False  # bad documents: a 4xx is the right answer, not an error
+
+    def failed(self, status: int) -> bool:
+        return status >= 300 and not (self.refusals_expected and 400 <= status < 500)
 
 
 async def one_request(reader, writer, data: bytes) -> int:
@@ -80,20 +117,37 @@ async def client(host: str, port: int, requests: list[bytes], offset: int, strid
                 continue
             result.latencies.append(time.perf_counter() - started)
             result.statuses[status] = result.statuses.get(status, 0) + 1
-            if status >= 300:
+            if result.failed(status):
                 result.errors += 1
     finally:
         writer.close()
 
 
-async def scenario(name: str, host: str, port: int, requests: list[bytes], clients: int, seconds: float,
-                   max_requests: int = MAX_REQUESTS) -> Result:
-    result = Result(name, clients)
+async def mixed(host: str, port: int, groups: list[tuple[Result, list[bytes]]], seconds: float,
+                max_requests: int = MAX_REQUESTS) -> list[Result]:
+    """Groups of clients at once, each group with its own requests and its own Result."""
     budget = [max_requests]
     started = time.perf_counter()
-    await asyncio.gather(*(client(host, port, requests, k, clients, started + seconds, result, budget)
-                           for k in range(clients)))
-    result.seconds = time.perf_counter() - started
+    await asyncio.gather(*(client(host, port, requests, k, result.clients, started + seconds, result, budget)
+                           for result, requests in groups for k in range(result.clients)))
+    for result, _ in groups:
+        result.seconds = time.perf_counter() - started
+    return [result for result, _ in groups]
+
+
+async def scenario(name: str, host: str, port: int, requests: list[bytes], clients: int, seconds: float) -> Result:
+    return (await mixed(host, port, [(Result(name, clients), requests)], seconds))[0]
+
+
+def merged(name: str, parts: list[Result]) -> Result:
+    """Runs of one scenario taken as one (interleaved repeats of a pair)."""
+    result = Result(name, parts[0].clients, refusals_expected=parts[0].refusals_expected)
+    for part in parts:
+        result.latencies += part.latencies
+        result.errors += part.errors
+        result.seconds += part.seconds
+        for status, count in part.statuses.items():
+            result.statuses[status] = result.statuses.get(status, 0) + count
     return result
 
 
@@ -173,7 +227,28 @@ async def run(args) -> list[Result]:
     for name, requests, clients in plan:
         results.append(await scenario(name, host, port, requests, clients, args.seconds))
         await asyncio.sleep(0.5)
-    return results
+    # documents no scenario above has sent: each of the four runs below gets its own quarter
+    spare = [gen(ramp(0.25 + (tag % 10**9) * 1e-12 + i * 1e-6)) for i in range(4 * len(unique) // 5)]
+    return results + await beside_bad_clients(host, port, args.clients, args.seconds, spare, bad_documents(hostport))
+
+
+async def beside_bad_clients(host: str, port: int, clients: int, seconds: float, fresh: list[bytes],
+                             bad: list[bytes]) -> list[Result]:
+    bad_clients = max(1, clients // 4)
+    good_clients = clients - bad_clients
+    alone, beside, refused = [], [], []
+    for repeat in range(2):  # interleaved: alone, beside, alone, beside
+        alone += await mixed(host, port, [(Result("", good_clients), fresh[2 * repeat::4])], seconds)
+        await asyncio.sleep(0.5)
+        groups = [(Result("", good_clients), fresh[2 * repeat + 1::4]),
+                  (Result("", bad_clients, refusals_expected=True), bad)]
+        good, bad_result = await mixed(host, port, groups, seconds)
+        beside.append(good)
+        refused.append(bad_result)
+        await asyncio.sleep(0.5)
+    return [merged("generate uncached, alone", alone),
+            merged(f"generate uncached, beside {bad_clients} bad clients", beside),
+            merged("bad documents (4xx expected)", refused)]
 
 
 def table(results: list[Result]) -> str:
@@ -219,6 +294,10 @@ def main() -> int:
             shutil.rmtree(tmp, ignore_errors=True)
     print(f"server {args.url}, {os.cpu_count()} cores, {args.seconds:g} s per scenario\n")
     print(table(results))
+    alone, beside = results[-3], results[-2]
+    ratios = [percentile(beside.latencies, q) / percentile(alone.latencies, q) for q in (0.5, 0.99)]
+    print(f"\nwell-behaved clients beside bad ones, against alone: p50 {ratios[0]:.2f}x, "
+          f"p99 {ratios[1]:.2f}x (goal: within 2x)")
     for r in results:
         odd = {s: n for s, n in r.statuses.items() if s >= 300}
         if odd:

@@ -24,7 +24,7 @@ Text = Annotated[str, AfterValidator(_encodable)]
 # -- requests ----------------------------------------------------------------------------------
 class GenerateRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    document: Text = Field(description="the MaterialX document (XML text)")
+    document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
     target: Text = Field("glsl", max_length=64, description="glsl, essl, osl, ...")
     element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
     interface: Interface = "complete"
@@ -33,7 +33,7 @@ class GenerateRequest(BaseModel):
 
 class ThumbnailRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    document: Text
+    document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
     element: Text | None = Field(None, max_length=1024)
     interface: Interface = "complete"
     size: int = Field(256, ge=16, le=1024, description="width and height in pixels")

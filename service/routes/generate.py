@@ -18,9 +18,9 @@ USD_TYPES = {"model/vnd.usda": "usda", "model/vnd.usdz+zip": "usdz"}  # media ty
 QUERY = "target, element (a material's prim path, for USD), interface and source come from the query"
 BODY = {"requestBody": {"required": True, "content": {
     "application/json": {"schema": GenerateRequest.model_json_schema()},
-    "application/xml": {"schema": {"type": "string", "description": f"the MaterialX document; {QUERY}"}},
-    "model/vnd.usda": {"schema": {"type": "string", "description": f"a USD layer (text) that refers to no other "
-                                  f"file; one record per material, of the first or the named one; {QUERY}"}},
+    "application/xml": {"schema": {"type": "string", "minLength": 1, "description": f"the MaterialX document; {QUERY}"}},
+    "model/vnd.usda": {"schema": {"type": "string", "minLength": 1, "description": "a USD layer (text) that refers to "
+                                  f"no other file; one record per material, of the first or the named one; {QUERY}"}},
     "model/vnd.usdz+zip": {"schema": {"type": "string", "format": "binary", "description": "a usdz package; assets "
                                       f"and layers must lie inside it; {QUERY}"}},
 }}}
