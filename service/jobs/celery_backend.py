@@ -1,12 +1,15 @@
 """The Celery back end, API side: sends render tasks by name over Redis and reads their results.
-Celery's client calls block on Redis, so they run in threads, off the event loop."""
+Celery's client calls block on Redis, so they run in threads, off the event loop. A broker that
+cannot be reached is a JobError ("unavailable": 503 with Retry-After), never a server error."""
 import asyncio
 import base64
 import time
 import uuid
+from contextlib import contextmanager
 
 import redis.asyncio
 from celery.result import AsyncResult
+from kombu.exceptions import OperationalError
 
 from . import JobBackend, JobError, JobState, RenderResult
 from .celery_app import QUEUE, TASK, make_celery
@@ -14,6 +17,14 @@ from .celery_app import QUEUE, TASK, make_celery
 JOB_KEY = "shadergen:job:"
 JOB_TTL_S = 3600
 POLL_S = (0.01, 0.25)  # first and longest pause between polls of a job being waited for
+
+
+@contextmanager
+def broker_errors():
+    try:
+        yield
+    except (redis.RedisError, OperationalError, OSError) as exc:
+        raise JobError("unavailable", f"the job broker is not reachable: {type(exc).__name__}: {exc}") from None
 
 
 class CeleryJobs(JobBackend):
@@ -26,15 +37,17 @@ class CeleryJobs(JobBackend):
         self.wait_s = settings.render_timeout_s * 3  # queueing, one retry, and the render itself
 
     async def depth(self) -> int:
-        return await self.redis.llen(QUEUE)
+        with broker_errors():
+            return await self.redis.llen(QUEUE)
 
     async def submit(self, request: dict) -> str:
         if await self.depth() >= self.max_depth:
             raise JobError("queue_full", f"render queue full: {self.max_depth} jobs already waiting")
         job_id = uuid.uuid4().hex
-        # known ids, so that an unknown one is a 404 and not Celery's eternal PENDING
-        await self.redis.set(JOB_KEY + job_id, "1", ex=JOB_TTL_S)
-        await asyncio.to_thread(self.app.send_task, TASK, args=[request], task_id=job_id, queue=QUEUE)
+        with broker_errors():
+            # known ids, so that an unknown one is a 404 and not Celery's eternal PENDING
+            await self.redis.set(JOB_KEY + job_id, "1", ex=JOB_TTL_S)
+            await asyncio.to_thread(self.app.send_task, TASK, args=[request], task_id=job_id, queue=QUEUE)
         return job_id
 
     def _read(self, job_id: str) -> JobState:
@@ -55,16 +68,18 @@ class CeleryJobs(JobBackend):
         return JobState(job_id, "failed", {"code": code, "message": f"render failed: {value!r}", "where": None})
 
     async def status(self, job_id: str) -> JobState | None:
-        if not await self.redis.exists(JOB_KEY + job_id):
-            return None
-        return await asyncio.to_thread(self._read, job_id)
+        with broker_errors():
+            if not await self.redis.exists(JOB_KEY + job_id):
+                return None
+            return await asyncio.to_thread(self._read, job_id)
 
     async def render(self, request: dict) -> RenderResult:
         job_id = await self.submit(request)
         deadline = time.monotonic() + self.wait_s
         pause = POLL_S[0]
         while time.monotonic() < deadline:
-            state = await asyncio.to_thread(self._read, job_id)
+            with broker_errors():
+                state = await asyncio.to_thread(self._read, job_id)
             if state.state == "done":
                 return state.result
             if state.state == "failed":

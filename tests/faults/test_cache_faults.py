@@ -91,6 +91,15 @@ def redis_server(tmp_path_factory, redis_cache):
     srv.close()
 
 
+@pytest.fixture(scope="module")
+def celery_server(tmp_path_factory, redis_cache):
+    """Redis as the cache and as Celery's broker (the several-machines configuration)."""
+    srv = Server(tmp_path_factory.mktemp("celeryserve"), workers=1,
+                 env={"SHADERGEN_CACHE": redis_cache.url, "SHADERGEN_BROKER": redis_cache.url})
+    yield srv
+    srv.close()
+
+
 def test_garbage_under_a_cache_key_is_a_miss_and_is_overwritten(redis_server, redis_cache):
     client = redis_server.client
     text = uncached(0.71)
@@ -110,11 +119,19 @@ def test_garbage_under_a_cache_key_is_a_miss_and_is_overwritten(redis_server, re
     direct.close()
 
 
-def test_redis_down_serves_uncached_and_answers_503_where_it_must(redis_server, redis_cache):
+def test_redis_down_serves_uncached_and_answers_503_where_it_must(redis_server, celery_server, redis_cache):
     client = redis_server.client
     known = generate(client, uncached(0.72))
     stop(redis_cache.proc)
     try:
+        # the broker is away too: thumbnails cannot be queued, and say so
+        assert generate(celery_server.client, uncached(0.77))["cached"] is False
+        for path in ("/v1/thumbnails", "/v1/thumbnails?async=true"):
+            thumb = celery_server.client.post(path, json={"document": uncached(0.78), "size": 32})
+            assert thumb.status_code == 503 and thumb.headers["Retry-After"], thumb.text
+            assert thumb.json()["error"]["code"] == "unavailable"
+        status, body = readiness(celery_server.client)
+        assert status == 503 and not body["render"]["ready"] and not body["cache"]["ready"]
         for value in (0.73, 0.73, 0.74):
             assert generate(client, uncached(value))["cached"] is False
         shader = client.get(f"/v1/shaders/{known['hash']}")
@@ -132,4 +149,6 @@ def test_redis_down_serves_uncached_and_answers_503_where_it_must(redis_server, 
     wait_ready(client)
     assert generate(client, uncached(0.76))["cached"] is False
     assert generate(client, uncached(0.76))["cached"] is True  # the cache is used again
-    assert "Traceback" not in redis_server.log_text()
+    wait_ready(celery_server.client)
+    for srv in (redis_server, celery_server):
+        assert "Traceback" not in srv.log_text()
