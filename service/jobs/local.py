@@ -23,6 +23,7 @@ READY_TIMEOUT_S = 60.0  # a fresh pool (and its first render worker) at start-up
 RETURN_TIMEOUT_S = 15.0  # how long a request waits for a restarted pool before answering 503
 RESTART_BACKOFF_S = (0.2, 30.0)  # first and longest pause before starting a failed pool again
 STABLE_S = 10.0  # a pool that ran this long before exiting is restarted after the shortest pause
+QUERY_TIMEOUT_S = 5.0  # questions about the pool (depth, a job's state) are answered at once, or never
 
 
 class PoolServerSupervisor:
@@ -40,7 +41,7 @@ class PoolServerSupervisor:
         self.env = {**os.environ, **settings.to_env()}
         self.restarts = 0
         self._lock = threading.Lock()
-        self._stopping = False
+        self._stopping = threading.Event()
         self.process = self._start()
         self._thread = threading.Thread(target=self._watch, name="render-pool-supervisor", daemon=True)
         self._thread.start()
@@ -55,23 +56,23 @@ class PoolServerSupervisor:
         while True:
             started = time.monotonic()
             status = self.process.wait()
-            with self._lock:
-                if self._stopping:
-                    return
+            if self._stopping.is_set():
+                return
             if time.monotonic() - started > STABLE_S:
                 pause = RESTART_BACKOFF_S[0]
             log.warning("render pool exited with status %s; starting it again in %.1f s", status, pause)
-            time.sleep(pause)
+            if self._stopping.wait(pause):
+                return
             pause = min(pause * 2, RESTART_BACKOFF_S[1])
             with self._lock:
-                if self._stopping:
+                if self._stopping.is_set():
                     return
                 self.restarts += 1
                 self.process = self._start()
 
     def stop(self) -> None:
         with self._lock:
-            self._stopping = True
+            self._stopping.set()
             proc = self.process
         if proc.poll() is None:
             proc.terminate()
@@ -127,7 +128,9 @@ class LocalJobs(JobBackend):
                 await asyncio.sleep(0.05)
         return False
 
-    async def _request(self, message: dict) -> tuple[dict, bytes]:
+    async def _request(self, message: dict, timeout_s: float | None = None) -> tuple[dict, bytes]:
+        """One question to the pool; `timeout_s` (default: the job wait) bounds the answer."""
+        timeout_s = timeout_s or self.wait_s
         try:
             reader, writer = await asyncio.open_unix_connection(self.socket_path)
         except OSError as exc:
@@ -135,11 +138,11 @@ class LocalJobs(JobBackend):
         try:
             writer.write(protocol.encode(message))
             await writer.drain()
-            return await asyncio.wait_for(protocol.read_frame(reader), self.wait_s)
+            return await asyncio.wait_for(protocol.read_frame(reader), timeout_s)
         except (asyncio.IncompleteReadError, ConnectionError):
             raise PoolGone("the render pool closed the connection") from None
         except asyncio.TimeoutError:
-            raise JobError("timeout", f"the render pool gave no answer within {self.wait_s:g} s") from None
+            raise JobError("timeout", f"the render pool gave no answer within {timeout_s:g} s") from None
         finally:
             writer.close()
 
@@ -187,18 +190,18 @@ class LocalJobs(JobBackend):
             log.warning("job %s lost: %s", job_id, exc.message)
 
     async def status(self, job_id: str) -> JobState | None:
-        reply, png = await self._request({"op": "status", "id": job_id})
+        reply, png = await self._request({"op": "status", "id": job_id}, QUERY_TIMEOUT_S)
         if "state" not in reply:  # the pool cannot tell yet (it has just restarted)
             raise JobError(**reply["error"])
         return None if reply["state"] == "unknown" else self._state(reply, png)
 
     async def depth(self) -> int:
-        reply, _ = await self._request({"op": "depth"})
+        reply, _ = await self._request({"op": "depth"}, QUERY_TIMEOUT_S)
         return reply["depth"]
 
     async def health(self) -> tuple[bool, str]:
         try:
-            reply, _ = await self._request({"op": "depth"})
+            reply, _ = await self._request({"op": "depth"}, QUERY_TIMEOUT_S)
         except JobError as exc:
             return False, exc.message
         detail = f'{reply["alive"]}/{reply["workers"]} render processes, {reply["depth"]} jobs queued'
