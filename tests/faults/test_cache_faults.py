@@ -9,7 +9,7 @@ import redis
 from faults_testing import readiness, wait_ready
 from service.cache import SQLiteStore
 from service.cache.redis import PREFIX
-from service_testing import RedisServer, Server, document, renderer_available, stop, wait_until
+from service_testing import RedisServer, Server, document, stop, wait_until
 
 
 def uncached(value: float) -> str:
@@ -119,6 +119,7 @@ def test_garbage_under_a_cache_key_is_a_miss_and_is_overwritten(redis_server, re
     direct.close()
 
 
+@pytest.mark.usefixtures("renderer_required")
 def test_redis_down_serves_uncached_and_answers_503_where_it_must(redis_server, celery_server, redis_cache):
     client = redis_server.client
     known = generate(client, uncached(0.72))
@@ -139,9 +140,8 @@ def test_redis_down_serves_uncached_and_answers_503_where_it_must(redis_server, 
         assert shader.json()["error"]["code"] == "unavailable"
         status, body = readiness(client)
         assert status == 503 and not body["cache"]["ready"] and body["generator"]["ready"]
-        if renderer_available():
-            thumb = client.post("/v1/thumbnails", json={"document": uncached(0.75), "size": 32}, timeout=120)
-            assert thumb.status_code == 200 and thumb.content.startswith(b"\x89PNG"), thumb.text
+        thumb = client.post("/v1/thumbnails", json={"document": uncached(0.75), "size": 32}, timeout=120)
+        assert thumb.status_code == 200 and thumb.content.startswith(b"\x89PNG"), thumb.text
         metrics = client.get("/metrics").text
         assert 'status="500"' not in metrics
     finally:

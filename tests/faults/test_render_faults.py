@@ -1,18 +1,15 @@
 """Issue 8, faults 4 and 5: the render pool server killed (kill -9) is started again by its
 supervisor, thumbnails work again, and jobs that were in flight are submitted again and finish.
 Readiness reports the render pool while it is away."""
-import os
 import time
 
 import pytest
 
 from faults_testing import kill, poll_job, processes, readiness, wait_ready
-from service_testing import Server, document, is_png, renderer_available, wait_until
+from service_testing import Server, document, is_png, wait_until
 
 POOL = "service.jobs.pool_server"
-
-if not renderer_available() and os.environ.get("CI") != "true":
-    pytest.skip("shadergen.render.Renderer is not available", allow_module_level=True)
+pytestmark = pytest.mark.usefixtures("renderer_required")
 
 
 @pytest.fixture(scope="module")
