@@ -9,7 +9,7 @@ void mx_chiang_hair_bsdf(ClosureData closureData, vec3 tint_R, vec3 tint_TT, vec
                          vec3 absorption_coefficient, vec3 N, vec3 X, inout BSDF bsdf)
 {
     vec3 V = closureData.V;
-    N = mx_facing_normal(N, V);
+    N = mx_shading_normal(N, closureData.N, V);
     bsdf.throughput = vec3(0.0);
 
     if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
@@ -80,12 +80,10 @@ void mx_chiang_hair_bsdf(ClosureData closureData, vec3 tint_R, vec3 tint_TT, vec
     else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
     {
         // A rough stand-in: a GGX dielectric lobe with the mean roughness and tint of the three lobes.
-        float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
         FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
                                          0.0, 0.0, 1.0);
-        vec2 alpha = clamp((roughness_R + roughness_TT + roughness_TRT) / vec2(3.0), MX_EPS, 1.0);
-        vec3 comp = mx_ggx_energy_compensation(NdotV, mx_average_alpha(alpha), mx_fresnel_eval(NdotV, fd));
-        vec3 tint = (tint_R + tint_TT + tint_TRT) / vec3(3.0);
-        bsdf.response = mx_environment_radiance(N, V, X, alpha, 0, fd) * comp * tint;
+        vec2 alpha = mx_ggx_clamp_alpha((roughness_R + roughness_TT + roughness_TRT) / vec2(3.0));
+        vec3 tint = max((tint_R + tint_TT + tint_TRT) / vec3(3.0), 0.0);
+        bsdf.response = mx_environment_radiance(N, V, X, alpha, 0, fd) * tint;
     }
 }

@@ -1,6 +1,7 @@
-// <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface, with an
-// optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
+// <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
+// dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 #include "lib/mx_specular.glsl"
+#include "lib/mx_albedo_dielectric.glsl"
 
 void mx_dielectric_bsdf(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness, bool retroreflective,
                         float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X, int distribution, int scatter_mode,
@@ -8,25 +9,26 @@ void mx_dielectric_bsdf(ClosureData closureData, float weight, vec3 tint, float 
 {
     int context = closureData.closureType;
     bool transmission = context == CLOSURE_TYPE_TRANSMISSION;
-    if (weight < MX_EPS || (scatter_mode == 1 && !transmission) || !mx_is_scattering_context(context))
+    if (mx_weight_is_zero(weight) || (scatter_mode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
     // Retro-reflection mirrors the view about the normal (reflection and environment only).
+    N = mx_usable_normal(N, closureData.N);
     vec3 V = (retroreflective && !transmission) ? reflect(-closureData.V, N) : closureData.V;
     N = mx_facing_normal(N, V);
-    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    vec2 alpha = clamp(roughness, MX_EPS, 1.0);
-    vec3 tintRGB = max(tint, 0.0);
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
+    vec2 alpha = mx_ggx_clamp_alpha(roughness);
+    float eta = max(ior, 0.0);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(eta), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
                                      thinfilm_thickness, thinfilm_ior);
-
     vec3 comp;
     vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, comp);
 
-    // What the interface does not reflect passes on to the layers below.
-    vec3 albedo = mx_ggx_albedo(NdotV, mx_average_alpha(alpha), mx_ior_to_f0(ior), 1.0) * comp;
-    bsdf.throughput = 1.0 - albedo * weight;
+    // What the interface reflects, multiple scattering included, does not reach the layers below.
+    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
+    vec3 reflected = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(alpha), eta) * comp;
+    bsdf.throughput = max(vec3(1.0) - reflected * weight, 0.0);
 
+    vec3 tintRGB = max(tint, 0.0);
     if (!transmission)
         bsdf.response = lobe * tintRGB * weight;
     else if (scatter_mode != 0)

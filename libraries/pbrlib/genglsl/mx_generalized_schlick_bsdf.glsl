@@ -8,30 +8,30 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, float weight, vec3 col
 {
     int context = closureData.closureType;
     bool transmission = context == CLOSURE_TYPE_TRANSMISSION;
-    if (weight < MX_EPS || (scatter_mode == 1 && !transmission) || !mx_is_scattering_context(context))
+    if (mx_weight_is_zero(weight) || (scatter_mode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
+    N = mx_usable_normal(N, closureData.N);
     vec3 V = (retroreflective && !transmission) ? reflect(-closureData.V, N) : closureData.V;
     N = mx_facing_normal(N, V);
-    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    vec2 alpha = clamp(roughness, MX_EPS, 1.0);
+    vec2 alpha = mx_ggx_clamp_alpha(roughness);
     vec3 F0 = max(color0, 0.0);
     vec3 F90 = max(color90, 0.0);
     FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_SCHLICK, vec3(0.0), vec3(0.0), F0, max(color82, 0.0), F90, exponent,
                                      thinfilm_thickness, thinfilm_ior);
-
     vec3 comp;
     vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, comp);
 
-    // A colourless throughput: the mean of the lobe's albedo over the channels.
-    vec3 albedo = mx_ggx_albedo(NdotV, mx_average_alpha(alpha), F0, F90) * comp;
-    bsdf.throughput = vec3(1.0 - dot(albedo, vec3(1.0 / 3.0)) * weight);
+    // Each channel passes to the layers below what this lobe does not reflect in that channel.
+    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
+    vec3 reflected = mx_ggx_albedo(NdotV, mx_ggx_isotropic_alpha(alpha), F0, F90) * comp;
+    bsdf.throughput = max(vec3(1.0) - reflected * weight, 0.0);
 
     if (!transmission)
         bsdf.response = lobe * weight;
     else if (scatter_mode != 0)
     {
-        // Refract with the index whose normal reflectance is the mean of color0.
+        // Refracted with the index whose normal reflectance is the mean of color0.
         fd.ior = vec3(mx_f0_to_ior(dot(F0, vec3(1.0 / 3.0))));
         bsdf.response = mx_surface_transmission(N, V, X, alpha, distribution, fd, vec3(1.0)) * weight;
     }

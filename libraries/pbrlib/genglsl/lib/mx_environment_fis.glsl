@@ -32,15 +32,27 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
 }
 
 // Direction leaving a solid sphere of index `ior` that ray direction R enters where the normal is N.
+// Where a refraction is total internal reflection the ray reflects instead, so a direction always
+// comes back.
 vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
 {
-    vec3 inside = refract(R, N, 1.0 / ior);
+    float eta = max(ior, 1.0e-3);
+    vec3 inside = refract(R, N, 1.0 / eta);
+    if (dot(inside, inside) == 0.0)
+        return reflect(R, N);
     vec3 exitNormal = normalize(inside * dot(inside, N) - N * 0.5);
-    return refract(inside, exitNormal, ior);
+    vec3 leaving = refract(inside, exitNormal, eta);
+    return (dot(leaving, leaving) == 0.0) ? reflect(inside, exitNormal) : leaving;
 }
 
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
+//   Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
+//   that single scattering misses is returned with Turquin's factor 1 + F (1 - E) / E, where E, the
+//   lobe's albedo with F = 1, is estimated from the same samples: a white lobe in a white
+//   environment then gives exactly 1 at any sample count or anisotropy.
+//   Refraction: each visible normal lets through 1 - F(V.H); masked light counts as transmitted,
+//   so reflection plus refraction of a clear dielectric stays within 1.
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd)
 {
     int sampleCount = u_envRadianceSamples;
@@ -49,28 +61,36 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
 
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
-    float NdotV = clamp(Vt.z, MX_EPS, 1.0);
-    float avgAlpha = mx_average_alpha(alpha);
-    float G1V = mx_ggx_G1(NdotV, avgAlpha);
+    Vt.z = max(Vt.z, MX_EPS);
 
-    vec3 sum = vec3(0.0);
+    vec3 carried = vec3(0.0);
+    float whiteAlbedo = 0.0;
     for (int i = 0; i < sampleCount; i++)
     {
         vec3 H = mx_ggx_sample_visible_normal(mx_fibonacci_point(i, sampleCount), Vt, alpha);
         vec3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
-        float NdotL = clamp(Lt.z, MX_EPS, 1.0);
-        float VdotH = clamp(dot(Vt, H), MX_EPS, 1.0);
-
         vec3 Lw = frame * Lt;
-        float lod = mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, alpha, G1V, NdotV), sampleCount);
+        float lod = mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
         vec3 Li = mx_envmap_fetch(u_envRadiance, Lw, lod);
-
-        // Radiance times BRDF times cosine over the sample density leaves F G2 / G1(V); G1(V) is
-        // divided out once below. Refraction keeps what the interface does not reflect.
-        vec3 F = mx_fresnel_eval(VdotH, fd);
-        sum += Li * (fd.refraction ? vec3(1.0) - F : F * mx_ggx_G2(NdotL, NdotV, avgAlpha));
+        vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
+        if (fd.refraction)
+        {
+            carried += Li * (vec3(1.0) - F);
+        }
+        else
+        {
+            float weight = mx_ggx_sample_weight(Vt, Lt, alpha);
+            carried += Li * F * weight;
+            whiteAlbedo += weight;
+        }
     }
-    return sum / (G1V * float(sampleCount)) * u_envLightIntensity;
+    carried /= float(sampleCount);
+    if (!fd.refraction)
+    {
+        float E = whiteAlbedo / float(sampleCount);
+        carried *= vec3(1.0) + mx_fresnel_eval(Vt.z, fd) * ((1.0 - E) / max(E, MX_EPS));
+    }
+    return carried * u_envLightIntensity;
 }
 
 // Irradiance / pi arriving at a point with normal N: what a white Lambert surface reflects.

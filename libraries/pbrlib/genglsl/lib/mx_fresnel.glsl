@@ -43,7 +43,7 @@ bool mx_fresnel_has_thinfilm(FresnelData fd)
 vec3 mx_fresnel_schlick_exp(float cosTheta, vec3 F0, vec3 F90, float exponent)
 {
     float m = clamp(1.0 - cosTheta, 0.0, 1.0);
-    return mix(F0, F90, pow(m, exponent));
+    return mix(F0, F90, mx_power(m, exponent));
 }
 
 float mx_fresnel_schlick_5(float cosTheta, float F0, float F90)
@@ -59,9 +59,9 @@ vec3 mx_fresnel_f82(float cosTheta, FresnelData fd)
     const float COS_82 = 1.0 / 7.0;
     const float LOBE_AT_82 = 0.0566527795;  // (1/7) (6/7)^6
     float c = clamp(cosTheta, 0.0, 1.0);
-    vec3 schlick82 = mix(fd.F0, fd.F90, pow(1.0 - COS_82, fd.exponent));
+    vec3 schlick82 = mix(fd.F0, fd.F90, mx_power(1.0 - COS_82, fd.exponent));
     vec3 a = schlick82 * (vec3(1.0) - fd.F82) / LOBE_AT_82;
-    return mix(fd.F0, fd.F90, pow(1.0 - c, fd.exponent)) - a * (c * mx_pow_6(1.0 - c));
+    return max(mix(fd.F0, fd.F90, mx_power(1.0 - c, fd.exponent)) - a * (c * mx_pow_6(1.0 - c)), 0.0);
 }
 
 // --- Dielectric ------------------------------------------------------------------------------

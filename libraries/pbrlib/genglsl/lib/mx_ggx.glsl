@@ -1,93 +1,94 @@
-// The GGX (Trowbridge-Reitz) microfacet model: distribution, visible-normal sampling, Smith
-// masking-shadowing, and the directional albedo used for energy compensation and layering.
+// GGX (Trowbridge-Reitz) microfacets after Walter et al. 2007, with Smith masking-shadowing in
+// Heitz 2014's height-correlated form, visible-normal sampling, and multiple-scattering energy
+// compensation from our own albedo table (tools/fit_albedo.py; Kulla & Conty 2017, Turquin 2019).
+// Directions are in the tangent frame: x along the tangent, z along the normal; alpha = (alpha_x,
+// alpha_y) is the roughness along x and y.
 #include "mx_fresnel.glsl"
+#include "mx_albedo_ggx.glsl"
 
-// Distribution of normals; `H` in the tangent frame (x along the tangent, z along the normal),
-// `alpha` the roughness along x and y.
+// Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
+const float MX_GGX_MIN_ALPHA = 1.0e-4;
+
+vec2 mx_ggx_clamp_alpha(vec2 alpha)
+{
+    return clamp(alpha, MX_GGX_MIN_ALPHA, 1.0);
+}
+
+// Normal distribution D(H) (Walter et al. 2007, eq. 33, in its anisotropic form).
 float mx_ggx_D(vec3 H, vec2 alpha)
 {
-    vec2 stretched = H.xy / alpha;
-    float d = dot(stretched, stretched) + H.z * H.z;
-    return 1.0 / (MX_PI * alpha.x * alpha.y * d * d);
+    vec3 scaled = vec3(H.xy / alpha, H.z);
+    float q = dot(scaled, scaled);
+    return 1.0 / (MX_PI * alpha.x * alpha.y * q * q);
 }
 
-// A visible normal for the tangent-space view direction V, from the uniform point `u`, by the
-// spherical-cap construction of Dupuy & Benyoub 2023.
+// Smith's Lambda of GGX for direction w (Heitz 2014, eq. 86): the mean slope seen along w.
+float mx_ggx_lambda(vec3 w, vec2 alpha)
+{
+    float z2 = max(w.z * w.z, MX_EPS);
+    float slope2 = dot(mx_sqr(w.xy * alpha), vec2(1.0)) / z2;
+    return 0.5 * (sqrt(1.0 + slope2) - 1.0);
+}
+
+// Masking of the view, G1 = 1 / (1 + Lambda(V)).
+float mx_ggx_G1(vec3 V, vec2 alpha)
+{
+    return 1.0 / (1.0 + mx_ggx_lambda(V, alpha));
+}
+
+// Height-correlated masking-shadowing, G2 = 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014, eq. 99).
+float mx_ggx_G2(vec3 V, vec3 L, vec2 alpha)
+{
+    return 1.0 / (1.0 + mx_ggx_lambda(V, alpha) + mx_ggx_lambda(L, alpha));
+}
+
+// What a light direction sampled through a visible normal carries, f cos / pdf with F = 1:
+// G2 / G1 (Heitz 2014, sect. 5.3), 0 below the horizon.
+float mx_ggx_sample_weight(vec3 V, vec3 L, vec2 alpha)
+{
+    if (L.z <= 0.0)
+        return 0.0;
+    float lambdaV = mx_ggx_lambda(V, alpha);
+    return (1.0 + lambdaV) / (1.0 + lambdaV + mx_ggx_lambda(L, alpha));
+}
+
+// A visible normal for view V from the uniform point u: the view stretched to the unit-roughness
+// configuration, a normal drawn uniformly on the spherical cap it sees (Dupuy & Benyoub 2023),
+// then unstretched.
 vec3 mx_ggx_sample_visible_normal(vec2 u, vec3 V, vec2 alpha)
 {
-    vec3 Vh = normalize(vec3(V.xy * alpha, V.z));   // to the hemisphere configuration
+    vec3 Vs = normalize(vec3(V.xy * alpha, max(V.z, MX_EPS)));
     float phi = 2.0 * MX_PI * u.x;
-    float z = (1.0 - u.y) * (1.0 + Vh.z) - Vh.z;     // uniform on the cap (-Vh.z, 1]
+    float z = (1.0 - u.y) * (1.0 + Vs.z) - Vs.z;
     float r = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
-    vec3 Hh = vec3(r * cos(phi), r * sin(phi), z) + Vh;
-    return normalize(vec3(Hh.xy * alpha, max(Hh.z, 0.0)));  // back to the ellipsoid
+    vec3 Hs = vec3(r * cos(phi), r * sin(phi), z) + Vs;
+    return normalize(vec3(Hs.xy * alpha, max(Hs.z, MX_EPS)));
 }
 
-// Smith masking for one direction (Walter et al. 2007, eq. 34), isotropic roughness `alpha`.
-float mx_ggx_G1(float cosTheta, float alpha)
+// Density of the reflected direction drawn through visible normal H: D G1(V) / (4 cos(V)).
+float mx_ggx_reflection_pdf(vec3 H, vec3 V, vec2 alpha)
 {
-    float c2 = cosTheta * cosTheta;
-    float tan2 = (1.0 - c2) / c2;
-    return 2.0 / (1.0 + sqrt(1.0 + alpha * alpha * tan2));
+    return mx_ggx_D(H, alpha) * mx_ggx_G1(V, alpha) / (4.0 * max(V.z, MX_EPS));
 }
 
-// Height-correlated masking-shadowing (Heitz 2014).
-float mx_ggx_G2(float NdotL, float NdotV, float alpha)
-{
-    float a2 = alpha * alpha;
-    float lambdaL = sqrt(a2 + (1.0 - a2) * NdotL * NdotL);
-    float lambdaV = sqrt(a2 + (1.0 - a2) * NdotV * NdotV);
-    return 2.0 * NdotL * NdotV / (lambdaL * NdotV + lambdaV * NdotL);
-}
-
-// Density of the reflected direction sampled through a visible normal H.
-float mx_ggx_reflection_pdf(vec3 H, vec2 alpha, float G1V, float NdotV)
-{
-    return mx_ggx_D(H, alpha) * G1V / (4.0 * NdotV);
-}
-
-// One isotropic roughness for an anisotropic pair.
-float mx_average_alpha(vec2 alpha)
+// One isotropic alpha standing for an anisotropic pair in the tables.
+float mx_ggx_isotropic_alpha(vec2 alpha)
 {
     return sqrt(alpha.x * alpha.y);
 }
 
-// Directional albedo of the GGX lobe with Schlick Fresnel between F0 and F90: the scale and bias
-// (A, B) of MaterialX's rational quadratic fit to Monte Carlo data, albedo = F0 A + F90 B.
-vec2 mx_ggx_albedo_scale_bias(float NdotV, float alpha)
-{
-    float x = NdotV;
-    float y = alpha;
-    float xx = x * x;
-    float yy = y * y;
-    vec4 n = vec4(0.1003, 0.9345, 1.0, 1.0) +
-             vec4(-0.6303, -2.323, -1.765, 0.2281) * x +
-             vec4(9.748, 2.229, 8.263, 15.94) * y +
-             vec4(-2.038, -3.748, 11.53, -55.83) * x * y +
-             vec4(29.34, 1.424, 28.96, 13.08) * xx +
-             vec4(-8.245, -0.7684, -7.507, 41.26) * yy +
-             vec4(-26.44, 1.436, -36.11, 54.9) * xx * y +
-             vec4(19.99, 0.2913, 15.86, 300.2) * x * yy +
-             vec4(-5.448, 0.6286, 33.37, -285.1) * xx * yy;
-    return clamp(n.xy / n.zw, 0.0, 1.0);
-}
-
+// Single-scattering directional albedo with Schlick's Fresnel between F0 and F90.
 vec3 mx_ggx_albedo(float NdotV, float alpha, vec3 F0, vec3 F90)
 {
-    vec2 ab = mx_ggx_albedo_scale_bias(NdotV, alpha);
-    return F0 * ab.x + F90 * ab.y;
+    vec2 scaleBias = mx_ggx_albedo_schlick_scale_bias(NdotV, alpha);
+    return F0 * scaleBias.x + F90 * scaleBias.y;
 }
 
-float mx_ggx_albedo(float NdotV, float alpha, float F0, float F90)
+// Turquin 2019: the lobe scaled by 1 + F (1 - E) / E returns the energy that single scattering
+// loses between microfacets (1 - E with a white Fresnel), tinted by the Fresnel colour F.
+vec3 mx_ggx_energy_compensation(float NdotV, float alpha, vec3 F)
 {
-    vec2 ab = mx_ggx_albedo_scale_bias(NdotV, alpha);
-    return F0 * ab.x + F90 * ab.y;
-}
-
-// Multiple-scattering compensation (Turquin 2019): scales the single-scattering lobe with Fresnel
-// `Fss` so that the energy lost between microfacets is returned.
-vec3 mx_ggx_energy_compensation(float NdotV, float alpha, vec3 Fss)
-{
-    float Ess = mx_ggx_albedo(NdotV, alpha, 1.0, 1.0);
-    return 1.0 + Fss * (1.0 - Ess) / Ess;
+    vec2 scaleBias = mx_ggx_albedo_schlick_scale_bias(NdotV, alpha);
+    float E = max(scaleBias.x + scaleBias.y, MX_EPS);
+    return vec3(1.0) + F * ((1.0 - E) / E);
 }

@@ -8,6 +8,12 @@ float mx_sqr(float x) { return x * x; }
 vec2 mx_sqr(vec2 x) { return x * x; }
 vec3 mx_sqr(vec3 x) { return x * x; }
 
+// x^y for x >= 0 and any y: GLSL leaves pow(0, y <= 0) undefined; here 0^y is 1 for y <= 0.
+float mx_power(float x, float y)
+{
+    return (y <= 0.0) ? 1.0 : pow(max(x, 0.0), y);
+}
+
 // x^5 and x^6 by multiplication (pow() would round differently).
 float mx_pow_5(float x)
 {
@@ -27,10 +33,47 @@ vec3 mx_facing_normal(vec3 N, vec3 V)
     return (dot(N, V) < 0.0) ? -N : N;
 }
 
-// Columns (X, Y, N): `X` made orthogonal to the unit normal `N`, then Y = N x X.
+// Any orthonormal frame around the unit vector N, columns (X, Y, N) (Duff et al. 2017).
+mat3 mx_frame_from_normal(vec3 N)
+{
+    float s = (N.z < 0.0) ? -1.0 : 1.0;
+    float a = -1.0 / (s + N.z);
+    float b = N.x * N.y * a;
+    return mat3(vec3(1.0 + s * N.x * N.x * a, s * b, -s * N.x),
+                vec3(b, s + N.y * N.y * a, -N.y),
+                N);
+}
+
+// A lobe's weight that scatters nothing: zero, negative, or NaN (a NaN computed in the graph, which
+// compares false with everything, is absorbed rather than spread over the image).
+bool mx_weight_is_zero(float weight)
+{
+    return isnan(weight) || weight < MX_EPS;
+}
+
+// The normal a closure shades with: N when it is a usable direction, else the interpolated
+// surface normal (a normal map whose perturbation cancels to zero, or a NaN from the graph).
+vec3 mx_usable_normal(vec3 N, vec3 surfaceNormal)
+{
+    float len2 = dot(N, N);
+    return (isnan(len2) || isinf(len2) || len2 < MX_EPS) ? surfaceNormal : N * inversesqrt(len2);
+}
+
+// The normal a closure shades with, on the side of the surface that V sees.
+vec3 mx_shading_normal(vec3 N, vec3 surfaceNormal, vec3 V)
+{
+    return mx_facing_normal(mx_usable_normal(N, surfaceNormal), V);
+}
+
+// Columns (X, Y, N): `X` made orthogonal to the unit normal `N`, then Y = N x X; any frame about N
+// when X is zero or along N.
 mat3 mx_tangent_frame(vec3 N, vec3 X)
 {
-    vec3 T = normalize(X - N * dot(X, N));
+    vec3 T = X - N * dot(X, N);
+    float len2 = dot(T, T);
+    if (isnan(len2) || len2 < MX_EPS)
+        return mx_frame_from_normal(N);
+    T *= inversesqrt(len2);
     return mat3(T, cross(N, T), N);
 }
 
@@ -47,15 +90,4 @@ vec2 mx_fibonacci_point(int i, int count)
 float mx_cosine_pdf(float cosTheta)
 {
     return max(cosTheta, 0.0) * MX_INV_PI;
-}
-
-// Any orthonormal frame around the unit vector N, columns (X, Y, N) (Duff et al. 2017).
-mat3 mx_frame_from_normal(vec3 N)
-{
-    float s = (N.z < 0.0) ? -1.0 : 1.0;
-    float a = -1.0 / (s + N.z);
-    float b = N.x * N.y * a;
-    return mat3(vec3(1.0 + s * N.x * N.x * a, s * b, -s * N.x),
-                vec3(b, s + N.y * N.y * a, -N.y),
-                N);
 }

@@ -1,34 +1,35 @@
-// Sheen: the Imageworks microfiber lobe (Conty & Kulla 2017) and Zeltner et al.'s multiple-
-// scattering LTC sheen (2022), each with its directional albedo for layering.
+// Sheen, the back-scattering of fibres (cloth, dust, peach fuzz), two ways:
+//   microfiber: Estevez & Kulla 2017's distribution of fibre normals, D = (2 + 1/r) sin^(1/r) / 2pi,
+//       over the smooth denominator 4 (NdotL + NdotV - NdotL NdotV) of Ashikhmin & Premoze 2007 in
+//       place of masking-shadowing, renormalised by max(1, E(mu_l), E(mu_v)) with its directional
+//       albedo E from our table (tools/fit_albedo.py): the plain model reflects up to 3.7 times the
+//       light at grazing angles for small r, the renormalised one never more than arrives;
+//   Zeltner et al. 2022: a linearly transformed cosine fitted to a volumetric fibre layer.
 #include "mx_pbr_common.glsl"
+#include "mx_albedo_sheen.glsl"
 
-// --- Imageworks ("conty_kulla") --------------------------------------------------------------
+// --- Microfiber (Estevez & Kulla 2017 distribution) -------------------------------------------------
 
-float mx_sheen_iw_D(float NdotH, float roughness)
+// The shaders' floor on r: 1/r is an exponent.
+const float MX_SHEEN_MIN_ROUGHNESS = 0.005;
+
+float mx_sheen_microfiber_D(float NdotH, float r)
 {
-    float k = 1.0 / max(roughness, 0.005);
-    float sin2 = 1.0 - NdotH * NdotH;
-    return (2.0 + k) * pow(sin2, k * 0.5) / (2.0 * MX_PI);
+    float inv = 1.0 / max(r, MX_SHEEN_MIN_ROUGHNESS);
+    float sin2 = max(1.0 - NdotH * NdotH, 0.0);
+    return (2.0 + inv) * pow(sin2, 0.5 * inv) / (2.0 * MX_PI);
 }
 
-// BRDF with the smoothed 4 (NdotL + NdotV - NdotL NdotV) denominator in place of masking.
-float mx_sheen_iw(float NdotL, float NdotV, float NdotH, float roughness)
+// BRDF times NdotL.
+float mx_sheen_microfiber(float NdotL, float NdotV, float NdotH, float r)
 {
-    return mx_sheen_iw_D(NdotH, roughness) / (4.0 * (NdotL + NdotV - NdotL * NdotV));
+    float f = mx_sheen_microfiber_D(NdotH, r) / (4.0 * (NdotL + NdotV - NdotL * NdotV));
+    return f * NdotL / max(1.0, max(mx_sheen_albedo(NdotL, r), mx_sheen_albedo(NdotV, r)));
 }
 
-// Directional albedo: MaterialX's rational fit to Monte Carlo data.
-float mx_sheen_iw_albedo(float NdotV, float roughness)
-{
-    float c = NdotV;
-    float r = roughness;
-    float num = 13.67300 - 68.78018 * c + 799.08825 * r - 905.00061 * c * r + 60.28956 * (c * c) + 1086.96473 * (r * r);
-    float den = 1.0 + 61.57746 * c + 442.78211 * r + 2597.49308 * c * r + 121.81241 * (c * c) + 3045.55075 * (r * r);
-    return clamp(num / den, 0.0, 1.0);
-}
-
-// --- Zeltner (LTC) ---------------------------------------------------------------------------
-// Fits from the paper's reference code (github.com/tizian/ltc-sheen); x = NdotV, y = roughness.
+// --- Zeltner et al. 2022 (LTC) -------------------------------------------------------------------
+// The albedo and inverse-matrix fits are the paper's own (published with its supplemental code,
+// github.com/tizian/ltc-sheen); x = NdotV, y = roughness.
 
 float mx_sheen_ltc_albedo(float x, float y)
 {

@@ -3,33 +3,34 @@
 #include "mx_closure_type.glsl"
 #include "mx_transmission_refract.glsl"
 
-// The lobe with Fresnel `fd` in the current closure context, multiple-scattering compensation
-// included; `comp` returns that compensation, which the caller's throughput needs too.
+// The lobe with Fresnel `fd` in the current closure context, multiple scattering included; `comp`
+// returns the compensation factor at the view angle (from the albedo table), which the caller's
+// throughput needs.
 //   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
 //                 BRDF's), F and the compensation taken at the half vector.
-//   INDIRECT      the environment by filtered importance sampling; F at the view angle.
-//   other         no light; the compensation still computed at the view angle.
+//   INDIRECT      the environment by filtered importance sampling, compensated there.
+//   other         no light.
 // N must face V; alpha is the clamped roughness pair.
 vec3 mx_specular_lobe(ClosureData closureData, vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, out vec3 comp)
 {
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    float avgAlpha = mx_average_alpha(alpha);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
-    {
-        vec3 L = closureData.L;
-        vec3 H = normalize(L + V);
-        float NdotL = clamp(dot(N, L), MX_EPS, 1.0);
-        float VdotH = clamp(dot(V, H), MX_EPS, 1.0);
-        vec3 F = mx_fresnel_eval(VdotH, fd);
-        comp = mx_ggx_energy_compensation(NdotV, avgAlpha, F);
-        float D = mx_ggx_D(H * mx_tangent_frame(N, X), alpha);
-        float G = mx_ggx_G2(NdotL, NdotV, avgAlpha);
-        return F * comp * (D * G * closureData.occlusion / (4.0 * NdotV));
-    }
-    comp = mx_ggx_energy_compensation(NdotV, avgAlpha, mx_fresnel_eval(NdotV, fd));
+    float isoAlpha = mx_ggx_isotropic_alpha(alpha);
+    comp = mx_ggx_energy_compensation(NdotV, isoAlpha, mx_fresnel_eval(NdotV, fd));
     if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-        return mx_environment_radiance(N, V, X, alpha, 0, fd) * comp;
-    return vec3(0.0);
+        return mx_environment_radiance(N, V, X, alpha, 0, fd);
+    if (closureData.closureType != CLOSURE_TYPE_REFLECTION)
+        return vec3(0.0);
+
+    mat3 frame = mx_tangent_frame(N, X);
+    vec3 Vt = V * frame;
+    vec3 Lt = closureData.L * frame;
+    Vt.z = max(Vt.z, MX_EPS);
+    if (Lt.z <= 0.0)
+        return vec3(0.0);
+    vec3 H = normalize(Lt + Vt);
+    vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
+    float DG = mx_ggx_D(H, alpha) * mx_ggx_G2(Vt, Lt, alpha);
+    return F * mx_ggx_energy_compensation(NdotV, isoAlpha, F) * (DG * closureData.occlusion / (4.0 * Vt.z));
 }
 
 // True for the contexts a scattering closure answers (emission and the default context get nothing).
