@@ -44,7 +44,7 @@ CONDUCTORS = {"zero": ((0.0,) * 3, (0.0,) * 3), "gold": ((0.18, 0.42, 1.37), (3.
               "n100": ((100.0,) * 3, (0.0,) * 3), "k100": ((0.0,) * 3, (100.0,) * 3), "nk100": ((100.0,) * 3, (100.0,) * 3)}
 
 
-@dataclass
+@dataclass(frozen=True)
 class Case:
     family: str
     name: str

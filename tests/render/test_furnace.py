@@ -15,10 +15,9 @@ FURNACE_CASES = (
     "gs_r1_white_RT", "gs_aniso_white_R", "gs_r0.5_film500_exp0",
     "on_r1_qon_c1", "on_r1_eon_c1", "burley_r1_c1", "sheen_r0_conty_kulla", "sheen_r0.5_zeltner",
     "sss_radius0", "hair_r0.5", "layer_coat_r1", "layer_sheen_r0.5",
-    "ss_m1_r1_t0_c1_ior1.5", "ss_m0_r0.5_t1_c0_ior1", "ss_film500_aniso0.8_sheen1",
-    "opbr_m0_r1_t1_c1_ior3", "opbr_film500_fuzz1",
+    "ss_m1_r1_t0_c1_ior1.5", "ss_film500_aniso0.8_sheen1", "opbr_m0_r1_t1_c1_ior3",
 )
-EDGE_WEIGHTS = ("dielectric_w10", "conductor_w-1", "sheen_w10", "standard_surface_w10")
+EDGE_WEIGHTS = ("dielectric_w10", "conductor_w-1", "sheen_w10")
 
 
 @pytest.fixture(scope="module")

@@ -14,7 +14,8 @@ void mx_conductor_bsdf(ClosureData closureData, float weight, vec3 ior_n, vec3 i
     vec3 V = retroreflective ? reflect(-closureData.V, N) : closureData.V;
     FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, max(ior_n, 0.0), max(ior_k, 0.0), vec3(0.0), vec3(0.0),
                                      vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
-    vec3 comp;
-    vec3 lobe = mx_specular_lobe(closureData, mx_facing_normal(N, V), V, X, mx_ggx_clamp_alpha(roughness), fd, comp);
+    vec3 reflected;  // opaque: no layer below needs it
+    vec3 lobe = mx_specular_lobe(closureData, mx_facing_normal(N, V), V, X, mx_ggx_clamp_alpha(roughness), fd, vec3(0.0),
+                                 reflected);
     bsdf.response = lobe * weight;
 }

@@ -20,13 +20,19 @@ void mx_dielectric_bsdf(ClosureData closureData, float weight, vec3 tint, float 
     float eta = max(ior, 0.0);
     FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(eta), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
                                      thinfilm_thickness, thinfilm_ior);
-    vec3 comp;
-    vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, comp);
-
     // What the interface reflects, multiple scattering included, does not reach the layers below.
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    vec3 reflected = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(alpha), eta) * comp;
+    float isoAlpha = mx_ggx_isotropic_alpha(alpha);
+    float tableAlbedo = mx_dielectric_albedo(NdotV, isoAlpha, eta);
+    vec3 reflected;
+    vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, vec3(tableAlbedo), reflected);
     bsdf.throughput = max(vec3(1.0) - reflected * weight, 0.0);
+    if (context == CLOSURE_TYPE_REFLECTION)  // the light crosses the interface on its way in too
+    {
+        float NdotL = dot(N, closureData.L);
+        vec3 reflectedL = mx_specular_albedo(NdotL, alpha, fd, vec3(mx_dielectric_albedo(NdotL, isoAlpha, eta)));
+        bsdf.throughput *= max(vec3(1.0) - reflectedL * weight, 0.0);
+    }
 
     vec3 tintRGB = max(tint, 0.0);
     if (!transmission)

@@ -19,13 +19,19 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, float weight, vec3 col
     vec3 F90 = max(color90, 0.0);
     FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_SCHLICK, vec3(0.0), vec3(0.0), F0, max(color82, 0.0), F90, exponent,
                                      thinfilm_thickness, thinfilm_ior);
-    vec3 comp;
-    vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, comp);
-
     // Each channel passes to the layers below what this lobe does not reflect in that channel.
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    vec3 reflected = mx_ggx_albedo(NdotV, mx_ggx_isotropic_alpha(alpha), F0, F90) * comp;
+    float isoAlpha = mx_ggx_isotropic_alpha(alpha);
+    vec3 tableAlbedo = mx_ggx_albedo(NdotV, isoAlpha, F0, F90);
+    vec3 reflected;
+    vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, tableAlbedo, reflected);
     bsdf.throughput = max(vec3(1.0) - reflected * weight, 0.0);
+    if (context == CLOSURE_TYPE_REFLECTION)  // the light crosses the interface on its way in too
+    {
+        float NdotL = dot(N, closureData.L);
+        vec3 reflectedL = mx_specular_albedo(NdotL, alpha, fd, mx_ggx_albedo(NdotL, isoAlpha, F0, F90));
+        bsdf.throughput *= max(vec3(1.0) - reflectedL * weight, 0.0);
+    }
 
     if (!transmission)
         bsdf.response = lobe * weight;

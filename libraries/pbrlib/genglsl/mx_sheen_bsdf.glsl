@@ -17,7 +17,8 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
     float r = clamp(roughness, ltc ? 0.01 : 0.0, 1.0);  // the LTC fits hold on [0.01, 1]
     float albedo = clamp(ltc ? mx_sheen_ltc_albedo(NdotV, r) : mx_sheen_albedo_renormalised(NdotV, r), 0.0, 1.0);
     vec3 tint = max(color, 0.0);
-    // What the fibres reflect (a colourless albedo, as the model's) does not reach the base.
+    // What the fibres reflect (a colourless albedo, as the model's) does not reach the base; light
+    // from a lamp crosses them on its way in too.
     bsdf.throughput = vec3(max(1.0 - albedo * weight, 0.0));
 
     if (context == CLOSURE_TYPE_REFLECTION)
@@ -26,6 +27,8 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
         float NdotL = dot(N, L);
         if (NdotL <= 0.0)
             return;
+        float albedoL = clamp(ltc ? mx_sheen_ltc_albedo(NdotL, r) : mx_sheen_albedo_renormalised(NdotL, r), 0.0, 1.0);
+        bsdf.throughput *= max(1.0 - albedoL * weight, 0.0);
         float f = ltc ? albedo * mx_sheen_ltc(L, V, N, NdotV, r)  // the LTC lobe carries the cosine
                       : mx_sheen_microfiber(NdotL, NdotV, clamp(dot(N, normalize(L + V)), 0.0, 1.0), r);
         bsdf.response = tint * (f * closureData.occlusion * weight);

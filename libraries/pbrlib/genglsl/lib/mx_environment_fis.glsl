@@ -53,8 +53,12 @@ vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
 //   environment then gives exactly 1 at any sample count or anisotropy.
 //   Refraction: each visible normal lets through 1 - F(V.H); masked light counts as transmitted,
 //   so reflection plus refraction of a clear dielectric stays within 1.
-vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd)
+// `albedo` returns what the same samples give in a white environment: the fraction of the light
+// the lobe reflects (or lets through), consistent with the radiance to the last sample, which is
+// what a layer below must not receive again.
+vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
+    albedo = vec3(0.0);
     int sampleCount = u_envRadianceSamples;
     if (sampleCount <= 0)
         return vec3(0.0);
@@ -73,24 +77,22 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
         float lod = mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
         vec3 Li = mx_envmap_fetch(u_envRadiance, Lw, lod);
         vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
-        if (fd.refraction)
-        {
-            carried += Li * (vec3(1.0) - F);
-        }
-        else
-        {
-            float weight = mx_ggx_sample_weight(Vt, Lt, alpha);
-            carried += Li * F * weight;
-            whiteAlbedo += weight;
-        }
+        float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
+        vec3 throughput = fd.refraction ? vec3(1.0) - F : F * weight;
+        carried += Li * throughput;
+        albedo += throughput;
+        whiteAlbedo += weight;
     }
-    carried /= float(sampleCount);
+    float scale = 1.0 / float(sampleCount);
     if (!fd.refraction)
     {
-        float E = whiteAlbedo / float(sampleCount);
-        carried *= vec3(1.0) + mx_fresnel_eval(Vt.z, fd) * ((1.0 - E) / max(E, MX_EPS));
+        float E = whiteAlbedo * scale;
+        vec3 compensation = vec3(1.0) + mx_fresnel_eval(Vt.z, fd) * ((1.0 - E) / max(E, MX_EPS));
+        carried *= compensation;
+        albedo *= compensation;
     }
-    return carried * u_envLightIntensity;
+    albedo *= scale;
+    return carried * (scale * u_envLightIntensity);
 }
 
 // Irradiance / pi arriving at a point with normal N: what a white Lambert surface reflects.

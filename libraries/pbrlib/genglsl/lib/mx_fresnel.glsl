@@ -152,78 +152,85 @@ vec3 mx_f0_to_ior(vec3 F0)
     return (vec3(1.0) + r) / (vec3(1.0) - r);
 }
 
-// --- Thin film (Airy) ------------------------------------------------------------------------
+// --- Thin film (Belcour & Barla 2017) --------------------------------------------------------
+// A film of index n2 and thickness d over the base: light reflected at the top interface (R12) and
+// light that crossed the film once or more (an Airy series) interfere with an optical path
+// difference opd = 2 n2 d cos(theta2) per round trip. Belcour & Barla integrate each harmonic m of
+// the series against the CIE colour matching functions in closed form, approximating their
+// Fourier transforms by Gaussians; the amplitudes, centres and variances below are the paper's
+// published fits (x has a second, small Gaussian), normalised by the integral of y.
 
-// Spectral sensitivity of the XYZ matching functions to an optical path difference `opd` (metres)
-// with phase `shift`: the Fourier-domain Gaussian fits of Belcour & Barla 2017.
-vec3 mx_airy_sensitivity(float opd, vec3 shift)
+// Colour matching (XYZ) of one harmonic cos(2 pi opd k + phase) over the visible wavenumbers k.
+vec3 mx_thinfilm_harmonic_xyz(float opd, vec3 phase)
 {
-    float phase = 2.0 * MX_PI * opd;
-    const vec3 VAL = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
-    const vec3 POS = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
-    const vec3 VAR = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
-    vec3 xyz = VAL * sqrt(2.0 * MX_PI * VAR) * cos(POS * phase + shift) * exp(-VAR * phase * phase);
-    xyz.x += 9.7470e-14 * sqrt(2.0 * MX_PI * 4.5282e+09) * cos(2.2399e+06 * phase + shift.x) *
-             exp(-4.5282e+09 * phase * phase);
-    return xyz / 1.0685e-7;
+    const vec3 AMPLITUDE = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
+    const vec3 CENTRE = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
+    const vec3 VARIANCE = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
+    const float X2_AMPLITUDE = 9.7470e-14;
+    const float X2_CENTRE = 2.2399e+06;
+    const float X2_VARIANCE = 4.5282e+09;
+    const float Y_INTEGRAL = 1.0685e-7;
+    float w = 2.0 * MX_PI * opd;
+    vec3 xyz = AMPLITUDE * sqrt(2.0 * MX_PI * VARIANCE) * cos(CENTRE * w + phase) * exp(-VARIANCE * w * w);
+    xyz.x += X2_AMPLITUDE * sqrt(2.0 * MX_PI * X2_VARIANCE) * cos(X2_CENTRE * w + phase.x) * exp(-X2_VARIANCE * w * w);
+    return xyz / Y_INTEGRAL;
 }
 
-// One polarisation of the Airy sum: DC term plus AIRY_FRESNEL_ITERATIONS spectral harmonics.
-vec3 mx_airy_polarisation(float R12, vec3 R23, vec3 phi, float opd)
+// Reflectance (XYZ) of one polarisation: R12 + T121^2 R23 / (1 - R12 R23) for the incoherent sum,
+// plus the interfering harmonics m = 1, 2, ... with amplitudes (Rdc - T121) r^m, r = sqrt(R12 R23),
+// and phase m (phi21 + phi23) (Belcour & Barla 2017, eqs. 9-11).
+vec3 mx_thinfilm_polarisation(float R12, vec3 R23, vec3 phase, float opd)
 {
     float T121 = 1.0 - R12;
-    vec3 r123 = max(sqrt(R12 * R23), 0.0);
-    vec3 Rdc = (T121 * T121 * R23) / (vec3(1.0) - R12 * R23);
-    vec3 total = R12 + Rdc;
-    vec3 Cm = Rdc - T121;
+    vec3 Rdc = T121 * T121 * R23 / max(vec3(1.0) - R12 * R23, MX_EPS);
+    vec3 r = sqrt(max(R12 * R23, 0.0));
+    vec3 amplitude = Rdc - vec3(T121);
+    vec3 xyz = vec3(R12) + Rdc;
     for (int m = 1; m <= AIRY_FRESNEL_ITERATIONS; m++)
     {
-        Cm *= r123;
-        total += Cm * 2.0 * mx_airy_sensitivity(float(m) * opd, float(m) * phi);
+        amplitude *= r;
+        xyz += 2.0 * amplitude * mx_thinfilm_harmonic_xyz(float(m) * opd, float(m) * phase);
     }
-    return total;
+    return xyz;
 }
 
-// Reflectance of a thin film (thickness fd.tf_thickness nm, index fd.tf_ior) in vacuum over the
-// base described by `fd` (dielectric, conductor, or generalised Schlick read as a dielectric).
+// Reflectance of the film (fd.tf_thickness nm, index fd.tf_ior) in vacuum over the base `fd`:
+// a dielectric, a conductor, or generalised Schlick read as the dielectric of the same F0.
 vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 {
-    // CIE XYZ to CIE RGB (illuminant E), columns.
+    // CIE XYZ to linear RGB with an equal-energy white (columns).
     const mat3 XYZ_TO_RGB = mat3(2.3706743, -0.5138850, 0.0052982,
                                  -0.9000405, 1.4253036, -0.0146949,
                                  -0.4706338, 0.0885814, 1.0093968);
     bool schlick = fd.model == FRESNEL_MODEL_SCHLICK;
-    float eta1 = 1.0;
-    float eta2 = max(fd.tf_ior, eta1);
-    vec3 eta3 = schlick ? mx_f0_to_ior(fd.F0) : fd.ior;
-    vec3 kappa3 = schlick ? vec3(0.0) : fd.extinction;
-    float cosThetaT = sqrt(1.0 - (1.0 - cosTheta * cosTheta) * mx_sqr(eta1 / eta2));
+    float n2 = max(fd.tf_ior, 1.0);
+    vec3 n3 = schlick ? mx_f0_to_ior(fd.F0) : max(fd.ior, vec3(MX_EPS));
+    vec3 k3 = schlick ? vec3(0.0) : fd.extinction;
+    float c1 = clamp(cosTheta, 0.0, 1.0);
+    float c2 = sqrt(max(1.0 - (1.0 - c1 * c1) / (n2 * n2), 0.0));  // Snell into the film
 
-    // Outer interface (vacuum / film).
-    vec2 R12 = (cosThetaT <= 0.0) ? vec2(1.0) : mx_fresnel_dielectric_pol(cosTheta, eta2 / eta1);
+    // Top interface, (parallel, perpendicular); reflection from inside the film has phase pi,
+    // except for parallel polarisation below Brewster's angle.
+    vec2 R12 = mx_fresnel_dielectric_pol(c1, n2);
+    vec2 phi21 = vec2((c1 < 1.0 / sqrt(1.0 + n2 * n2)) ? 0.0 : MX_PI, MX_PI);
 
-    // Inner interface (film / base) and its phase shifts.
+    // Bottom interface, film to base, with its phase shifts.
     vec3 R23p, R23s, phi23p, phi23s;
     if (schlick)
     {
-        vec3 f = mx_fresnel_f82(cosThetaT, fd);
-        R23p = 0.5 * f;
-        R23s = R23p;
-        phi23p = vec3(eta3.x < eta2 ? MX_PI : 0.0, eta3.y < eta2 ? MX_PI : 0.0, eta3.z < eta2 ? MX_PI : 0.0);
-        phi23s = phi23p;
+        R23p = R23s = mx_fresnel_f82(c2, fd);  // unpolarised: the same for both
+        phi23p = phi23s = mix(vec3(0.0), vec3(MX_PI), lessThan(n3, vec3(n2)));
     }
     else
     {
-        mx_fresnel_conductor_pol(cosThetaT, eta3 / eta2, kappa3 / eta2, R23p, R23s);
-        mx_fresnel_conductor_phase(cosThetaT, eta2, eta3, kappa3, phi23p, phi23s);
+        mx_fresnel_conductor_pol(c2, n3 / n2, k3 / n2, R23p, R23s);
+        mx_fresnel_conductor_phase(c2, n2, n3, k3, phi23p, phi23s);
     }
-    float cosBrewster = cos(atan(eta2 / eta1));
-    vec2 phi21 = vec2(cosTheta < cosBrewster ? 0.0 : MX_PI, MX_PI);
 
-    float opd = 2.0 * eta2 * cosThetaT * (fd.tf_thickness * 1.0e-9);
-    vec3 I = mx_airy_polarisation(R12.x, R23p, phi23p + vec3(phi21.x), opd) +
-             mx_airy_polarisation(R12.y, R23s, phi23s + vec3(phi21.y), opd);
-    return clamp(XYZ_TO_RGB * (0.5 * I), 0.0, 1.0);
+    float opd = 2.0 * n2 * c2 * fd.tf_thickness * 1.0e-9;
+    vec3 xyz = mx_thinfilm_polarisation(R12.x, R23p, phi23p + phi21.x, opd) +
+               mx_thinfilm_polarisation(R12.y, R23s, phi23s + phi21.y, opd);
+    return clamp(XYZ_TO_RGB * (0.5 * xyz), 0.0, 1.0);
 }
 
 // --- Dispatch --------------------------------------------------------------------------------

@@ -3,21 +3,31 @@
 #include "mx_closure_type.glsl"
 #include "mx_transmission_refract.glsl"
 
-// The lobe with Fresnel `fd` in the current closure context, multiple scattering included; `comp`
-// returns the compensation factor at the view angle (from the albedo table), which the caller's
-// throughput needs.
+// The fraction of light arriving with `cosine` that the lobe reflects, multiple scattering
+// included, from its single-scattering albedo there (the caller's table value).
+vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleScatteringAlbedo)
+{
+    float c = clamp(cosine, MX_EPS, 1.0);
+    return singleScatteringAlbedo * mx_ggx_energy_compensation(c, mx_ggx_isotropic_alpha(alpha), mx_fresnel_eval(c, fd));
+}
+
+// The lobe with Fresnel `fd` in the current closure context, multiple scattering included.
+// `albedo` returns the fraction of light the lobe reflects at this view, which a layer below does
+// not receive: in INDIRECT the sampled value that matches the radiance, elsewhere
+// `singleScatteringAlbedo` (the caller's table value) with the compensation at the view angle.
 //   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
 //                 BRDF's), F and the compensation taken at the half vector.
 //   INDIRECT      the environment by filtered importance sampling, compensated there.
 //   other         no light.
 // N must face V; alpha is the clamped roughness pair.
-vec3 mx_specular_lobe(ClosureData closureData, vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, out vec3 comp)
+vec3 mx_specular_lobe(ClosureData closureData, vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd,
+                      vec3 singleScatteringAlbedo, out vec3 albedo)
 {
-    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    float isoAlpha = mx_ggx_isotropic_alpha(alpha);
-    comp = mx_ggx_energy_compensation(NdotV, isoAlpha, mx_fresnel_eval(NdotV, fd));
     if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-        return mx_environment_radiance(N, V, X, alpha, 0, fd);
+        return mx_environment_radiance(N, V, X, alpha, 0, fd, albedo);
+
+    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
+    albedo = mx_specular_albedo(NdotV, alpha, fd, singleScatteringAlbedo);
     if (closureData.closureType != CLOSURE_TYPE_REFLECTION)
         return vec3(0.0);
 
@@ -30,7 +40,7 @@ vec3 mx_specular_lobe(ClosureData closureData, vec3 N, vec3 V, vec3 X, vec2 alph
     vec3 H = normalize(Lt + Vt);
     vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
     float DG = mx_ggx_D(H, alpha) * mx_ggx_G2(Vt, Lt, alpha);
-    return F * mx_ggx_energy_compensation(NdotV, isoAlpha, F) * (DG * closureData.occlusion / (4.0 * Vt.z));
+    return F * mx_ggx_energy_compensation(NdotV, mx_ggx_isotropic_alpha(alpha), F) * (DG * closureData.occlusion / (4.0 * Vt.z));
 }
 
 // True for the contexts a scattering closure answers (emission and the default context get nothing).

@@ -7,5 +7,6 @@ vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     fd.refraction = true;
     // A two-sided interface filters the light twice.
     vec3 through = u_refractionTwoSided ? tint * tint : tint;
-    return mx_environment_radiance(N, V, X, alpha, distribution, fd) * through;
+    vec3 transmitted;
+    return mx_environment_radiance(N, V, X, alpha, distribution, fd, transmitted) * through;
 }
