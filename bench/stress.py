@@ -174,30 +174,33 @@ def layer_cases() -> list[Case]:
     return out
 
 
+# Each shading model's names for the same physical parameters.
+SHADING_MODELS = {
+    "standard_surface": ("ss", {"base": "base", "colour": "base_color", "metal": "metalness", "rough": "specular_roughness",
+                                "transmission": "transmission", "coat": "coat", "ior": "specular_IOR"}),
+    "open_pbr_surface": ("opbr", {"base": "base_weight", "colour": "base_color", "metal": "base_metalness",
+                                  "rough": "specular_roughness", "transmission": "transmission_weight",
+                                  "coat": "coat_weight", "ior": "specular_ior"}),
+}
+
+
 def shading_model_cases() -> list[Case]:
     out = []
-    for metal, rough, transmission, coat, ior in itertools.product((0.0, 1.0), (0.0, 0.5, 1.0), (0.0, 1.0), (0.0, 1.0),
-                                                                  (1.0, 1.5, 3.0)):
-        name = f"ss_m{metal:g}_r{rough:g}_t{transmission:g}_c{coat:g}_ior{ior:g}"
-        out.append(shader_case("standard_surface", name, "standard_surface", {
-            "base": 1.0, "base_color": (1.0,) * 3, "metalness": metal, "specular_roughness": rough,
-            "transmission": transmission, "coat": coat, "specular_IOR": ior}))
+    for model, (prefix, names) in SHADING_MODELS.items():
+        for metal, rough, transmission, coat, ior in itertools.product((0.0, 1.0), (0.0, 0.5, 1.0), (0.0, 1.0),
+                                                                      (0.0, 1.0), (1.0, 1.5, 3.0)):
+            values = {"base": 1.0, "colour": (1.0,) * 3, "metal": metal, "rough": rough, "transmission": transmission,
+                      "coat": coat, "ior": ior}
+            name = f"{prefix}_m{metal:g}_r{rough:g}_t{transmission:g}_c{coat:g}_ior{ior:g}"
+            out.append(shader_case(model, name, model, {names[k]: v for k, v in values.items()}))
     for film, aniso, sheen in itertools.product((0.0, 500.0), (0.0, 0.8), (0.0, 1.0)):
-        name = f"ss_film{film:g}_aniso{aniso:g}_sheen{sheen:g}"
-        out.append(shader_case("standard_surface", name, "standard_surface", {
+        out.append(shader_case("standard_surface", f"ss_film{film:g}_aniso{aniso:g}_sheen{sheen:g}", "standard_surface", {
             "base": 1.0, "base_color": (1.0,) * 3, "specular_roughness": 0.3, "thin_film_thickness": film,
             "specular_anisotropy": aniso, "sheen": sheen}))
     out += weight_cases("standard_surface", lambda f, n, i, p: shader_case(f, n, "standard_surface",
                         {("base" if k == "weight" else k): v for k, v in i.items()}, p), {"base_color": (1.0,) * 3})
-    for metal, rough, transmission, coat, ior in itertools.product((0.0, 1.0), (0.0, 0.5, 1.0), (0.0, 1.0), (0.0, 1.0),
-                                                                  (1.0, 1.5, 3.0)):
-        name = f"opbr_m{metal:g}_r{rough:g}_t{transmission:g}_c{coat:g}_ior{ior:g}"
-        out.append(shader_case("open_pbr_surface", name, "open_pbr_surface", {
-            "base_weight": 1.0, "base_color": (1.0,) * 3, "base_metalness": metal, "specular_roughness": rough,
-            "transmission_weight": transmission, "coat_weight": coat, "specular_ior": ior}))
     for film, fuzz in itertools.product((0.0, 500.0), (0.0, 1.0)):
-        name = f"opbr_film{film:g}_fuzz{fuzz:g}"
-        out.append(shader_case("open_pbr_surface", name, "open_pbr_surface", {
+        out.append(shader_case("open_pbr_surface", f"opbr_film{film:g}_fuzz{fuzz:g}", "open_pbr_surface", {
             "base_weight": 1.0, "base_color": (1.0,) * 3, "thin_film_weight": 1.0 if film else 0.0,
             "thin_film_thickness": film / 1000.0, "fuzz_weight": fuzz}))
     return out
