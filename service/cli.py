@@ -13,7 +13,7 @@ from .http_protocol import BoundedHttpToolsProtocol
 
 def add_arguments(parser) -> None:
     parser.add_argument("--host", default="127.0.0.1", help="address to listen on (default: loopback only)")
-    parser.add_argument("--port", type=int, default=8000)
+    parser.add_argument("--port", type=int, default=8000, help="TCP port to listen on")
     parser.add_argument("--workers", type=int, default=2, metavar="N", help="API worker processes")
     parser.add_argument("--render-workers", type=int, default=None, metavar="N",
                         help="render processes of the local pool (default: SHADERGEN_RENDER_WORKERS or 1)")

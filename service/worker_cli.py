@@ -8,7 +8,7 @@ from .config import get_settings
 def add_arguments(parser) -> None:
     parser.add_argument("--concurrency", type=int, default=None, metavar="N",
                         help="render processes (default: SHADERGEN_RENDER_WORKERS or 1)")
-    parser.add_argument("--loglevel", default="info")
+    parser.add_argument("--loglevel", default="info", help="Celery log level: debug, info, warning or error")
 
 
 def run(args) -> int:

@@ -82,3 +82,15 @@ def test_help_gives_defaults_and_examples():
     p = run("generate", "--help")
     assert p.returncode == 0 and "(default: glsl)" in p.stdout and "(default: complete)" in p.stdout
     assert "examples:" in p.stdout and "shadergen generate -" in p.stdout
+
+
+@pytest.mark.parametrize("command", ["generate", "render", "serve", "worker"])
+def test_every_option_of_every_command_is_explained(command):
+    import argparse
+    import importlib
+
+    from shadergen.cli import SUBCOMMANDS
+    parser = argparse.ArgumentParser()
+    importlib.import_module(SUBCOMMANDS[command][0]).add_arguments(parser)
+    unexplained = [a.dest for a in parser._actions if not a.help]
+    assert not unexplained, f"{command}: {unexplained} have no help"
