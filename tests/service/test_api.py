@@ -184,6 +184,32 @@ def test_bad_bodies(client, body, headers, status, code):
     assert_error(client.post("/v1/generate", content=body, headers=headers), status, code)
 
 
+MX = '<?xml version="1.0"?><materialx version="1.39">{}</materialx>'
+SELF_INHERITING = ('<nodedef name="ND_a" node="a" inherit="ND_a"><output name="out" type="float"/></nodedef>'
+                   '<a name="n" type="float"/><output name="o" type="float" nodename="n"/>')
+SELF_INSTANTIATING = ('<nodedef name="ND_t" node="t"><input name="in" type="float" value="1"/>'
+                      '<output name="out" type="float"/></nodedef><nodegraph name="NG_t" nodedef="ND_t">'
+                      '<t name="again" type="float"><input name="in" type="float" interfacename="in"/></t>'
+                      '<output name="out" type="float" nodename="again"/></nodegraph>'
+                      '<t name="n" type="float"/><output name="o" type="float" nodename="n"/>')
+HUGE_INTEGER = ('<switch name="s" type="float"><input name="which" type="integer" value="1' + "0" * 400 + '"/>'
+                '</switch><output name="o" type="float" nodename="s"/>')
+COLOR_INTO_FLOAT = ('<constant name="c" type="color3"><input name="value" type="color3" value="1,0,0"/></constant>'
+                    '<add name="a" type="float"><input name="in1" type="float" nodename="c"/></add>'
+                    '<output name="o" type="float" nodename="a"/>')
+
+
+@pytest.mark.parametrize("body, code, where", [
+    (SELF_INHERITING, "cycle", "ND_a"),
+    (SELF_INSTANTIATING, "cycle", "NG_t"),
+    (HUGE_INTEGER, "invalid_value", "s/which"),
+    (COLOR_INTO_FLOAT, "type_mismatch", "a/in1"),
+])
+def test_cheap_documents_that_cannot_generate_are_refused(client, body, code, where):
+    error = assert_error(client.post("/v1/generate", content=MX.format(body), headers=XML), 422, code)
+    assert error["where"] == where
+
+
 def test_json_document_naming_a_server_file_is_not_read(client):
     assert_error(generate(client, "/etc/passwd"), 400, "invalid_document")
 
