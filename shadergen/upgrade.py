@@ -201,8 +201,17 @@ def _atan2(node: Element) -> bool:
 
 # -- before 1.39 -------------------------------------------------------------------------------
 
+def _unique_name(graph: Element, base: str) -> str:
+    name, n = base, 1
+    while graph.child(name) is not None:
+        n += 1
+        name = f"{base}{n}"
+    return name
+
+
 def _normalmap(node: Element) -> bool:
-    """1.39 removed normalmap's `space` input and the generic ND_normalmap."""
+    """1.39 removed normalmap's `space` input and the generic ND_normalmap. An object-space map
+    holds the normal itself, encoded in [0, 1]: it becomes normalize(in * 2 - 1)."""
     if node.category != "normalmap":
         return False
     changed = False
@@ -213,13 +222,37 @@ def _normalmap(node: Element) -> bool:
     if space is not None:
         node.remove_child(space)
         changed = True
+        if space.get("value") == "object":
+            _decode_object_space_normal(node)
     return changed
 
 
+def _decode_object_space_normal(node: Element) -> None:
+    graph, source = node.parent, node.child("in")
+    scaled = Element("multiply", {"name": _unique_name(graph, "multiply"), "type": "vector3"})
+    if source is not None:
+        scaled.add_child(Element("input", {k: v for k, v in source.attrs.items()} | {"name": "in1"}))
+    scaled.add_child(Element("input", {"name": "in2", "type": "float", "value": "2.0"}))
+    graph.add_child(scaled, graph.children.index(node))
+    shifted = Element("subtract", {"name": _unique_name(graph, "subtract"), "type": "vector3"})
+    shifted.add_child(Element("input", {"name": "in1", "type": "vector3", "nodename": scaled.name}))
+    shifted.add_child(Element("input", {"name": "in2", "type": "float", "value": "1.0"}))
+    graph.add_child(shifted, graph.children.index(node))
+    for child in list(node.children):
+        node.remove_child(child)
+    node.category = "normalize"
+    node.add_child(Element("input", {"name": "in", "type": "vector3", "nodename": shifted.name}))
+
+
+CHANNEL_OUTPUTS = {"color": ("outr", "outg", "outb", "outa"), "vector": ("outx", "outy", "outz", "outw")}
+CONNECTION_ATTRIBUTES = ("nodename", "nodegraph", "interfacename", "output")
+
+
 def _swizzle(node: Element) -> bool:
-    """1.39 removed `swizzle`: one channel becomes `extract`, several become a `combineN` of extracts
-    (constants for the 0/1 channel letters). A float source has no channels to extract: it is
-    read as it is (a `dot`, or every input of the combine)."""
+    """1.39 removed `swizzle`. A swizzled value is a `constant` of the reordered value; one channel
+    of a connection is an `extract`; several are a `combineN` of one `separateN` of the source
+    (the 0/1 letters as values). A float source has no channels: it is read as it is (a `dot`, or
+    every input of the combine)."""
     if node.category != "swizzle":
         return False
     channels_input = node.child("channels")
@@ -228,38 +261,51 @@ def _swizzle(node: Element) -> bool:
     node.attrs.pop("nodedef", None)
     if channels_input is not None:
         node.remove_child(channels_input)
-    scalar = source is not None and source.get("type") == "float"
-    if len(channels) <= 1 and scalar:
-        node.category = "dot"
-        return True
-    if len(channels) <= 1:
-        node.category = "extract"
-        node.add_child(Element("input", {"name": "index", "type": "integer",
-                                         "value": str(SWIZZLE_TYPES.get(channels or "r", 0))}))
-        if source is not None:
-            source.attrs.pop("nodedef", None)
-        return True
-    parent = node.parent
-    node.category = f"combine{len(channels)}"
     if source is not None:
-        node.remove_child(source)
         source.attrs.pop("nodedef", None)
+    if source is None or not any(source.get(k) for k in CONNECTION_ATTRIBUTES):
+        _swizzled_constant(node, source, channels)
+        return True
+    source_type = source.get("type", "float")
+    if len(channels) <= 1:
+        if source_type == "float":
+            node.category = "dot"
+        else:
+            node.category = "extract"
+            node.add_child(Element("input", {"name": "index", "type": "integer",
+                                             "value": str(SWIZZLE_TYPES.get(channels or "r", 0))}))
+        return True
+    graph = node.parent
+    node.category = f"combine{len(channels)}"
+    node.remove_child(source)
+    separate = None
+    if source_type != "float":
+        size = int(source_type[-1])
+        separate = Element(f"separate{size}", {"name": _unique_name(graph, f"{node.name}_separate"),
+                                               "type": "multioutput"})
+        separate.add_child(Element("input", {k: v for k, v in source.attrs.items()} | {"name": "in"}))
+        graph.add_child(separate, graph.children.index(node))
+    outputs = CHANNEL_OUTPUTS["color" if source_type.startswith("color") else "vector"]
     for i, ch in enumerate(channels):
         inp = Element("input", {"name": f"in{i + 1}", "type": "float"})
         if ch in "01":
             inp.attrs["value"] = ch + ".0"
-        elif scalar:
+        elif separate is None:
             inp.attrs |= {k: v for k, v in source.attrs.items() if k not in ("name", "type")}
-        elif source is not None:
-            extract = Element("extract", {"name": f"{node.name}_{ch}{i}", "type": "float"})
-            moved = Element("input", {k: v for k, v in source.attrs.items() if k != "name"} | {"name": "in"})
-            extract.add_child(moved)
-            extract.add_child(Element("input", {"name": "index", "type": "integer",
-                                                "value": str(SWIZZLE_TYPES.get(ch, 0))}))
-            parent.add_child(extract, parent.children.index(node))
-            inp.attrs["nodename"] = extract.name
+        else:
+            inp.attrs |= {"nodename": separate.name, "output": outputs[SWIZZLE_TYPES.get(ch, 0)]}
         node.add_child(inp)
     return True
+
+
+def _swizzled_constant(node: Element, source: Element | None, channels: str) -> None:
+    parts = (source.get("value", "") if source is not None else "").replace(",", " ").split() or ["0"]
+    picked = [ch + ".0" if ch in "01" else parts[min(SWIZZLE_TYPES.get(ch, 0), len(parts) - 1)]
+              for ch in channels or "r"]
+    for child in list(node.children):
+        node.remove_child(child)
+    node.category = "constant"
+    node.add_child(Element("input", {"name": "value", "type": node.get("type", "float"), "value": ", ".join(picked)}))
 
 
 # (the version a step upgrades to, its rules), in order

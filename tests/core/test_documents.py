@@ -51,10 +51,40 @@ def test_udim_token_in_attribute_is_accepted():
 
 
 def test_upgrade_from_1_38_renames_swizzle():
-    d = parse_document(doc('<swizzle name="s" type="float"><input name="in" type="color3" value="1,2,3"/>'
+    d = parse_document(doc('<constant name="c" type="color3"><input name="value" type="color3" value="1,2,3"/></constant>'
+                           '<swizzle name="s" type="float"><input name="in" type="color3" nodename="c"/>'
                            '<input name="channels" type="string" value="g"/></swizzle>', version="1.38"))
     s = d.root.child("s")
     assert s.category == "extract" and s.child("index").get("value") == "1"
+
+
+def test_upgrade_from_1_38_swizzles_a_value_into_a_constant():
+    d = parse_document(doc('<swizzle name="s" type="color4"><input name="in" type="color3" value="0.4, 0.5, 0.6"/>'
+                           '<input name="channels" type="string" value="bgr1"/></swizzle>', version="1.38"))
+    s = d.root.child("s")
+    assert s.category == "constant" and s.child("value").get("value") == "0.6, 0.5, 0.4, 1.0"
+
+
+def test_upgrade_from_1_38_reads_several_channels_through_one_separate(gen):
+    text = doc('<constant name="c" type="color3"><input name="value" type="color3" value="0.1, 0.2, 0.3"/></constant>'
+               '<swizzle name="s" type="color4"><input name="in" type="color3" nodename="c"/>'
+               '<input name="channels" type="string" value="bgr1"/></swizzle>'
+               '<output name="o" type="color4" nodename="s"/>', version="1.38")
+    d = parse_document(text)
+    assert d.root.child("s").category == "combine4" and d.root.child("s_separate").category == "separate3"
+    assert [i.get("output") or i.get("value") for i in d.root.child("s").children] == ["outb", "outg", "outr", "1.0"]
+    public = {v["path"] for v in gen.prepare(text).emit()["blocks"]["pixel"]["PublicUniforms"]}
+    assert "s/in4" in public and not any("index" in p for p in public)
+
+
+def test_upgrade_from_1_38_decodes_object_space_normal_maps():
+    d = parse_document(doc('<normalmap name="n" type="vector3" nodedef="ND_normalmap">'
+                           '<input name="in" type="vector3" value="0.5, 0.5, 1"/>'
+                           '<input name="space" type="string" value="object"/></normalmap>', version="1.38"))
+    n, scaled, shifted = d.root.child("n"), d.root.child("multiply"), d.root.child("subtract")
+    assert n.category == "normalize" and n.child("in").get("nodename") == "subtract"
+    assert scaled.child("in1").get("value") == "0.5, 0.5, 1" and scaled.child("in2").get("value") == "2.0"
+    assert shifted.child("in1").get("nodename") == "multiply" and shifted.child("in2").get("value") == "1.0"
 
 
 def test_fileprefix_of_an_included_document_applies_to_its_elements(tmp_path, gen):
