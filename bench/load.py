@@ -228,7 +228,7 @@ async def run(args) -> list[Result]:
         results.append(await scenario(name, host, port, requests, clients, args.seconds))
         await asyncio.sleep(0.5)
     # documents no scenario above has sent: each of the four runs below gets its own quarter
-    spare = [gen(ramp(0.25 + (tag % 10**9) * 1e-12 + i * 1e-6)) for i in range(4 * len(unique) // 5)]
+    spare = [gen(ramp(0.25 + (tag % 10**9) * 1e-12 + i * 1e-7)) for i in range(4 * len(unique))]
     return results + await beside_bad_clients(host, port, args.clients, args.seconds, spare, bad_documents(hostport))
 
 

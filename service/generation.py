@@ -14,7 +14,7 @@ import json
 from dataclasses import dataclass
 
 from .cache import CacheUnavailable, GuardedStore
-from .cache.entries import is_graph_hash, is_record
+from .cache.entries import is_graph_hash, is_record, refusal
 from .errors import ServiceError
 from .metrics import CACHE, GENERATE_SECONDS
 from .safety import check_document
@@ -69,7 +69,10 @@ class GenerationService:
         """The record as JSON bytes; raises ServiceError (a 4xx for anything the client sent)."""
         document = checked(raw_document, params)
         digest = request_digest(self.library_hash, params, document)
-        record = await self._cached(digest) or await self._generate(document, params, digest)
+        record = await self._cached(digest)
+        if record is None:
+            await self._refused_before(digest, params)
+            record = await self._generate(document, params, digest)
         return record if params.source else without_source(record)
 
     async def cached(self, raw_document: bytes, params: GenerateParams) -> bytes | None:
@@ -96,14 +99,22 @@ class GenerationService:
         RECORD_HITS.inc()
         return record
 
+    async def _refused_before(self, digest: str, params: GenerateParams) -> None:
+        """Raise the generator's refusal of a byte-identical request, if it refused one before:
+        a client that repeats an expensive bad document costs a lookup, not a generation."""
+        error = refusal(await self.store.aget("err:" + digest))
+        if error is not None:
+            CACHE.labels("refusal", "hit").inc()
+            raise ServiceError.from_generator(error, element=params.element, target=params.target)
+
     async def _generate(self, document: bytes, params: GenerateParams, digest: str) -> bytes:
-        xml = params.document_format == "mtlx"
-        request = {"op": "generate", "document": document.decode() if xml else None,
-                   "format": params.document_format, "target": params.target,
+        # the document travels as the frame's payload: bytes as they are (binary for usdz), and no
+        # JSON escaping of a large XML text on either side
+        request = {"op": "generate", "format": params.document_format, "target": params.target,
                    "element": params.element, "interface": params.interface, "digest": digest}
         context = {"element": params.element, "target": params.target}
         try:
-            reply, record = await self.pool.run(request, b"" if xml else document)  # binary USD as the payload
+            reply, record = await self.pool.run(request, document)
         except QueueFull as exc:
             raise ServiceError("queue_full", f"generation queue full: {exc}", **context,
                                headers={"Retry-After": str(self.retry_after_s)}) from None

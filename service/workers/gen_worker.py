@@ -37,9 +37,9 @@ class GenerateHandler:
     def generate(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
         started = time.perf_counter()
         document_format = message.get("format", "mtlx")
-        # bytes, never str: the generator reads a str that does not start with "<" as a file path;
-        # a USD upload (binary for usdz) comes as the payload
-        document = message["document"].encode() if document_format == "mtlx" else payload
+        # the document is the payload: bytes, never str (the generator reads a str that does not
+        # start with "<" as a file path), binary for usdz
+        document = payload
         try:
             prepared = self.generator.prepare(
                 document, target=message["target"], element=message["element"], interface=message["interface"],
@@ -55,6 +55,10 @@ class GenerateHandler:
             else:
                 body, cached = stored, True
         except ShaderGenError as exc:
+            if message.get("digest"):
+                # the same request is refused from the store next time (service/generation.py): a
+                # refusal depends on nothing but what the digest covers
+                self.store.put("err:" + message["digest"], _dumps(exc.to_dict()))
             return {"error": exc.to_dict()}, b""
         if message.get("digest"):
             # identical requests later skip even `prepare` (see service/generation.py)

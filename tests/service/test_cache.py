@@ -159,3 +159,15 @@ def test_file_truncated_to_zero_under_open_connections_heals(tmp_path):
     store.put("fresh", b"x")
     assert store.get("fresh") == b"x" and other.get("fresh") == b"x"
     assert asyncio.run(other.aread("fresh")) == b"x"
+
+
+def test_entries_that_are_not_what_their_key_promises_are_misses():
+    from service.cache.entries import is_graph_hash, is_png, is_record, refusal
+
+    garbage = b"not json {{{"
+    assert not is_graph_hash(garbage) and is_graph_hash(b"0123abcd" * 8)
+    assert not is_record(garbage, "ab12" * 16) and not is_record(b'{"hash":"other"}', "ab12" * 16)
+    assert is_record(b'{"element":"x","hash":"' + b"ab12" * 16 + b'"}', "ab12" * 16)
+    assert refusal(garbage) is None and refusal(b'{"code": 1}') is None and refusal(b"[1]") is None
+    assert refusal(b'{"code":"cycle","message":"m","where":null}') == {"code": "cycle", "message": "m", "where": None}
+    assert not is_png(garbage) and is_png(b"\x89PNG\r\n\x1a\n...")

@@ -147,3 +147,22 @@ def test_client_that_disconnects_mid_body_is_one_log_line_and_counted_as_such(st
     log = strict_server.log_text()
     assert log.count("disconnected while sending the body") == 3
     assert "Traceback" not in log
+
+
+def _refusal_hits(client) -> float:
+    series = 'shadergen_cache_total{kind="refusal",result="hit"}'
+    line = next((line for line in client.get("/metrics").text.splitlines() if line.startswith(series)), None)
+    return float(line.rsplit(" ", 1)[1]) if line else 0.0
+
+
+def test_a_repeated_bad_document_is_refused_from_the_store(client):
+    """A client repeating an expensive bad document costs a lookup, not a generation each time."""
+    doc = ('<?xml version="1.0"?><materialx version="1.39"><nodedef name="ND_r" node="r" inherit="ND_r">'
+           f'<output name="out" type="float"/></nodedef><r name="n" type="float"/>'
+           f'<output name="o{time.time_ns()}" type="float" nodename="n"/></materialx>')
+    first = client.post("/v1/generate", content=doc, headers=XML)
+    before = _refusal_hits(client)
+    again = [client.post("/v1/generate", content=doc, headers=XML) for _ in range(3)]
+    assert first.status_code == 422 and first.json()["error"]["code"] == "cycle", first.text
+    assert all(r.status_code == 422 and r.json() == first.json() for r in again)
+    assert _refusal_hits(client) - before == 3
