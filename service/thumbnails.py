@@ -1,8 +1,11 @@
 """Thumbnails: a record from the generation service (and its cache), then a render job on the
-configured back end. PNGs are cached too, under a digest of the graph hash and the render options."""
+configured back end. PNGs are cached too, under a digest of the graph hash and the render options
+(and of the package, for a usdz upload, whose textures come from inside it)."""
 import asyncio
+import base64
 import hashlib
 import json
+from dataclasses import dataclass
 
 from .cache import GuardedStore
 from .cache.entries import is_png
@@ -10,8 +13,16 @@ from .errors import ServiceError
 from .generation import GenerateParams, GenerationService
 from .jobs import JobBackend, JobError
 from .metrics import CACHE
-from .models import ThumbnailRequest
 from .safety import check_texture_paths
+
+
+@dataclass(frozen=True)
+class ThumbnailOrder:
+    """What to render: the document as uploaded, how to generate it, and the render options."""
+    document: bytes
+    params: GenerateParams
+    size: int = 256
+    mesh: str = "sphere"
 
 
 class ThumbnailService:
@@ -21,19 +32,24 @@ class ThumbnailService:
         self.texture_roots = texture_roots
         self.retry_after_s = retry_after_s
 
-    async def _render_request(self, req: ThumbnailRequest) -> dict:
-        params = GenerateParams(target="glsl", element=req.element, interface=req.interface)
-        record = json.loads(await self.generation.generate(req.document.encode(), params))
-        check_texture_paths(record, self.texture_roots)
-        return {"record": record, "size": req.size, "mesh": req.mesh}
+    async def _render_request(self, order: ThumbnailOrder) -> dict:
+        record = json.loads(await self.generation.generate(order.document, order.params))
+        request = {"record": record, "size": order.size, "mesh": order.mesh}
+        if order.params.document_format == "usdz":
+            # the record's textures are members of the package (the translation refuses any that
+            # leave it): the job carries the package and reads them there, never in the roots
+            request["package"] = base64.b64encode(order.document).decode()
+        else:
+            check_texture_paths(record, self.texture_roots)
+        return request
 
     @staticmethod
     def _key(request: dict) -> str:
-        options = f'{request["record"]["hash"]}:{request["size"]}:{request["mesh"]}'
+        options = f'{request["record"]["hash"]}:{request["size"]}:{request["mesh"]}:{request.get("package", "")}'
         return "png:" + hashlib.sha256(options.encode()).hexdigest()
 
-    async def thumbnail(self, req: ThumbnailRequest) -> bytes:
-        request = await self._render_request(req)
+    async def thumbnail(self, order: ThumbnailOrder) -> bytes:
+        request = await self._render_request(order)
         key = self._key(request)
         png = await self.store.aget(key)
         if not is_png(png):
@@ -47,8 +63,8 @@ class ThumbnailService:
             await asyncio.to_thread(self.store.put, key, png)
         return png
 
-    async def submit(self, req: ThumbnailRequest) -> str:
-        request = await self._render_request(req)
+    async def submit(self, order: ThumbnailOrder) -> str:
+        request = await self._render_request(order)
         try:
             return await self.jobs.submit(request)
         except JobError as exc:

@@ -7,6 +7,11 @@ from ..models import ErrorResponse
 ERRORS = {status: {"model": ErrorResponse} for status in (400, 403, 404, 408, 413, 415, 422, 503)}
 
 JSON = "application/json"
+USD_TYPES = {"model/vnd.usda": "usda", "model/vnd.usdz+zip": "usdz"}  # media type -> document format
+
+
+def media_type_of(request) -> str:
+    return request.headers.get("content-type", JSON).split(";")[0].strip().lower()
 PNG = "image/png"
 PNG_RESPONSE = {"content": {PNG: {"schema": {"type": "string", "format": "binary"}}},
                 "description": "the thumbnail (sRGB PNG)"}

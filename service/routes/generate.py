@@ -9,12 +9,11 @@ from ..deps import GenerationDep
 from ..errors import ServiceError, from_validation_error
 from ..generation import GenerateParams
 from ..models import GenerateRequest, Interface, ShaderRecord
-from .common import ERRORS, json_bytes
+from .common import ERRORS, USD_TYPES, json_bytes, media_type_of
 
 router = APIRouter(prefix="/v1", tags=["generate"])
 
 XML_TYPES = ("application/xml", "text/xml")
-USD_TYPES = {"model/vnd.usda": "usda", "model/vnd.usdz+zip": "usdz"}  # media type -> document format
 QUERY = "target, element (a material's prim path, for USD), interface and source come from the query"
 BODY = {"requestBody": {"required": True, "content": {
     "application/json": {"schema": GenerateRequest.model_json_schema()},
@@ -36,7 +35,7 @@ async def generate(
     interface: Annotated[Interface, Query(description="with an XML or USD body")] = "complete",
     source: Annotated[bool, Query(description="with an XML or USD body")] = True,
 ) -> Response:
-    media_type = request.headers.get("content-type", "application/json").split(";")[0].strip().lower()
+    media_type = media_type_of(request)
     body = await request.body()
     if media_type in XML_TYPES:
         document, params = body, GenerateParams(target, element, interface, source)

@@ -1,6 +1,10 @@
 """Render child process: one Renderer, whose EGL context is created in this process on its first
 render and kept for every job after it (a context cannot cross a fork, and creating one per job
 would cost more than most renders)."""
+import base64
+import os
+import tempfile
+
 from shadergen.render import Renderer, RenderError
 from shadergen.render.imageio import encode_png
 from shadergen.render.worker import lp_threads_for
@@ -21,10 +25,32 @@ class RenderHandler:
         return render(self.renderer, message)
 
 
+PACKAGE = "upload.usdz"  # a usdz upload's name in its job's folder
+
+
 def render(renderer, request: dict) -> tuple[dict, bytes]:
-    """Shared with the Celery task: the request is `{"record", "size", "mesh"}`."""
+    """Shared with the Celery task: the request is `{"record", "size", "mesh"}`, and `"package"`
+    (base64) for a usdz upload, whose record names its textures as members of the package."""
+    if "package" not in request:
+        return _render(renderer, request["record"], request, None)
+    with tempfile.TemporaryDirectory(prefix="shadergen-job-") as folder:
+        with open(os.path.join(folder, PACKAGE), "wb") as f:
+            f.write(base64.b64decode(request["package"]))
+        return _render(renderer, in_package(request["record"], PACKAGE), request, folder)
+
+
+def in_package(record: dict, package: str) -> dict:
+    """The record with each texture named as a member of `package` (`package[textures/a.png]`)."""
+    blocks = {stage: {name: [dict(v, value=f"{package}[{v['value']}]") if v.get("type") == "filename"
+                             and v.get("value") else v for v in variables]
+                      for name, variables in block.items()}
+              for stage, block in record["blocks"].items()}
+    return dict(record, blocks=blocks)
+
+
+def _render(renderer, record: dict, request: dict, document_dir: str | None) -> tuple[dict, bytes]:
     try:
-        result = renderer.render(request["record"], size=request["size"], mesh=request["mesh"], document_dir=None)
+        result = renderer.render(record, size=request["size"], mesh=request["mesh"], document_dir=document_dir)
     except RenderError as exc:
         code = getattr(exc, "code", None) or "render_failed"
         return {"error": {"code": code, "message": str(exc), "where": getattr(exc, "where", None)}}, b""

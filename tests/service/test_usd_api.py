@@ -99,3 +99,55 @@ def test_bad_usd_uploads_get_error_records(client):
 def test_usd_uploads_have_the_same_size_limit(client):
     r = client.post("/v1/generate", content=b"PK\x03\x04" + b"\0" * (3 * MIB), headers=USDZ)
     assert_error(r, 413, "too_large")
+
+
+# -- thumbnails ----------------------------------------------------------------------------------
+def solid_png(rgb: tuple[int, int, int]) -> bytes:
+    import OpenImageIO as oiio
+    import numpy as np
+
+    image = oiio.ImageBuf(oiio.ImageSpec(4, 4, 3, oiio.UINT8))
+    image.set_pixels(oiio.ROI(0, 4, 0, 4), np.full((4, 4, 3), rgb, "u1"))
+    path = Path(os.environ.get("TMPDIR", "/tmp")) / f"solid-{os.getpid()}-{rgb}.png"
+    assert image.write(str(path)), oiio.geterror()
+    data = path.read_bytes()
+    path.unlink()
+    return data
+
+
+def centre_rgb(png: bytes) -> list[float]:
+    import OpenImageIO as oiio
+    import numpy as np
+
+    path = Path(os.environ.get("TMPDIR", "/tmp")) / f"thumb-{os.getpid()}.png"
+    path.write_bytes(png)
+    pixels = np.asarray(oiio.ImageBuf(str(path)).get_pixels(oiio.FLOAT))
+    path.unlink()
+    h, w = pixels.shape[:2]
+    return pixels[h // 2 - 4:h // 2 + 4, w // 2 - 4:w // 2 + 4, :3].mean(axis=(0, 1)).tolist()
+
+
+def test_usdz_thumbnail_reads_its_textures_inside_the_package(client, tmp_path):
+    colours = {}
+    for name, rgb in (("red", (230, 20, 20)), ("blue", (20, 20, 230))):
+        folder = tmp_path / name
+        folder.mkdir()
+        body = package(folder, layer_text("textures/wood.png"), ("textures/wood.png", solid_png(rgb)))
+        r = client.post("/v1/thumbnails", params={"size": 64}, content=body, headers=USDZ)
+        assert r.status_code == 200 and r.headers["content-type"] == "image/png", r.text
+        colours[name] = centre_rgb(r.content)
+    red, blue = colours["red"], colours["blue"]
+    assert red[0] > 2 * red[2] and blue[2] > 2 * blue[0]  # each package's own texture, not a cached other
+
+
+def test_usd_thumbnail_jobs_and_refusals(client, tmp_path):
+    r = client.post("/v1/thumbnails", params={"async": "true", "size": 32, "element": "/Looks/Plain"},
+                    content=layer_text(), headers=USDA)
+    assert r.status_code == 202, r.text
+    # a layer's textures come from the texture roots, as a MaterialX document's do
+    r = client.post("/v1/thumbnails", content=layer_text("/etc/passwd"), headers=USDA)
+    assert_error(r, 403, "path_not_allowed")
+    r = client.post("/v1/thumbnails", content=package(tmp_path, layer_text("../../etc/passwd")), headers=USDZ)
+    assert_error(r, 403, "path_not_allowed")
+    assert_error(client.post("/v1/thumbnails", params={"size": 4}, content=layer_text(), headers=USDA),
+                 422, "invalid_request")
