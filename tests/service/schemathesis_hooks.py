@@ -1,5 +1,5 @@
-"""A check for schemathesis runs (SCHEMATHESIS_HOOKS=schemathesis_hooks): the server's own request
-validation never refuses a request its schema allows.
+"""Hooks for schemathesis runs (SCHEMATHESIS_HOOKS=schemathesis_hooks): USD bodies are sent, and a
+check that the server's own request validation never refuses a request its schema allows.
 
 Schemathesis' positive_data_acceptance wants a 2xx for every schema-valid request, but no schema
 can say which strings are valid MaterialX: a well-formed request whose document is not a
@@ -23,3 +23,9 @@ def schema_valid_request_not_refused(ctx, response, case):
     refused = response.status_code in REQUEST_REFUSALS or code == "invalid_request"
     assert not refused, f"schema-valid request refused by the server: {response.status_code} {code}"
     return None
+
+
+@schemathesis.serializer("model/vnd.usda", "model/vnd.usdz+zip")
+def usd_body(ctx, value) -> bytes:
+    """USD bodies are sent as generated: text as UTF-8, binary as is (a package or not)."""
+    return value if isinstance(value, bytes) else str(value).encode()

@@ -4,6 +4,7 @@ examples per operation; the server is the session's live `shadergen serve`."""
 from pathlib import Path
 
 import schemathesis
+import schemathesis_hooks  # noqa: F401 (registers the USD body serializer here too)
 import yaml
 from hypothesis import HealthCheck, settings
 from schemathesis.checks import not_a_server_error
@@ -13,12 +14,6 @@ from schemathesis.specs.openapi.checks import (content_type_conformance, respons
 CHECKS = [not_a_server_error, status_code_conformance, content_type_conformance, response_schema_conformance]
 # the committed contract, which test_openapi.py keeps equal to what the server serves
 schema = schemathesis.openapi.from_dict(yaml.safe_load((Path(__file__).parents[2] / "openapi.yaml").read_text()))
-
-
-@schemathesis.serializer("model/vnd.usda", "model/vnd.usdz+zip")
-def usd_body(ctx, value) -> bytes:
-    """USD bodies are sent as generated: text as UTF-8, binary as is (a package or not)."""
-    return value if isinstance(value, bytes) else str(value).encode()
 
 
 @schema.parametrize()
