@@ -1,6 +1,7 @@
 """What a test needs from the machine (glslangValidator, redis-server, dpkg, an importable renderer).
 On a developer's machine a missing tool skips the test; under CI=true it fails it, so a green CI
 run always means every check ran."""
+import importlib
 import os
 import shutil
 import subprocess
@@ -16,6 +17,18 @@ def missing(what: str, why: str = INSTALL):
     if os.environ.get("CI", "").lower() == "true":
         pytest.fail(f"{message}; under CI=true a missing tool fails the run", pytrace=False)
     pytest.skip(message)
+
+
+def require_module(name: str, why: str):
+    """The module, imported; for a test module that cannot be collected without it, so a skip
+    skips the whole module (and a failure under CI=true is a collection error)."""
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        message = f"{name} is not importable ({why})"
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(f"{message}; under CI=true a missing tool fails the run", pytrace=False)
+        pytest.skip(message, allow_module_level=True)
 
 
 def tool_path(name: str) -> str:

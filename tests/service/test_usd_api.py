@@ -1,5 +1,9 @@
 """USD uploads on the live server: `model/vnd.usda` text and `model/vnd.usdz+zip` packages written
 with usd-core, confined to themselves, with bad USD answered by the contract's error object."""
+from required_tools import require_module
+
+require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
+
 import os
 from pathlib import Path
 

@@ -1,16 +1,17 @@
-"""USD scenes (and their MaterialX equivalents) written once per session with usd-core."""
+"""USD scenes (and their MaterialX equivalents) written once per session with usd-core (imported
+by the test modules first, which skip, or fail under CI=true, without it)."""
 from pathlib import Path
 
 import pytest
 
 from shadergen.api import Generator
 
-from .scenes import (PREVIEW_SURFACE_MTLX, STANDARD_SURFACE_MTLX, TEXTURE, preview_surface_stage,
-                     standard_surface_stage, write_checker, write_mtlx, write_scene, write_usdz)
-
 
 class Scenes:
     def __init__(self, folder: Path):
+        from .scenes import (PREVIEW_SURFACE_MTLX, STANDARD_SURFACE_MTLX, TEXTURE, preview_surface_stage,
+                             standard_surface_stage, write_checker, write_mtlx, write_scene, write_usdz)
+
         self.folder = folder
         write_checker(folder)
         self.preview = write_scene(folder, "preview.usda", preview_surface_stage)

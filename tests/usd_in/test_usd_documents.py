@@ -1,5 +1,9 @@
 """USD scenes in: UsdShade networks translated onto our nodes, one record per material, and bad
 USD answered with error records whose `where` is a prim path."""
+from required_tools import require_module
+
+require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
+
 import json
 import subprocess
 import sys

@@ -1,5 +1,9 @@
 """Each USD scene renders the same image as its equivalent MaterialX document (our generator and
 renderer on both): PSNR >= 60 dB on the linear framebuffer."""
+from required_tools import require_module
+
+require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
+
 import math
 
 import numpy as np
