@@ -200,3 +200,16 @@ def test_prim_paths_key_the_record(gen, tmp_path):
     second = records(gen, write_scene(tmp_path, "second.usda", material_at("/Looks/A/B")))[0]
     assert (first["element"], second["element"]) == ("/Looks/A_B", "/Looks/A/B")
     assert first["stages"] == second["stages"] and first["hash"] != second["hash"]
+
+
+def test_asset_paths_are_relative_to_the_layer_that_wrote_them(gen, tmp_path):
+    """A sublayer in another folder names its texture beside itself; the record names it from
+    the document's folder, where the renderer looks."""
+    looks = tmp_path / "looks"
+    looks.mkdir()
+    write_scene(looks, "looks.usdc", lambda stage: preview_surface_stage(stage, texture="wood.png"))
+    root = write_scene(tmp_path, "shot.usda", lambda stage: stage.GetRootLayer().subLayerPaths.append(
+        "looks/looks.usdc"))
+    [rec] = records(gen, root)
+    assert "error" not in rec, rec
+    assert public(rec)["/World/Looks/Textured/Texture.inputs:file"]["value"] == "looks/wood.png"
