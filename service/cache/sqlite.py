@@ -156,10 +156,23 @@ class SQLiteStore(Store):
                 return None
             now = time.time()
             if now - row[1] > TOUCH_INTERVAL_S:
-                conn.execute("UPDATE entries SET accessed = ? WHERE key = ?", (now, key))
+                self._touch(conn, key, now)
             return bytes(row[0])
 
         return self._run(op)
+
+    @staticmethod
+    def _touch(conn: sqlite3.Connection, key: str, now: float) -> None:
+        """Record a read for the LRU order, unless a writer holds the lock: a read (on the API's
+        event loop) must never wait up to the busy timeout for the sake of recency."""
+        conn.execute("PRAGMA busy_timeout = 0")
+        try:
+            conn.execute("UPDATE entries SET accessed = ? WHERE key = ?", (now, key))
+        except sqlite3.OperationalError as exc:
+            if exc.sqlite_errorcode not in (sqlite3.SQLITE_BUSY, sqlite3.SQLITE_LOCKED):
+                raise
+        finally:
+            conn.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
 
     def put(self, key: str, value: bytes) -> None:
         if len(value) > self.max_bytes:

@@ -171,3 +171,21 @@ def test_entries_that_are_not_what_their_key_promises_are_misses():
     assert refusal(garbage) is None and refusal(b'{"code": 1}') is None and refusal(b"[1]") is None
     assert refusal(b'{"code":"cycle","message":"m","where":null}') == {"code": "cycle", "message": "m", "where": None}
     assert not is_png(garbage) and is_png(b"\x89PNG\r\n\x1a\n...")
+
+
+def test_a_read_does_not_wait_for_the_write_lock_to_record_recency(tmp_path, monkeypatch):
+    monkeypatch.setattr(sqlite_module, "TOUCH_INTERVAL_S", 0.0)  # every read records recency
+    path = tmp_path / "c.sqlite3"
+    store = SQLiteStore(path)
+    store.put("k", b"v")
+    writer = sqlite3.connect(path, isolation_level=None)
+    writer.execute("BEGIN IMMEDIATE")  # another process in the middle of a write
+    try:
+        started = time.monotonic()
+        assert store.get("k") == b"v"
+        assert time.monotonic() - started < 1.0  # not the 10 s busy timeout
+    finally:
+        writer.execute("ROLLBACK")
+        writer.close()
+    store.put("k2", b"w")  # writes still wait for the lock as before, and go through
+    assert store.get("k2") == b"w"
