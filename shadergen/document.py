@@ -62,11 +62,36 @@ class Document:
 
 
 def _convert(xml_elem, parent: Element | None, source: str | None) -> Element:
-    elem = Element(xml_elem.tag, dict(xml_elem.attrib), parent, source)
+    elem = Element(_category(xml_elem.tag), dict(xml_elem.attrib), parent, source)
     for sub in xml_elem:
         if isinstance(sub.tag, str):  # skip comments and processing instructions
             elem.children.append(_convert(sub, elem, source))
     return elem
+
+
+# MaterialX writes a node of another MaterialX namespace as <npr:toon_shade>, a prefix that no
+# xmlns attribute declares (its parser ignores XML namespaces); expat refuses an unbound prefix, so
+# each one is declared on the root element and read back as the category `npr:toon_shade`.
+MATERIALX_NAMESPACE_URI = "urn:shadergen:materialx-namespace:"
+_PREFIXED_TAG = re.compile(rb"<([A-Za-z_][\w.-]*):[A-Za-z_]")
+_DECLARED_PREFIX = re.compile(rb"xmlns:([A-Za-z_][\w.-]*)\s*=")
+
+
+def _declare_namespace_prefixes(text: bytes) -> bytes:
+    prefixes = set(_PREFIXED_TAG.findall(text)) - set(_DECLARED_PREFIX.findall(text)) - {b"xml", b"xmlns"}
+    if not prefixes:
+        return text
+    uri = MATERIALX_NAMESPACE_URI.encode()
+    declarations = b"".join(b' xmlns:%s="%s%s"' % (p, uri, p) for p in sorted(prefixes))
+    return re.sub(rb"<materialx\b", lambda m: b"<materialx" + declarations, text, count=1)
+
+
+def _category(tag: str) -> str:
+    prefix = "{" + MATERIALX_NAMESPACE_URI
+    if tag.startswith(prefix):
+        namespace, _, name = tag[len(prefix):].partition("}")
+        return f"{namespace}:{name}"
+    return tag
 
 
 # MaterialX writes the <UDIM> and <UVTILE> filename tokens unescaped inside attribute values; its
@@ -137,6 +162,7 @@ def _parse_text(text: str | bytes, where: str) -> "object":
     text = _utf8(text, where)
     for raw, escaped in FILENAME_TOKENS:
         text = text.replace(raw, escaped)
+    text = _declare_namespace_prefixes(text)
     parser = DefusedXMLParser(target=_BoundedTreeBuilder(), forbid_dtd=True, forbid_entities=True,
                               forbid_external=True)
     try:

@@ -45,7 +45,9 @@ class Index:
             cat = e.category
             if cat == "nodedef":
                 self.nodedefs[e.name] = e
-                self.nodedefs_by_node.setdefault(e.get("node"), []).append(e)
+                node = e.get("node")
+                namespace = e.inherited("namespace")  # a node of another namespace is written <ns:node>
+                self.nodedefs_by_node.setdefault(f"{namespace}:{node}" if namespace else node, []).append(e)
             elif cat == "implementation" or (cat == "nodegraph" and e.get("nodedef")):
                 self.implementations.setdefault(e.get("nodedef"), []).append(e)
             if cat == "nodegraph":

@@ -155,3 +155,16 @@ def test_1_37_atan2_inputs_are_named_y_and_x():
     d = parse_document(doc(V1_37, version="1.37"))
     angle = d.root.child("angle")
     assert angle.child("iny").get("value") == "0.5" and angle.child("inx").get("value") == "1.0"
+
+
+def test_nodes_of_another_namespace_are_written_with_an_undeclared_prefix(gen):
+    text = doc('<nodedef name="ND_tint" node="tint" namespace="mine"><input name="in" type="float" value="1"/>'
+               '<output name="out" type="float"/></nodedef>'
+               '<nodegraph name="NG_tint" namespace="mine" nodedef="ND_tint"><multiply name="m" type="float">'
+               '<input name="in1" type="float" interfacename="in"/><input name="in2" type="float" value="0.5"/>'
+               '</multiply><output name="out" type="float" nodename="m"/></nodegraph>'
+               '<mine:tint name="t" type="float"><input name="in" type="float" value="3"/></mine:tint>'
+               '<output name="o" type="float" nodename="t"/>')
+    assert parse_document(text).root.child("t").category == "mine:tint"
+    rec = gen.prepare(text, element="o").emit()
+    assert "* 0.5" in rec["stages"]["pixel"]
