@@ -54,19 +54,23 @@ class ErrorResponse(BaseModel):
     error: ErrorDetail
 
 
+UiNumber = float | list[float]  # typed like the input: a number, or an array for vectors and colours
+
+
 class UiHints(BaseModel):
+    """What an editor needs to draw a control, from the nodedef input; typed like the input."""
     model_config = ConfigDict(extra="allow")
     name: str | None = None
     folder: str | None = None
-    min: Any = None
-    max: Any = None
-    softmin: Any = None
-    softmax: Any = None
-    step: Any = None
+    min: UiNumber | None = None
+    max: UiNumber | None = None
+    softmin: UiNumber | None = None
+    softmax: UiNumber | None = None
+    step: UiNumber | None = None
     advanced: bool | None = None
     doc: str | None = None
-    enum: Any = None
-    enumvalues: Any = None
+    enum: list[str] | None = Field(None, description="the names a menu shows")
+    enumvalues: list[Any] | None = Field(None, description="the value of each name, typed like the input")
 
 
 class Variable(BaseModel):

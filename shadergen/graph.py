@@ -113,7 +113,7 @@ def input_meta(decl: Element) -> dict:
                      ("uisoftmin", "softmin"), ("uisoftmax", "softmax"), ("uistep", "step"),
                      ("uiadvanced", "advanced"), ("doc", "doc"), ("enum", "enum"), ("enumvalues", "enumvalues")):
         if decl.get(src) is not None:
-            ui[dst] = decl.get(src)
+            ui[dst] = T.parse_ui_hint(dst, decl.get("type"), decl.get(src), decl.path)
     if ui:
         meta["ui"] = ui
     return meta

@@ -128,6 +128,29 @@ def default_value(type_name: str):
     return (0.0,) * t.size
 
 
+# ui metadata read as a value of the input's own type; names and docs stay text
+UI_TYPED_HINTS = frozenset(("min", "max", "softmin", "softmax", "step"))
+
+
+def parse_ui_hint(key: str, type_name: str, text: str, where: str | None = None):
+    """A listing's ui hint as JSON data typed like its input: ranges as numbers or arrays,
+    `advanced` as a boolean, `enum` as a list of names, `enumvalues` as a list of values."""
+    if key in UI_TYPED_HINTS:
+        return value_to_json(parse_value(type_name, text, where))
+    if key == "advanced":
+        return parse_value("boolean", text, where)
+    if key == "enum":
+        return [name.strip() for name in text.split(",")]
+    if key == "enumvalues":
+        size = type_desc(type_name, where).size
+        if size == 0:
+            return [value.strip() for value in text.split(",")]
+        parts = text.replace(",", " ").split()
+        return [value_to_json(parse_value(type_name, " ".join(parts[i:i + size]), where))
+                for i in range(0, len(parts), size)]
+    return text
+
+
 def value_to_json(value):
     """Listings carry values as JSON numbers, booleans, strings or arrays."""
     return list(value) if isinstance(value, tuple) else value

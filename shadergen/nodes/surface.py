@@ -50,8 +50,7 @@ def _emit_light_support(ctx) -> bool:
         ctx.add_variable(PIXEL, "LightData", Variable(name, type_name))
     # the ids the dispatch compares `type` against, for renderers binding a light rig
     ids = {node: type_id for node, type_id in LIGHT_TYPES if type_id in {t for t, _ in lights}}
-    ctx.pixel.blocks["LightData"].variables["type"].ui = {"enum": ",".join(ids), "enumvalues": ",".join(
-        str(i) for i in ids.values())}
+    ctx.pixel.blocks["LightData"].variables["type"].ui = {"enum": list(ids), "enumvalues": list(ids.values())}
     w = ctx.pixel.functions
     with w.block("int numActiveLightSources()"):
         w.line("return min(u_numActiveLightSources, MAX_LIGHT_SOURCES);")

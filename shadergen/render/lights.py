@@ -31,7 +31,7 @@ def light_type_ids(record: dict) -> dict[str, int] | None:
     for var in ((record.get("blocks") or {}).get("pixel") or {}).get("LightData") or []:
         ui = var.get("ui") or {}
         if var.get("name") == "type" and ui.get("enum") and ui.get("enumvalues"):
-            return dict(zip(ui["enum"].split(","), (int(v) for v in ui["enumvalues"].split(","))))
+            return dict(zip(ui["enum"], ui["enumvalues"]))
     return None
 
 

@@ -4,6 +4,7 @@ from pathlib import Path
 import pytest
 
 from shadergen.errors import ShaderGenError
+from shadergen.types import parse_ui_hint
 
 from .conftest import doc, glslang, needs_glslang
 
@@ -254,7 +255,7 @@ def test_document_ui_metadata_overrides_the_nodedefs(gen):
     text = doc('<add name="a" type="float"><input name="in1" type="float" value="1" uiname="Brightness" uimax="4"/>'
                '</add><output name="o" type="float" nodename="a"/>')
     ui = {v["path"]: v.get("ui") for v in gen.prepare(text).emit()["blocks"]["pixel"]["PublicUniforms"]}
-    assert ui["a/in1"]["name"] == "Brightness" and ui["a/in1"]["max"] == "4"
+    assert ui["a/in1"]["name"] == "Brightness" and ui["a/in1"]["max"] == 4.0  # typed like the input
 
 
 def test_ui_metadata_is_part_of_the_hash(gen):
@@ -283,3 +284,33 @@ def test_light_shader_graph_is_not_renderable(gen):
     with pytest.raises(ShaderGenError) as e:
         gen.prepare(text)
     assert e.value.code == "no_renderable_element"
+
+
+def test_listing_ui_hints_are_typed_like_their_input(gen):
+    rec = first(gen, '<standard_surface name="s" type="surfaceshader"/>'
+                     '<surfacematerial name="m" type="material"><input name="surfaceshader" type="surfaceshader" nodename="s"/>'
+                     '</surfacematerial>')
+    ui = {path: v.get("ui") for path, v in public(rec).items()}
+    assert ui["s/base"]["min"] == 0.0 and ui["s/base"]["max"] == 1.0
+    assert ui["s/base_color"]["max"] == [1.0, 1.0, 1.0]
+    assert ui["s/base_color"]["folder"] == "Base"
+    assert ui["s/diffuse_roughness"]["advanced"] is True
+
+
+def test_enum_hints_are_lists_of_names_and_typed_values(gen):
+    rec = first(gen, '<luminance name="l" type="color3"><input name="in" type="color3" value="0.5, 0.2, 0.1"/></luminance>'
+                     '<image name="i" type="color3"/><multiply name="m" type="color3">'
+                     '<input name="in1" type="color3" nodename="l"/><input name="in2" type="color3" nodename="i"/></multiply>'
+                     '<output name="o" type="color3" nodename="m"/>')
+    luma = public(rec)["l/lumacoeffs"]["ui"]
+    assert luma["enum"] == ["acescg", "rec709", "rec2020", "rec2100"]
+    assert luma["enumvalues"][1] == [0.2126, 0.7152, 0.0722] and len(luma["enumvalues"]) == 4
+    address = public(rec)["i/uaddressmode"]
+    assert address["type"] == "integer" and address["ui"]["enum"] == ["constant", "clamp", "periodic", "mirror"]
+    assert address["ui"]["enum"][address["value"]] == "periodic"
+
+
+def test_a_malformed_ui_hint_is_an_error_at_its_input():
+    with pytest.raises(ShaderGenError) as err:
+        parse_ui_hint("min", "float", "low", "ND_bad/x")
+    assert err.value.code == "invalid_value" and err.value.where == "ND_bad/x"

@@ -26,7 +26,8 @@ def rig(tmp_path, name, body):
 def test_light_ids_come_from_the_record(renderer, tmp_path):
     record = Generator().prepare(DIFFUSE).emit()
     ids = next(v for v in record["blocks"]["pixel"]["LightData"] if v["name"] == "type")["ui"]
-    assert ids["enum"].split(",") == ["point_light", "directional_light", "spot_light"]
+    assert ids["enum"] == ["point_light", "directional_light", "spot_light"]
+    assert ids["enumvalues"] == [1, 2, 3]
     dark = renderer.render(record, size=32).rgba
     sun_only = renderer.render(record, size=32, lights=rig(tmp_path, "a.mtlx", SUN)).rgba
     bulb_first = renderer.render(record, size=32, lights=rig(tmp_path, "b.mtlx", DARK_BULB + SUN)).rgba
