@@ -12,6 +12,7 @@ from .fastpath import CachedGenerateMiddleware
 from .limits import BodyLimitMiddleware
 from .metrics import MetricsMiddleware
 from .routes import routers
+from .routes.editor import editor_files
 from .services import Services
 
 
@@ -37,4 +38,5 @@ def create_app() -> FastAPI:
     app.add_middleware(MetricsMiddleware)
     for router in routers:
         app.include_router(router)
+    app.mount("/editor", editor_files(), name="editor")
     return app

@@ -129,6 +129,27 @@ class NodeDef(BaseModel):
     outputs: list[NodeDefPort] = Field(default_factory=list)
 
 
+class PreviewMesh(BaseModel):
+    name: str
+    vertices: int
+    indices: int = Field(description="uint32 triangle list length")
+    streams: dict[str, int] = Field(description="vertex input name -> components (float32)")
+
+
+class PreviewImage(BaseModel):
+    height: int
+    width: int
+    channels: int = Field(description="float32 per texel, rows top first")
+
+
+class PreviewScene(BaseModel):
+    uniforms: dict[str, list[float]] = Field(
+        description="the scene's and environment's uniforms as thumbnails bind them; matrices column-major")
+    background: float = Field(description="linear grey that transparent pixels are composited over")
+    mesh: PreviewMesh
+    environment: dict[str, PreviewImage] = Field(description="sampler name -> lat-long map")
+
+
 class Health(BaseModel):
     status: Literal["ok"]
     library_hash: str

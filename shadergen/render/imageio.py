@@ -38,12 +38,16 @@ def read_image(path: str) -> np.ndarray:
     return pixels[..., None] if pixels.ndim == 2 else pixels
 
 
+# the linear grey a thumbnail's transparent pixels are composited over
+BACKGROUND = 0.18
+
+
 def srgb_encode(linear: np.ndarray) -> np.ndarray:
     x = np.maximum(linear, 0.0)
     return np.where(x <= 0.0031308, x * 12.92, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
 
 
-def to_srgb8(rgba: np.ndarray, background: float = 0.18) -> np.ndarray:
+def to_srgb8(rgba: np.ndarray, background: float = BACKGROUND) -> np.ndarray:
     """uint8 (h, w, 3) sRGB of a linear premultiplied RGBA image over a linear grey background.
     NaN and Inf pixels become black rather than poisoning the conversion."""
     rgba = np.nan_to_num(np.asarray(rgba, "f4"), nan=0.0, posinf=0.0, neginf=0.0)
@@ -52,7 +56,7 @@ def to_srgb8(rgba: np.ndarray, background: float = 0.18) -> np.ndarray:
     return (np.clip(srgb_encode(composite), 0.0, 1.0) * 255.0 + 0.5).astype("u1")
 
 
-def encode_png(rgba: np.ndarray, background: float = 0.18) -> bytes:
+def encode_png(rgba: np.ndarray, background: float = BACKGROUND) -> bytes:
     """PNG file bytes (8-bit sRGB RGB) of a linear RGBA render, composited over `background`."""
     rgb = to_srgb8(rgba, background)
     height, width = rgb.shape[:2]
@@ -68,7 +72,7 @@ def encode_png(rgba: np.ndarray, background: float = 0.18) -> bytes:
             + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
 
 
-def write_image(path: str, rgba: np.ndarray, background: float = 0.18) -> None:
+def write_image(path: str, rgba: np.ndarray, background: float = BACKGROUND) -> None:
     """Write a linear RGBA render by the file's extension: .png (sRGB over `background`),
     .exr (linear RGBA float), .npy (the float32 array as is)."""
     ext = os.path.splitext(path)[1].lower()

@@ -27,6 +27,20 @@ ENV_SAMPLERS = ("u_envRadiance", "u_envIrradiance")
 # Lat-long maps wrap around in longitude and stop at the poles.
 ENV_SAMPLING = Sampling(wrap_v=GL_CLAMP_TO_EDGE)
 MAX_IMAGE_SIDE = 8192
+ENV_SAMPLES = 16  # u_envRadianceSamples of a thumbnail: filtered importance samples per pixel
+
+
+def fixed_uniforms(environment: Environment, env_samples: int = ENV_SAMPLES) -> dict[str, bytes | list[float]]:
+    """The scene's and the environment's uniforms as every render binds them: matrices as the
+    bytes of GLSL's column-major storage, everything else as lists of numbers."""
+    values: dict[str, bytes | list[float]] = {}
+    for name, value in scene_uniforms().items():
+        values[name] = matrix_bytes(value) if isinstance(value, np.ndarray) else numbers("float", value)
+    values["u_envMatrix"] = matrix_bytes(ENV_MATRIX)
+    values["u_envRadianceMips"] = [float(environment.radiance_mips)]
+    values["u_envRadianceSamples"] = [float(env_samples)]
+    values["u_envLightIntensity"] = [float(environment.intensity)]
+    return values
 
 
 @dataclass
@@ -57,7 +71,7 @@ class Renderer:
         self._textures = TextureCache(texture_budget_bytes)
         self._framebuffers: dict[int, object] = {}
 
-    def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int = 16,
+    def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int = ENV_SAMPLES,
                lights=None, supersample: int = 1, document_dir: str | None = None, frames: int = 1) -> RenderResult:
         """Draw `record` on `mesh` ('sphere', 'plane' or an .obj path), lit by `env` (None: the
         procedural sky; a lat-long file path; or an Environment) and `lights` (None, a light-rig
@@ -164,13 +178,7 @@ class Renderer:
     def _bind_lighting(self, program: Program, environment: Environment, env_samples: int, lights,
                        type_ids: dict[str, int] | None, warnings: list[str]) -> set[str]:
         """Scene, environment and light uniforms; returns their names, which record values never override."""
-        values: dict[str, object] = {}
-        for name, value in scene_uniforms().items():
-            values[name] = matrix_bytes(value) if isinstance(value, np.ndarray) else numbers("float", value)
-        values["u_envMatrix"] = matrix_bytes(ENV_MATRIX)
-        values["u_envRadianceMips"] = [float(environment.radiance_mips)]
-        values["u_envRadianceSamples"] = [float(env_samples)]
-        values["u_envLightIntensity"] = [float(environment.intensity)]
+        values: dict[str, object] = fixed_uniforms(environment, env_samples)
         rig: list[Light] = (load_lights(lights, type_ids=type_ids) if isinstance(lights, (str, os.PathLike))
                             else list(lights or []))
         values.update(light_uniforms(rig) if rig else {"u_numActiveLightSources": [0.0]})

@@ -1,0 +1,45 @@
+// The service's HTTP API as the editor uses it. Every answer is either a record or the
+// contract's error object; network failures become error objects too, so callers show one kind.
+
+export const traffic = { generate: 0 };  // requests sent, for the page's tests and status line
+
+export async function generate(document, { element = null, target = "essl", interface: mode = "complete", source = true } = {}) {
+  traffic.generate += 1;
+  const body = JSON.stringify({ document, element, target, interface: mode, source });
+  return answer(await request("v1/generate", { method: "POST", headers: { "content-type": "application/json" }, body }));
+}
+
+export async function previewScene() {
+  return answer(await request("v1/preview/scene"));
+}
+
+export async function previewArray(name, kind = Float32Array) {
+  const response = await request(`v1/preview/arrays/${encodeURIComponent(name)}`);
+  if (!response.ok) throw new Error(`preview array ${name}: HTTP ${response.status}`);
+  return new kind(await response.arrayBuffer());
+}
+
+export async function exampleDocument(name) {
+  const response = await request(`examples/${encodeURIComponent(name)}`, {}, "");
+  if (!response.ok) throw new Error(`example ${name}: HTTP ${response.status}`);
+  return response.text();
+}
+
+// Paths are relative to the service's root (the editor lives at /editor/); `base` "" keeps them
+// relative to the editor.
+function request(path, init = {}, base = "/") {
+  return fetch(base + path, init).catch((failure) => ({
+    ok: false, status: 0,
+    json: async () => ({ error: { code: "unreachable", message: String(failure), where: null } }),
+  }));
+}
+
+async function answer(response) {
+  let body;
+  try {
+    body = await response.json();
+  } catch {
+    body = { error: { code: "invalid_response", message: `HTTP ${response.status} without a JSON body`, where: null } };
+  }
+  return body;
+}

@@ -1,0 +1,141 @@
+// The editor page: a document in, the server's record out (controls, preview, source, passes,
+// or the error where it belongs). A control's change goes to the GPU and into the document
+// text; only Generate (or a new document, material or interface) asks the server again.
+
+import { exampleDocument, generate, traffic } from "./api.js";
+import { buildControls } from "./controls.js";
+import { materials, parseDocument, serialize, setInputValue } from "./documents.js";
+import { Preview } from "./preview.js";
+
+const $ = (id) => document.getElementById(id);
+const page = {
+  document: $("document"), error: $("error"), status: $("status"), material: $("material"),
+  interface: $("interface"), live: $("live"), controls: $("controls"), output: $("output"),
+  note: $("preview-note"), canvas: $("preview"),
+};
+const state = { record: null, tab: "pixel", preview: null, xml: null };
+
+// for the browser tests and for anyone curious in the console
+window.shaderxEditor = { state, traffic, ready: false };
+
+async function start() {
+  try {
+    state.preview = await Preview.create(page.canvas);
+    if (!state.preview) page.note.textContent = "This browser has no WebGL2: listings only.";
+  } catch (failure) {
+    page.note.textContent = `No live preview: ${failure.message}`;
+  }
+  window.shaderxEditor.preview = state.preview;
+  page.live.checked = state.preview !== null;
+  page.live.disabled = state.preview === null;
+  $("example").addEventListener("change", (event) => event.target.value && loadExample(event.target.value));
+  $("upload").addEventListener("change", async (event) => {
+    const file = event.target.files[0];
+    if (file) await openDocument(await file.text());
+  });
+  $("generate").addEventListener("click", () => run());
+  page.material.addEventListener("change", () => run());
+  page.interface.addEventListener("change", () => run());
+  page.live.addEventListener("change", () => run());
+  for (const button of document.querySelectorAll("nav button")) {
+    button.addEventListener("click", () => showTab(button.dataset.tab));
+  }
+  await loadExample("gold.mtlx");
+  window.shaderxEditor.ready = true;
+}
+
+async function loadExample(name) {
+  $("example").value = name;
+  await openDocument(await exampleDocument(name));
+}
+
+async function openDocument(text) {
+  page.document.value = text;
+  await run();
+}
+
+// The material menu follows the document text, keeping the choice while it still exists.
+function refreshMaterials() {
+  const names = materials(state.xml), chosen = page.material.value;
+  page.material.replaceChildren(...names.map((name) => new Option(name, name)));
+  if (names.includes(chosen)) page.material.value = chosen;
+}
+
+// Ask the server for the record of the chosen material. Without a live preview only the
+// listing is needed, so the source is not requested.
+async function run() {
+  const text = page.document.value;
+  state.xml = parseDocument(text);
+  refreshMaterials();
+  const source = page.live.checked && state.preview !== null;
+  page.status.textContent = "generating…";
+  const record = await generate(text, {
+    element: page.material.value || null, interface: page.interface.value, source,
+  });
+  page.status.textContent = `${traffic.generate} requests`;
+  if (record.error) return showError(record);
+  page.error.hidden = true;
+  state.record = record;
+  const uniforms = record.blocks.pixel?.PublicUniforms ?? [];
+  const sections = buildControls(page.controls, uniforms, changeValue);
+  page.status.textContent = `${record.element}: ${uniforms.length} public uniforms in ${sections} sections` +
+    `${record.cached ? " (cached)" : ""}; ${traffic.generate} requests`;
+  if (source) await showPreview(record);
+  else page.note.textContent = state.preview ? "Live preview off: listings only (source: false)." : page.note.textContent;
+  showTab(state.tab);
+}
+
+async function showPreview(record) {
+  try {
+    const compiles = state.preview.stats.compiles;
+    await state.preview.show(record);
+    page.note.textContent = state.preview.stats.compiles > compiles ? "compiled" : "same source: no recompile";
+  } catch (failure) {
+    showError({ element: record.element, error: { code: "webgl_compile", message: failure.message, where: record.element } });
+  }
+}
+
+function changeValue(variable, value, text, type) {
+  state.preview?.setUniform(variable.name, value);
+  variable.value = value;
+  // keep the document in step, so Generate (or a download) sees what the controls show
+  if (state.xml && variable.path && setInputValue(state.xml, variable.path, type, text)) {
+    page.document.value = serialize(state.xml);
+  }
+}
+
+function showError(record) {
+  const { code, message, where } = record.error;
+  page.error.replaceChildren();
+  const title = document.createElement("strong");
+  title.textContent = code;
+  const place = document.createElement("code");
+  place.textContent = where ?? "";
+  page.error.append(title, where ? " at " : "", place, `\n${message}`);
+  page.error.hidden = false;
+  page.status.textContent = `error: ${code}; ${traffic.generate} requests`;
+}
+
+function showTab(tab) {
+  state.tab = tab;
+  for (const button of document.querySelectorAll("nav button")) button.classList.toggle("active", button.dataset.tab === tab);
+  const record = state.record;
+  if (!record) return void (page.output.textContent = "");
+  if (tab === "passes") page.output.textContent = passesReport(record.passes);
+  else if (tab === "record") page.output.textContent = JSON.stringify({ ...record, stages: undefined }, null, 2);
+  else page.output.textContent = record.stages?.[tab] ?? "(source not requested: live preview is off)";
+}
+
+// The passes' report as a table of rows, whatever its exact shape: a list of objects or a map
+// from pass name to edits.
+function passesReport(passes) {
+  if (!passes) return "This record has no passes report.";
+  const rows = Array.isArray(passes) ? passes : Object.entries(passes).map(([name, value]) => ({ name, ...(typeof value === "object" ? value : { edits: value }) }));
+  const keys = [...new Set(rows.flatMap((row) => Object.keys(row)))];
+  const cell = (value) => (typeof value === "object" ? JSON.stringify(value) : String(value ?? ""));
+  const widths = keys.map((key) => Math.max(key.length, ...rows.map((row) => cell(row[key]).length)));
+  const line = (values) => values.map((value, i) => value.padEnd(widths[i])).join("  ");
+  return [line(keys), line(widths.map((w) => "-".repeat(w))), ...rows.map((row) => line(keys.map((key) => cell(row[key]))))].join("\n");
+}
+
+start();
