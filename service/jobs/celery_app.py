@@ -62,4 +62,4 @@ def register_tasks(app: Celery, settings, processes: int) -> None:
         reply, png = render(renderer, request)
         if "error" in reply:
             return reply
-        return {**reply, "png": base64.b64encode(png).decode()}
+        return {**reply, "png": base64.b64encode(png).decode(), "attempt": attempt}

@@ -34,7 +34,8 @@ class CeleryJobs(JobBackend):
         self.app = make_celery(settings)
         self.redis = redis.asyncio.Redis.from_url(settings.broker)
         self.max_depth = settings.render_queue_size
-        self.wait_s = settings.render_timeout_s * 3  # queueing, one retry, and the render itself
+        # queueing, a lost worker's job coming back (twice the time limit), and the render itself
+        self.wait_s = settings.render_timeout_s * 4
 
     async def depth(self) -> int:
         with broker_errors():
@@ -63,7 +64,7 @@ class CeleryJobs(JobBackend):
                 return JobState(job_id, "failed", value["error"])
             result = RenderResult(base64.b64decode(value["png"]), value.get("timings_ms", {}),
                                   value.get("warnings", []))
-            return JobState(job_id, "done", result=result)
+            return JobState(job_id, "done", result=result, attempts=value.get("attempt", 1))
         code = "timeout" if type(value).__name__ == "TimeLimitExceeded" else "worker_crashed"
         return JobState(job_id, "failed", {"code": code, "message": f"render failed: {value!r}", "where": None})
 
