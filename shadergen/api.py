@@ -17,8 +17,9 @@ from pathlib import Path
 from .document import Document, parse_document, read_document
 from .element import Element
 from .errors import ShaderGenError
-from .generator import EmitContext, Options, emit_shader, prepare
+from .generator import EmitContext, emit_shader
 from .graph import GraphBuilder, Output
+from .passes import Options, prepare
 from .hashing import graph_hash
 from .library import Library, Scope, default_library
 from .targets import syntax_for
@@ -82,8 +83,7 @@ class Prepared:
 
     def emit(self, source: bool = True) -> dict:
         t0 = time.perf_counter()
-        ctx = EmitContext(syntax_for(self.target), self.scope, "genglsl" if self.target == "glsl" else self.target,
-                          Options(interface=self.interface))
+        ctx = EmitContext(syntax_for(self.target), self.scope, "genglsl" if self.target == "glsl" else self.target)
         stages = emit_shader(ctx, self.graph)
         blocks = {name: st.listing() for name, st in ctx.stages.items()}
         if self.document.labels:  # variables name their inputs as the source document does
@@ -95,7 +95,7 @@ class Prepared:
             "interface": self.interface, "hash": self.hash, "cached": False,
             "stages": stages if source else {k: None for k in stages},
             "blocks": blocks,
-            "timings_ms": {"generate": round(ms, 3)}, "warnings": self.warnings,
+            "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
         }
 
 
@@ -219,7 +219,7 @@ class Generator:
         else:
             root = builder.node_for(elem)
             outputs = {name: out for name, out in root.outputs.items()}
-        graph = prepare(builder, outputs, root)
+        graph = prepare(builder, outputs, root, Options(interface))
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         h = graph_hash(graph, target=target, interface=interface, library_hash=self.library.content_hash,

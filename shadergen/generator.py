@@ -1,29 +1,22 @@
 """The shader generator: from a prepared ShaderGraph to a hardware Shader (seed 2.4, emit steps).
 
-Steps, in order, for a graph: publish the interface (which inputs become uniforms), let every
+Steps, in order, for a graph: declare the public uniforms the passes chose, let every
 implementation create its variables, emit function definitions (each once, by a stable key), emit
 the node calls in topological order (nodes scoped to a conditional branch inside that branch),
 assign the shader outputs, then assemble each stage's text: header, type definitions, variable
-blocks, functions, main. Node graph implementations reuse the same steps to emit a function body.
+blocks, functions, main. The graph arrives finished (passes/): emission only walks it.
 """
 import re
-from contextlib import contextmanager
-from dataclasses import dataclass
 
-from .element import Element
 from .errors import ShaderGenError
-from .graph import BRANCH_INPUTS, Graph, GraphBuilder, Input, Node, Output, Socket, assign_scopes, \
-    elide_passthrough_nodes, topological_order
+from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
-from .nodes import implementation_for
 from .nodes.base import expand_includes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.glsl import STRUCTS, Syntax
-from .types import TYPES
 
 CLOSURES = ("BSDF", "EDF", "VDF")
 CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}
-NOT_PUBLISHED = {"BSDF", "EDF", "VDF", "lightshader", "none"}
 
 
 class Namer:
@@ -45,32 +38,22 @@ class Namer:
         return name
 
 
-@dataclass
-class Options:
-    interface: str = "complete"  # complete | reduced
-
-
 class EmitContext:
     """Shared state of one generation; node implementations write through it."""
 
-    def __init__(self, syntax: Syntax, scope: Scope, target: str, options: Options):
+    def __init__(self, syntax: Syntax, scope: Scope, target: str):
         self.syntax = syntax
         self.scope = scope
         self.target = target
-        self.options = options
         self.stages = {VERTEX: Stage(VERTEX), PIXEL: Stage(PIXEL)}
         self.namer = Namer(syntax.reserved)
         self.closure = None  # shading context for BSDF nodes (see nodes/base.py)
         self.vars: dict[int, str] = {}  # id(Output | Input | Socket) -> expression naming its value
         self.used_types: set[str] = set()
         self.body: Writer = self.pixel.main
-        self.graph_functions: dict[int, str] = {}
         self.vertex_main: list[str] = []
+        self.function_names: dict[int, str] = {}  # id(Function) -> its name in the shader
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
-        # `vars` is keyed by id(): every graph emitted from must stay alive until the shader is
-        # written, or a new object could reuse an id and take over another's variable name.
-        self.retained: list = []
-        self.expanding: list[Element] = []  # nodegraph implementations being written, outermost first
 
     @property
     def pixel(self) -> Stage:
@@ -86,23 +69,22 @@ class EmitContext:
             return self.vars[id(inp.connection)]
         if inp.socket is not None:
             return self.vars[id(inp.socket)]
-        if id(inp) in self.vars:
+        if inp.public:
             return self.vars[id(inp)]
-        if inp.type == "filename":  # a texture fixed inside an implementation still needs a sampler
-            return self.publish(inp, inp.path)
         return self.syntax.literal(inp.type, inp.value, inp.meta)
 
-    def publish(self, inp: Input, path: str | None) -> str:
-        listing_type, value = inp.type, inp.value
-        if inp.type == "string":
-            if inp.meta.get("enum"):
-                listing_type, value = "integer", self.syntax.enum_index(inp.value, inp.meta)
+    def publish(self, port: Input | Socket) -> str:
+        """A public input (or the socket several inputs of an expanded body share) as a uniform."""
+        listing_type, value = port.type, port.value
+        if port.type == "string":
+            if port.meta.get("enum"):
+                listing_type, value = "integer", self.syntax.enum_index(port.value, port.meta)
             elif value == "":
                 value = None
-        name = self.vars[id(inp)] = self.namer(f"{inp.node.name}_{inp.name}")
+        name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}")
         self.add_variable(PIXEL, "PublicUniforms", Variable(
-            name, listing_type, value, path, unit=inp.meta.get("unit"), colorspace=inp.meta.get("colorspace"),
-            ui=inp.meta.get("ui")))
+            name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
+            ui=port.meta.get("ui")))
         return name
 
     def output_name(self, out: Output) -> str:
@@ -160,85 +142,30 @@ class EmitContext:
                 self.pixel.functions.extend(text)
                 self.pixel.functions.line()
 
-    def graph_function_name(self, elem: Element) -> str:
-        return self.graph_functions[id(elem)]
-
-    @contextmanager
-    def expansion(self, elem: Element):
-        """Scope of writing one nodegraph implementation. A graph that reaches its own node again
-        (directly or through other definitions) would expand forever, or call itself in GLSL."""
-        for i, outer in enumerate(self.expanding):
-            if outer is elem:
-                names = [e.name for e in self.expanding[i:]] + [elem.name]
-                raise ShaderGenError("cycle", "nodegraph implementation instantiates itself: " + " -> ".join(names),
-                                     elem.path)
-        self.expanding.append(elem)
-        try:
-            yield
-        finally:
-            self.expanding.pop()
-
-    def implementation_graph(self, elem: Element, node: Node, prefix: str = "") -> tuple[Graph, dict[str, Socket]]:
-        """The prepared graph of a nodegraph implementation, its interface as sockets."""
-        sockets = {inp.name: Socket(inp.name, inp.type, inp.value, None, dict(inp.meta)) for inp in node.inputs.values()}
-        builder = GraphBuilder(self.scope, self.target, elem.parent if elem.parent is not None else elem, sockets,
-                               prefix)
-        outputs = {}
-        for out_elem in elem.children_of("output"):
-            src = builder.source_of(out_elem)
-            if not isinstance(src, Output):
-                raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
-                                     out_elem.path)
-            outputs[out_elem.name] = src
-        graph = prepare(builder, outputs, None)
-        self.retained.append((graph, sockets))
-        return graph, sockets
-
-    def inline_graph(self, elem: Element, node: Node) -> None:
-        """A nodegraph used once is written in place (smaller than a function and its call): its
-        sockets read the node's input values, the node's outputs name the graph's results."""
-        with self.expansion(elem):
-            graph, sockets = self.implementation_graph(elem, node, f"{node.name}_")
-            for name, socket in sockets.items():
-                self.vars[id(socket)] = self.value(node.inputs[name])
-            self.define_functions(graph)
-            self.emit_nodes(graph, ())
-        for name, out in graph.outputs.items():
-            if name in node.outputs:
-                self.vars[id(node.outputs[name])] = self.vars[id(out)]
-
-    def emit_graph_function(self, elem: Element, node: Node) -> None:
-        with self.expansion(elem):
-            if self.pixel.once(("graph", id(elem))):
-                self.write_graph_function(elem, node)
-
-    def write_graph_function(self, elem: Element, node: Node) -> None:
-        self.graph_functions[id(elem)] = fname = self.namer(elem.name)
-        graph, sockets = self.implementation_graph(elem, node)
-        saved_body, saved_vars, saved_closure = self.body, self.vars, self.closure
+    def emit_graph_function(self, function: Function) -> None:
+        """A nodegraph body shared by several calls, written once."""
+        if id(function) in self.function_names:
+            return
+        self.function_names[id(function)] = fname = self.namer(function.name)
+        saved_body, saved_vars = self.body, self.vars
         self.body, self.vars = Writer(), dict(saved_vars)
-        self.closure = "function" if is_closure_node(node) else None
-        params = ["ClosureData closureData"] if is_closure_node(node) else []
-        for s in sockets.values():
+        params = []
+        for s in function.params:
             self.vars[id(s)] = pname = self.namer(f"{fname}_{s.name}")
             params.append(f"{self.syntax.type_name(s.type)} {pname}")
             self.used_types.add(s.type)
-        out_params = []
-        for name, out in graph.outputs.items():
-            decl = next((o for o in node.outputs.values() if o.name == name), None)
-            out_type = decl.type if decl is not None else out.type
-            out_params.append((self.namer(f"{fname}_{name}"), out_type, out))
-        params += [f"out {self.syntax.type_name(t)} {p}" for p, t, _ in out_params]
+        out_params = [(self.namer(f"{fname}_{out.name}"), out) for out in function.outputs]
+        params += [f"out {self.syntax.type_name(out.type)} {p}" for p, out in out_params]
         try:
-            self.define_functions(graph)
+            self.define_functions(function.graph)
             with self.body.block(f"void {fname}({', '.join(params)})"):
-                self.emit_nodes(graph, ())
-                for p, _, out in out_params:
+                self.emit_nodes(function.graph, ())
+                for p, out in out_params:
                     self.body.line(f"{p} = {self.vars[id(out)]};")
             self.pixel.functions.extend(self.body.text())
             self.pixel.functions.line()
         finally:
-            self.body, self.vars, self.closure = saved_body, saved_vars, saved_closure
+            self.body, self.vars = saved_body, saved_vars
 
     def define_functions(self, graph: Graph) -> None:
         for node in graph.nodes:
@@ -315,39 +242,6 @@ def is_closure_node(node: Node) -> bool:
     return any(o.type in CLOSURES for o in node.outputs.values())
 
 
-def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None) -> Graph:
-    """Graph passes in their fixed order; returns the graph ready to emit."""
-    elide_passthrough_nodes(outputs)
-    nodes = topological_order(outputs)
-    for node in nodes:
-        node.impl = implementation_for(node.implementation)
-    assign_scopes(nodes, lambda n: n.impl.uses_derivatives or any(i.type == "filename" for i in n.inputs.values()))
-    return Graph(nodes, outputs, root, builder.warnings)
-
-
-def publish_interface(ctx: EmitContext, graph: Graph) -> None:
-    """Seed 2.4 step 4: decide which unconnected inputs are public uniforms. `complete` publishes
-    every editable input; `reduced` only filenames and inputs bound to an interface; the rest
-    are written as constants."""
-    reduced = ctx.options.interface == "reduced"
-    for node in graph.nodes:
-        if node.category == "constant":
-            continue  # only a constant drawn directly is left after folding: it stays a literal, as in MaterialX
-        for inp in node.inputs.values():
-            if inp.connection is not None or inp.socket is not None or inp.type in NOT_PUBLISHED:
-                continue
-            if TYPES[inp.type].is_closure and node is not graph.root and not inp.meta.get("interface"):
-                continue  # an unconnected shader input inside the graph has nothing to edit
-            if not node.impl.is_editable(inp.name) and inp.type != "filename":
-                continue
-            if reduced and not (inp.type == "filename" or inp.meta.get("interface") or node is graph.root):
-                continue
-            path = inp.path
-            if node is graph.root and not inp.authored:
-                path = f"{node.nodedef.name}/{inp.name}"
-            ctx.publish(inp, path)
-
-
 def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
     for name, out in graph.outputs.items():
         if out.type in ("filename", "string"):
@@ -377,7 +271,8 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.private_uniform("u_worldMatrix", "matrix44", (VERTEX,))
     ctx.private_uniform("u_viewProjectionMatrix", "matrix44", (VERTEX,))
     ctx.app_data("i_position", "vector3")
-    publish_interface(ctx, graph)
+    for port in graph.interface:
+        ctx.publish(port)
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)

@@ -1,11 +1,9 @@
 """ShaderGraph: the one IR every target sees (seed 2.4, initialisation steps).
 
-`build_graph` turns a renderable element into a graph of resolved nodes. The passes run in a
-fixed order, each its own function: resolve nodedefs and implementations while walking upstream
-from the outputs (so unused paths never enter the graph), connect default geometric nodes,
-insert colour-space and unit transforms, elide constant and dot nodes, topologically sort (a
-cycle is an error naming its nodes), and compute conditional scopes. Publishing the interface
-(which inputs become uniforms) is the emitter's job, from the `Input.binding` facts set here.
+`GraphBuilder` turns a renderable element (or a nodegraph implementation's body) into nodes:
+it resolves nodedefs and implementations while walking upstream from the outputs (so unused
+paths never enter the graph), connects default geometric nodes and inserts colour-space and
+unit transforms. Everything after building is a named pass in `passes/`.
 """
 import re
 from dataclasses import dataclass, field
@@ -37,14 +35,20 @@ class NodeRef:
 
 @dataclass(eq=False)
 class Socket:
-    """A graph interface input: a published uniform of the shader, or a parameter of a
-    nodegraph function."""
+    """An interface input of a nodegraph body: while the body is expanded, the input of the node
+    it implements (`origin`); afterwards, a published uniform read by several inputs of the body."""
     name: str
     type: str
     value: object = None
     path: str | None = None
     meta: dict = field(default_factory=dict)  # enum, enumvalues, uniform, colorspace, unit, ui...
     consumers: list["Input"] = field(default_factory=list)
+    origin: "Input | None" = None
+    public: bool = False  # a PublicUniform of the shader
+
+    @property
+    def owner(self) -> "Node":
+        return self.origin.node
 
 
 @dataclass(eq=False)
@@ -65,10 +69,25 @@ class Input:
     socket: Socket | None = None
     meta: dict = field(default_factory=dict)
     authored: bool = False  # set in the document (not a nodedef default)
+    public: bool = False  # a PublicUniform of the shader (decided by the interface pass)
+    parameter: str | None = None  # the body interface input it was bound to, inside an expanded nodegraph
+
+    @property
+    def owner(self) -> "Node":
+        return self.node
 
     def bind_socket(self, socket: Socket) -> None:
         self.socket = socket
         socket.consumers.append(self)
+
+    def unbind_socket(self) -> None:
+        if self.socket is not None:
+            self.socket.consumers.remove(self)
+            self.socket = None
+
+    def is_constant(self) -> bool:
+        """Neither connected nor live: its value is fixed when the shader is generated."""
+        return self.connection is None and self.socket is None and not self.public
 
 
 @dataclass(eq=False)
@@ -83,6 +102,7 @@ class Node:
     outputs: dict[str, Output] = field(default_factory=dict)
     scope: tuple = ()  # ((conditional node, branch input name), ...) outermost first; () is global
     impl: object = None  # the NodeImpl writing its code, chosen when the graph is prepared
+    instance: "Instance | None" = None  # the expanded nodegraph it comes from; None: the document's own
 
     def input_value(self, name: str, default=None):
         inp = self.inputs.get(name)
@@ -95,11 +115,34 @@ class Node:
 
 
 @dataclass(eq=False)
+class Instance:
+    """One use of a nodegraph implementation, expanded into the graph: the node it replaced and
+    the expansion it sits in (nested nodegraphs)."""
+    graph_elem: Element
+    node: Node
+    parent: "Instance | None"
+    sockets: dict[str, Socket] = field(default_factory=dict)
+    outputs: dict[str, Output] = field(default_factory=dict)
+
+
+@dataclass(eq=False)
+class Function:
+    """A nodegraph body written once and called by several nodes: its own small graph whose
+    inputs read `params` (in the order of the calling node's inputs)."""
+    name: str
+    graph: "Graph"
+    params: list[Socket]
+    outputs: list[Output]  # in the order of the calling node's outputs
+
+
+@dataclass(eq=False)
 class Graph:
     nodes: list[Node]
     outputs: dict[str, Output]
     root: Node | None = None  # the node a shader was generated from, when it is a node
     warnings: list[str] = field(default_factory=list)
+    interface: list = field(default_factory=list)  # the public uniforms (Input | Socket), in listing order
+    passes: dict[str, int] = field(default_factory=dict)  # edits each pass made, in pass order
 
 
 def input_meta(decl: Element) -> dict:
@@ -123,9 +166,10 @@ class GraphBuilder:
     """Walks a document upstream from one renderable element and builds its ShaderGraph."""
 
     def __init__(self, scope: Scope, target: str, doc_root: Element, interface: dict[str, Socket] | None = None,
-                 prefix: str = ""):
+                 instance: Instance | None = None):
         self.scope = scope
-        self.prefix = prefix  # for the nodes of a nodegraph written in place: named after the node it implements
+        self.instance = instance  # the nodegraph use being expanded; its nodes are named after the node it replaces
+        self.prefix = f"{instance.node.name}_" if instance is not None else ""
         self.interface = interface  # nodedef inputs, when building a nodegraph implementation
         self.target = target
         self.doc_root = doc_root
@@ -248,7 +292,7 @@ class GraphBuilder:
                  path: str | None) -> Node:
         """A node with the ports of its nodedef (and the extra inputs its implementation declares).
         An input's listing path is the element path of the node's input, when the node has one."""
-        node = Node(self.unique(name), category, type_name, nodedef, impl, path or "")
+        node = Node(self.unique(name), category, type_name, nodedef, impl, path or "", instance=self.instance)
         for out in self.scope.nodedef_outputs(nodedef):
             node.outputs[out.name] = Output(out.name, out.get("type"), node)
         if not node.outputs:
@@ -485,94 +529,3 @@ def _graph_of(port: Element) -> Element | None:
     if owner is None or owner.category == "materialx":
         return owner
     return owner.parent
-
-
-# -- passes over a built graph --------------------------------------------------------------
-
-
-def _elidable(node: Node) -> bool:
-    """Constant nodes fold into their consumers; a dot is kept (its note is published) unless it
-    passes a texture, which GLSL cannot hold in a local variable."""
-    return node.category == "constant" or (node.category == "dot" and node.type == "filename")
-
-
-def elide_passthrough_nodes(outputs: dict[str, Output]) -> int:
-    """Constant (and texture dot) nodes disappear: consumers take over their value input's
-    binding. Returns the number of nodes elided."""
-    count = 0
-    for node in topological_order(outputs):
-        for inp in node.inputs.values():
-            while inp.connection is not None and _elidable(inp.connection.node):
-                src = inp.connection.node.inputs["value" if inp.connection.node.category == "constant" else "in"]
-                inp.connection = src.connection
-                inp.value, inp.path = src.value, src.path
-                if src.socket is not None:
-                    inp.bind_socket(src.socket)
-                count += 1
-    for name, out in list(outputs.items()):
-        if _elidable(out.node) and out.node.inputs:
-            src = out.node.inputs["value" if out.node.category == "constant" else "in"]
-            if src.connection is not None:
-                outputs[name] = src.connection
-    return count
-
-
-def topological_order(outputs: dict[str, Output]) -> list[Node]:
-    """Depth-first post-order from the outputs: every node after the nodes it reads."""
-    order: list[Node] = []
-    state: dict[int, int] = {}  # 1 visiting, 2 done
-    for out in outputs.values():
-        stack = [(out.node, iter(list(out.node.upstream())))]
-        if state.get(id(out.node)) == 2:
-            continue
-        state[id(out.node)] = 1
-        while stack:
-            node, it = stack[-1]
-            nxt = next(it, None)
-            if nxt is None:
-                stack.pop()
-                state[id(node)] = 2
-                order.append(node)
-                continue
-            s = state.get(id(nxt))
-            if s == 1:
-                names = [n.path for n, _ in stack[[n for n, _ in stack].index(nxt):]] + [nxt.path]
-                raise ShaderGenError("cycle", "cycle in the graph: " + " -> ".join(names), nxt.path)
-            if s is None:
-                state[id(nxt)] = 1
-                stack.append((nxt, iter(list(nxt.upstream()))))
-    return order
-
-
-def assign_scopes(nodes: list[Node], uniform_flow=lambda node: False) -> None:
-    """Seed 2.4 step 5: a node read only through one branch input of a conditional (directly or
-    through nodes of that branch) gets that branch as its scope; anything else is global.
-    `uniform_flow(node)` says a node must stay global (it takes screen-space derivatives)."""
-    consumers: dict[int, list[tuple[Node, str]]] = {}
-    for node in nodes:
-        for inp in node.inputs.values():
-            if inp.connection is not None:
-                consumers.setdefault(id(inp.connection.node), []).append((node, inp.name))
-    for node in reversed(nodes):  # consumers before producers
-        uses = consumers.get(id(node))
-        if not uses or uniform_flow(node):
-            node.scope = ()
-            continue
-        scopes = set()
-        for consumer, input_name in uses:
-            if input_name in BRANCH_INPUTS.get(consumer.category, ()):
-                scopes.add(consumer.scope + ((consumer, input_name),))
-            else:
-                scopes.add(consumer.scope)
-        node.scope = scopes.pop() if len(scopes) == 1 else _common_prefix(scopes)
-
-
-def _common_prefix(scopes: set[tuple]) -> tuple:
-    items = list(scopes)
-    prefix = items[0]
-    for s in items[1:]:
-        n = 0
-        while n < min(len(prefix), len(s)) and prefix[n] == s[n]:
-            n += 1
-        prefix = prefix[:n]
-    return prefix

@@ -21,13 +21,16 @@ def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, 
     """`library_hash`: the library's output key (fingerprint.py), which covers the generator's
     code too. `local_ids`: ids of the implementation elements the document itself declares."""
     index = {id(n): i for i, n in enumerate(graph.nodes)}
+    public = {id(p): i for i, p in enumerate(graph.interface)}
+    interface = [[p.owner.name, p.name, p.type, _jsonable(p.value), p.path, _meta(p.meta)] for p in graph.interface]
     nodes = []
     for n in graph.nodes:
         inputs = []
         for inp in n.inputs.values():
             conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
-            meta = {k: inp.meta[k] for k in sorted(inp.meta)}  # ui too: the listing carries it
-            inputs.append([inp.name, inp.type, _jsonable(inp.value), inp.path, conn, inp.authored, meta])
+            uniform = public.get(id(inp.socket if inp.socket is not None else inp))
+            inputs.append([inp.name, inp.type, _jsonable(inp.value), inp.path, conn, uniform, inp.authored,
+                           _meta(inp.meta)])
         impl = n.implementation
         impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
         nodedef_key = _element_digest(n.nodedef) if id(impl) in local_ids else n.nodedef.name
@@ -37,9 +40,13 @@ def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, 
     payload = json.dumps(
         {"target": target, "interface": interface, "library": library_hash,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
-         "nodes": nodes, "outputs": outputs},
+         "nodes": nodes, "outputs": outputs, "interface": interface},
         sort_keys=True, separators=(",", ":"), default=str)
     return hashlib.sha256(payload.encode()).hexdigest()
+
+
+def _meta(meta: dict) -> dict:
+    return {k: meta[k] for k in sorted(meta)}  # ui too: the listing carries it
 
 
 def _jsonable(v):

@@ -6,15 +6,13 @@ their modules are imported here so that registering them is part of importing th
 """
 from ..element import Element
 from ..errors import ShaderGenError
-from .base import REGISTRY, InlineImpl, NodeGraphImpl, NodeImpl, SourceFunctionImpl
+from .base import REGISTRY, InlineImpl, NodeImpl, SourceFunctionImpl
 from . import application, convolution, geometric, material, surface, transform  # noqa: F401  (registration)
 
 __all__ = ["NodeImpl", "implementation_for", "REGISTRY"]
 
 
 def implementation_for(elem: Element) -> NodeImpl:
-    if elem.category == "nodegraph":
-        return NodeGraphImpl(elem)
     if elem.get("sourcecode") is not None:
         return InlineImpl(elem.get("sourcecode"))
     file = elem.get("file")

@@ -83,28 +83,6 @@ class SourceFunctionImpl(NodeImpl):
         ctx.call(self.function, node)
 
 
-class NodeGraphImpl(NodeImpl):
-    """A nodegraph (seed 2.3.3): one function whose parameters are the nodedef's inputs when
-    several nodes of the shader use it, written in place when only one does."""
-
-    def __init__(self, elem: Element):
-        self.graph_elem = elem
-
-    def create_variables(self, node, ctx) -> None:
-        key = ("nodegraph uses", id(self.graph_elem))
-        ctx.memo[key] = ctx.memo.get(key, 0) + 1
-
-    def emit_function_definition(self, node, ctx) -> None:
-        if ctx.memo[("nodegraph uses", id(self.graph_elem))] > 1:
-            ctx.emit_graph_function(self.graph_elem, node)
-
-    def emit_function_call(self, node, ctx) -> None:
-        if id(self.graph_elem) in ctx.graph_functions:
-            ctx.call(ctx.graph_function_name(self.graph_elem), node)
-        else:
-            ctx.inline_graph(self.graph_elem, node)
-
-
 def _source_path(elem: Element, file: str) -> str:
     """Source files are named relative to the .mtlx file that declares the implementation."""
     base = os.path.dirname(elem.source) if elem.source else ""
@@ -128,3 +106,17 @@ def expand_includes(path: str, seen: set[str]) -> list[tuple[str, str]]:
         out.extend(expand_includes(inc_path, seen))
     out.append((path, INCLUDE.sub("", text).strip("\n")))
     return out
+
+
+class GraphFunctionImpl(NodeImpl):
+    """A call of a nodegraph body written once as a function (passes/functions.py)."""
+
+    def __init__(self, function, uses_derivatives: bool):
+        self.function = function
+        self.uses_derivatives = uses_derivatives
+
+    def emit_function_definition(self, node, ctx) -> None:
+        ctx.emit_graph_function(self.function)
+
+    def emit_function_call(self, node, ctx) -> None:
+        ctx.call(ctx.function_names[id(self.function)], node)

@@ -43,7 +43,7 @@ def test_both_standard_surface_versions_share_one_network(gen):
         '<surfacematerial name="m" type="material"><input name="surfaceshader" type="surfaceshader" nodename="s"/>'
         '</surfacematerial>')).graph for nd in ("ND_standard_surface_surfaceshader",
                                                 "ND_standard_surface_surfaceshader_100")}
-    impls = {nd: next(n.implementation for n in g.nodes if n.category == "standard_surface")
+    impls = {nd: next(n.instance.graph_elem for n in g.nodes if n.instance is not None)  # the expanded body
              for nd, g in scope_graph.items()}
     assert impls["ND_standard_surface_surfaceshader"] is impls["ND_standard_surface_surfaceshader_100"]
     assert sum(1 for g in lib.nodegraphs.values() if g.name.startswith("NG_standard_surface")) == 1

@@ -1,0 +1,44 @@
+"""The passes that turn a built graph into the finished graph emission walks, in their order.
+
+Each pass is a function of its own module and returns how many edits it made; the record carries
+the counts (`"passes": {...}`), so a caller sees what was skipped and why. Emission never builds,
+expands or changes the graph.
+"""
+from dataclasses import dataclass
+
+from ..graph import Graph, GraphBuilder, Node, Output
+from .elide import elide_passthrough_nodes
+from .expand import expand_nodegraphs
+from .functions import share_functions
+from .interface import bind_interface, implementation, publish_textures
+from .order import assign_scopes, topological_order
+
+
+@dataclass(frozen=True)
+class Options:
+    interface: str = "complete"  # complete | reduced | specialized
+    keep: frozenset[str] = frozenset()  # document inputs that stay live in `specialized`
+
+
+def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None,
+            options: Options = Options()) -> Graph:
+    graph = Graph([], outputs, root, builder.warnings)
+
+    def run(name: str, edit) -> None:
+        graph.passes[name] = edit()
+
+    run("elide", lambda: elide_passthrough_nodes(graph.outputs))
+    graph.nodes = topological_order(graph.outputs)
+    run("interface", lambda: bind_interface(graph, options.interface, options.keep))
+    run("expand", lambda: expand_nodegraphs(graph, builder))
+    run("textures", lambda: publish_textures(graph))
+    for node in graph.nodes:
+        implementation(node)
+    run("functions", lambda: share_functions(graph, uniform_flow))
+    run("scopes", lambda: assign_scopes(graph.nodes, uniform_flow))
+    return graph
+
+
+def uniform_flow(node: Node) -> bool:
+    """Nodes that take screen-space derivatives (or sample textures) stay out of branches."""
+    return node.impl.uses_derivatives or any(i.type == "filename" for i in node.inputs.values())

@@ -1,0 +1,112 @@
+"""Nodegraph implementations expanded into the graph (seed 2.3.3), so that every later pass sees
+through them: a node implemented by a nodegraph is replaced by the nodes of its body.
+
+Each use gets its own copy of the body (an `Instance`, its nodes named after the node it
+replaces). The body's interface inputs take the node's bindings: a connection, a value (a
+constant from here on), or a public uniform, which becomes a Socket the body's inputs share.
+Whether identical bodies are written once as a function is decided after the other passes.
+"""
+from ..errors import ShaderGenError
+from ..graph import Graph, GraphBuilder, Input, Instance, Output, Socket
+from .elide import elide_passthrough_nodes
+from .order import topological_order
+
+
+def expand_nodegraphs(graph: Graph, builder: GraphBuilder) -> int:
+    """Returns how many nodegraph uses were expanded."""
+    pending = [n for n in graph.nodes if n.implementation.category == "nodegraph"]
+    replaced: dict[int, Output] = {}  # id(output of an expanded node) -> the body output that replaces it
+    nodes = list(graph.nodes)
+    expanded: set[int] = set()
+    while pending:
+        node = pending.pop()
+        expanded.add(id(node))
+        instance = Instance(node.implementation, node, node.instance)
+        body = expand(instance, builder, graph)
+        for name, out in node.outputs.items():
+            if name in instance.outputs:
+                replaced[id(out)] = instance.outputs[name]
+        nodes.extend(body)
+        pending.extend(n for n in body if n.implementation.category == "nodegraph")
+    if not expanded:
+        return 0
+
+    def follow(out: Output, where: str) -> Output:
+        while id(out.node) in expanded:
+            if id(out) not in replaced:
+                raise ShaderGenError("invalid_implementation",
+                                     f"nodegraph '{out.node.implementation.name}' has no output '{out.name}'", where)
+            out = replaced[id(out)]
+        return out
+
+    for node in nodes:
+        for inp in node.inputs.values():
+            if inp.connection is not None:
+                inp.connection = follow(inp.connection, node.path)
+    for name, out in list(graph.outputs.items()):
+        graph.outputs[name] = follow(out, name)
+    graph.nodes = topological_order(graph.outputs)
+    return len(expanded)
+
+
+def check_recursion(instance: Instance) -> None:
+    """A body that reaches its own node again (directly or through other definitions) would
+    expand forever: a cycle, named along the nesting."""
+    chain, inst = [], instance
+    while inst is not None:
+        chain.insert(0, inst.graph_elem)
+        inst = inst.parent
+    for i, elem in enumerate(chain[:-1]):
+        if elem is instance.graph_elem:
+            raise ShaderGenError("cycle", "nodegraph implementation instantiates itself: "
+                                 + " -> ".join(e.name for e in chain[i:]), instance.graph_elem.path)
+
+
+def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
+    """Builds one use's body and binds its interface to the node's inputs; returns its nodes."""
+    check_recursion(instance)
+    node, elem = instance.node, instance.graph_elem
+    instance.sockets = {inp.name: Socket(inp.name, inp.type, inp.value, inp.path, dict(inp.meta), origin=inp)
+                        for inp in node.inputs.values()}
+    builder = GraphBuilder(outer.scope, outer.target, elem.parent if elem.parent is not None else elem,
+                           instance.sockets, instance)
+    for out_elem in elem.children_of("output"):
+        src = builder.source_of(out_elem)
+        if not isinstance(src, Output):
+            raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
+                                 out_elem.path)
+        instance.outputs[out_elem.name] = src
+    elide_passthrough_nodes(instance.outputs)
+    body = topological_order(instance.outputs)  # before binding: the body ends at its sockets
+    graph.warnings.extend(builder.warnings)
+    for socket in instance.sockets.values():
+        bind_socket(socket, graph)
+    return body
+
+
+def bind_socket(socket: Socket, graph: Graph) -> None:
+    outer: Input = socket.origin
+    for inp in list(socket.consumers):
+        inp.parameter = socket.name
+    if outer.public:  # the node's public input: one uniform the body's inputs share
+        socket.public, socket.path = True, outer.path
+        graph.interface[graph.interface.index(outer)] = socket
+        outer.public = False
+        return
+    if outer.type == "filename" and outer.is_constant():  # a texture fixed by the node still needs a sampler
+        socket.public, socket.path = True, outer.path
+        graph.interface.append(socket)
+        return
+    for inp in list(socket.consumers):
+        inp.unbind_socket()
+        if outer.connection is not None:
+            inp.connection = outer.connection
+        elif outer.socket is not None:
+            inp.bind_socket(outer.socket)
+        else:
+            inp.value, inp.path = outer.value, outer.path
+            if inp.type == "string" and "enum" in outer.meta:  # the literal is the index in the node's enum
+                for key in ("enum", "enumvalues"):
+                    inp.meta.pop(key, None)
+                    if key in outer.meta:
+                        inp.meta[key] = outer.meta[key]

@@ -1,0 +1,134 @@
+"""Function form, decided after the other passes: identical expansions of one nodegraph become one
+function and a call per use, where that is smaller than writing the body at each use.
+
+Two uses are identical when their bodies, as the passes left them, have the same nodes, the same
+connections and the same constants; only what arrives through the body's interface may differ.
+Bodies with closures stay expanded: closures are evaluated per shading context by the surface.
+Nested uses are decided first, so an outer body may call an inner function.
+"""
+from ..graph import Function, Graph, Input, Instance, Node, Output, Socket
+from ..nodes.base import GraphFunctionImpl
+from ..types import TYPES
+from .order import assign_scopes, topological_order
+
+SHADER_TYPES = {"surfaceshader", "volumeshader", "displacementshader", "lightshader", "material"}
+
+
+def share_functions(graph: Graph, uniform_flow) -> int:
+    """Returns how many uses became calls."""
+    calls = 0
+    depths = sorted({_depth(n.instance) for n in graph.nodes if n.instance is not None}, reverse=True)
+    for depth in depths:  # innermost first
+        bodies = _bodies(graph)
+        groups: dict[tuple, list[Instance]] = {}
+        for inst, body in bodies.values():
+            if _depth(inst) == depth:
+                signature = _signature(inst, body)
+                if signature is not None:
+                    groups.setdefault(signature, []).append(inst)
+        for group in groups.values():
+            size = len(bodies[id(group[0])][1])
+            if (len(group) - 1) * size <= len(group):
+                continue  # writing the body at each use is no larger than a function and its calls
+            function = _make_function(group[0], bodies[id(group[0])][1], uniform_flow)
+            readers = graph.nodes + [i.node for i, _ in bodies.values()]  # calls to come read the body too
+            for inst in group:
+                _call(graph, readers, inst, function, uniform_flow)
+            calls += len(group)
+        graph.nodes = topological_order(graph.outputs)
+    return calls
+
+
+def _depth(inst: Instance) -> int:
+    return 0 if inst.parent is None else 1 + _depth(inst.parent)
+
+
+def _inside(node: Node, inst: Instance) -> bool:
+    outer = node.instance
+    while outer is not None and outer is not inst:
+        outer = outer.parent
+    return outer is inst
+
+
+def _bodies(graph: Graph) -> dict[int, tuple[Instance, list[Node]]]:
+    """Every expanded use with the nodes of its body (nested uses' included), in graph order."""
+    bodies: dict[int, tuple[Instance, list[Node]]] = {}
+    for node in graph.nodes:
+        inst = node.instance
+        while inst is not None:
+            bodies.setdefault(id(inst), (inst, []))[1].append(node)
+            inst = inst.parent
+    return bodies
+
+
+def interface_parameter(inp: Input, inst: Instance) -> str | None:
+    """The interface input of `inst` an input of its body reads, through nested uses; None when it
+    reads something else."""
+    while inp.node.instance is not inst:
+        owner = inp.node.instance
+        if owner is None or inp.parameter is None:
+            return None
+        inp = owner.node.inputs[inp.parameter]
+    return inp.parameter
+
+
+def _signature(inst: Instance, body: list[Node]) -> tuple | None:
+    """What makes two uses share a function; None where a use cannot be a function."""
+    index = {id(n): i for i, n in enumerate(body)}
+    outputs = [inst.outputs.get(o.name) for o in inst.node.outputs.values()]
+    if any(o is None or id(o.node) not in index for o in outputs):
+        return None
+    parts: list = [id(inst.graph_elem), tuple((index[id(o.node)], o.name) for o in outputs)]
+    for n in body:
+        if any(o.type in SHADER_TYPES or (o.type in TYPES and TYPES[o.type].is_closure) for o in n.outputs.values()):
+            return None
+        inputs = []
+        for inp in n.inputs.values():
+            param = interface_parameter(inp, inst)
+            if param is not None:
+                inputs.append((inp.name, "param", param))
+            elif inp.connection is not None:
+                if id(inp.connection.node) not in index:
+                    return None  # reads a node outside the body other than through the interface
+                inputs.append((inp.name, index[id(inp.connection.node)], inp.connection.name))
+            elif inp.public or inp.socket is not None:
+                inputs.append((inp.name, "uniform", id(inp.socket or inp)))
+            else:
+                inputs.append((inp.name, repr(inp.value), repr(sorted(inp.meta.items()))))
+        called = n.impl.function if isinstance(n.impl, GraphFunctionImpl) else None
+        parts.append((n.category, n.nodedef.name, n.implementation.name, id(called), tuple(inputs)))
+    return tuple(parts)
+
+
+def _make_function(inst: Instance, body: list[Node], uniform_flow) -> Function:
+    """The first use's body becomes the function: its interface inputs read parameters."""
+    params = {name: Socket(name, s.type, meta=dict(s.meta)) for name, s in inst.sockets.items()}
+    for n in body:
+        for inp in n.inputs.values():
+            param = interface_parameter(inp, inst)
+            if param is not None:
+                inp.connection, inp.value = None, None
+                inp.unbind_socket()
+                inp.bind_socket(params[param])
+    outputs = {o.name: inst.outputs[o.name] for o in inst.node.outputs.values()}
+    graph = Graph(topological_order(outputs), outputs)
+    assign_scopes(graph.nodes, uniform_flow)
+    return Function(inst.graph_elem.name, graph, list(params.values()), list(outputs.values()))
+
+
+def _call(graph: Graph, readers: list[Node], inst: Instance, function: Function, uniform_flow) -> None:
+    """The node the body replaced comes back as a call: what read the body's outputs reads it."""
+    node = inst.node
+    for name, socket in inst.sockets.items():
+        if socket.public:  # the node's public input is the shared uniform
+            node.inputs[name].bind_socket(socket)
+    replaced: dict[int, Output] = {id(inst.outputs[o.name]): o for o in node.outputs.values()}
+    for consumer in readers:
+        if _inside(consumer, inst):
+            continue
+        for inp in consumer.inputs.values():
+            if inp.connection is not None and id(inp.connection) in replaced:
+                inp.connection = replaced[id(inp.connection)]
+    for name, out in list(graph.outputs.items()):
+        graph.outputs[name] = replaced.get(id(out), out)
+    node.impl = GraphFunctionImpl(function, any(uniform_flow(n) for n in function.graph.nodes))
