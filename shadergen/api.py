@@ -25,7 +25,7 @@ from .library import Library, Scope, default_library
 from .targets import syntax_for
 from .usd import is_usd_path, parse_usd, read_usd
 
-INTERFACES = ("complete", "reduced")
+INTERFACES = ("complete", "reduced", "specialized")
 SHADER_CATEGORIES_SKIPPED = ("nodedef", "implementation", "nodegraph", "input", "output", "typedef", "geompropdef",
                              "unitdef", "unittypedef", "targetdef", "look", "collection", "geominfo", "propertyset",
                              "variantset", "backdrop", "token", "attributedef", "materialassign", "lookgroup")

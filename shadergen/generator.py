@@ -13,6 +13,7 @@ from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .nodes.base import expand_includes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
+from .targets.deadcode import identifiers, used_functions
 from .targets.glsl import STRUCTS, Syntax
 
 CLOSURES = ("BSDF", "EDF", "VDF")
@@ -276,7 +277,39 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)
+    drop_unused(ctx, graph.interface_mode == "specialized")
     return {VERTEX: assemble_vertex(ctx), PIXEL: assemble_pixel(ctx)}
+
+
+FIXED_VERTEX = {"i_position", "u_worldMatrix", "u_viewProjectionMatrix"}  # the position transform always runs
+
+
+def drop_unused(ctx: EmitContext, variables: bool) -> None:
+    """Only the functions main reaches are written, and only the structs they use. With
+    `variables` (specialized), uniforms nothing reads and vertex data the pixel stage does not read
+    are dropped too, from the code and from the listings."""
+    main = "\n".join(ctx.pixel.main.lines)
+    ctx.pixel.functions.lines = used_functions(ctx.pixel.functions.lines, main)
+    used = identifiers(main + "\n".join(ctx.pixel.functions.lines))
+    if variables:
+        blocks = ctx.pixel.blocks
+        for block in ("PrivateUniforms", "PublicUniforms"):
+            blocks[block].variables = {n: v for n, v in blocks[block].variables.items() if n in used}
+        if "u_lightData" not in blocks["PrivateUniforms"]:
+            blocks["LightData"].variables = {}
+        read = {n for n in blocks["VertexData"].variables
+                if identifiers(ctx.syntax.vertex_data_member(n)) <= used}
+        for stage in ctx.stages.values():
+            stage.blocks["VertexData"].variables = {n: v for n, v in stage.blocks["VertexData"].variables.items()
+                                                    if n in read}
+        ctx.vertex_main = [ln for ln in ctx.vertex_main
+                           if any(ln.startswith(f"{ctx.syntax.vertex_data_member(n)} = ") for n in read)]
+        vertex_used = identifiers("\n".join(ctx.vertex_main)) | FIXED_VERTEX
+        for block in ("AppData", "PrivateUniforms"):
+            vb = ctx.vertex.blocks[block]
+            vb.variables = {n: v for n, v in vb.variables.items() if n in vertex_used}
+    declared = {v.type for st in ctx.stages.values() for b in st.blocks.values() for v in b}
+    ctx.used_types = {t for t in ctx.used_types if t not in STRUCTS or t in used or t in declared}
 
 
 def _declarations(ctx: EmitContext, stage: Stage, w: Writer) -> None:

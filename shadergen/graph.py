@@ -103,6 +103,7 @@ class Node:
     scope: tuple = ()  # ((conditional node, branch input name), ...) outermost first; () is global
     impl: object = None  # the NodeImpl writing its code, chosen when the graph is prepared
     instance: "Instance | None" = None  # the expanded nodegraph it comes from; None: the document's own
+    facts: dict = field(default_factory=dict)  # what the passes learned for emission (e.g. "transmission")
 
     def input_value(self, name: str, default=None):
         inp = self.inputs.get(name)
@@ -143,6 +144,7 @@ class Graph:
     warnings: list[str] = field(default_factory=list)
     interface: list = field(default_factory=list)  # the public uniforms (Input | Socket), in listing order
     passes: dict[str, int] = field(default_factory=dict)  # edits each pass made, in pass order
+    interface_mode: str = "complete"
 
 
 def input_meta(decl: Element) -> dict:

@@ -76,6 +76,11 @@ class SourceFunctionImpl(NodeImpl):
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
         self.uses_derivatives = any(DERIVATIVES.search(text) for _, text in expand_includes(self.path, set()))
 
+    @property
+    def source(self) -> str:
+        """The text of its own source file (not its includes)."""
+        return read_source(self.path)
+
     def emit_function_definition(self, node, ctx) -> None:
         ctx.emit_source_file(self.path)
 

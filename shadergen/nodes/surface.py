@@ -101,7 +101,7 @@ class Surface(NodeImpl):
             if edf.connection is not None:
                 with w.scope("emission"):
                     self.context(ctx, edf, "CLOSURE_TYPE_EMISSION", f"{result}.color += {{}};")
-            if bsdf.connection is not None:
+            if bsdf.connection is not None and node.facts.get("transmission", True):
                 with w.scope("transmission, seen along the view direction"):
                     self.context(ctx, bsdf, "CLOSURE_TYPE_TRANSMISSION", f"{result}.color += {{}}.response;")
             w.line(f"{result}.color *= surfaceOpacity;")

@@ -7,8 +7,10 @@ expands or changes the graph.
 from dataclasses import dataclass
 
 from ..graph import Graph, GraphBuilder, Node, Output
+from .closures import prune_closures
 from .elide import elide_passthrough_nodes
 from .expand import expand_nodegraphs
+from .fold import fold_constants
 from .functions import share_functions
 from .interface import bind_interface, implementation, publish_textures
 from .order import assign_scopes, topological_order
@@ -22,7 +24,7 @@ class Options:
 
 def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None,
             options: Options = Options()) -> Graph:
-    graph = Graph([], outputs, root, builder.warnings)
+    graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface)
 
     def run(name: str, edit) -> None:
         graph.passes[name] = edit()
@@ -31,9 +33,11 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     graph.nodes = topological_order(graph.outputs)
     run("interface", lambda: bind_interface(graph, options.interface, options.keep))
     run("expand", lambda: expand_nodegraphs(graph, builder))
-    run("textures", lambda: publish_textures(graph))
+    run("fold", lambda: fold_constants(graph))
     for node in graph.nodes:
         implementation(node)
+    run("prune_closures", lambda: prune_closures(graph))
+    run("textures", lambda: publish_textures(graph))
     run("functions", lambda: share_functions(graph, uniform_flow))
     run("scopes", lambda: assign_scopes(graph.nodes, uniform_flow))
     return graph

@@ -23,10 +23,9 @@ STRUCTS = {
 LIGHT_DATA_MEMBERS = (("type", "integer"), ("position", "vector3"), ("direction", "vector3"), ("color", "color3"),
                       ("intensity", "float"), ("decay_rate", "float"), ("inner_angle", "float"),
                       ("outer_angle", "float"))
-# Library files that handle one closure type usually handle its siblings too (mix of BSDF, EDF and
-# VDF in one file), so the closure family is declared together.
-CLOSURE_FAMILY = ("BSDF", "EDF", "VDF", "surfaceshader", "volumeshader", "displacementshader", "lightshader")
-STRUCT_DEPENDENCIES = {t: CLOSURE_FAMILY for t in CLOSURE_FAMILY} | {"material": CLOSURE_FAMILY}
+# Only the functions a stage calls are written (deadcode.py), so only the structs they name are
+# declared; a material is a surface shader.
+STRUCT_DEPENDENCIES = {"material": ("surfaceshader",)}
 STRUCT_ZERO = {
     "surfaceshader": "surfaceshader(vec3(0.0), vec3(0.0))",
     "volumeshader": "volumeshader(vec3(0.0), vec3(0.0))",
@@ -146,3 +145,23 @@ class EsslSyntax(Syntax):
     precision = ("precision highp float;", "precision highp int;")
     uniform_initializers = False  # ESSL has no uniform initialisers: values come from the listing
     vertex_data_block = False  # ESSL 3.00 has no in/out interface blocks
+
+
+class ClosureConvention:
+    """How the GLSL closure functions behave, read from their source: which shading contexts a
+    lobe answers, and what a lobe gives at zero weight."""
+    transmission_context = "CLOSURE_TYPE_TRANSMISSION"
+
+    def handles_transmission(self, source: str) -> bool:
+        return self.transmission_context in source
+
+    def empty_at_zero_weight(self, source: str, function: str) -> bool:
+        """A lobe that returns before it writes its throughput leaves the closure's zero (no
+        response, everything let through): removing it is exact. A lobe that marks itself opaque
+        first (diffuse, conductor) is not the closure's zero."""
+        start = source.find(f"void {function}(")
+        if start < 0:
+            return False
+        body = source[start:]
+        early = body.find("return;")
+        return early >= 0 and "throughput" not in body[:early] and "weight" in body[:early]

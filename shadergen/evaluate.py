@@ -1,0 +1,202 @@
+"""Values of nodes computed in Python, for folding: what a node gives when its inputs are constants.
+
+Each evaluator follows the node's definition in the standard (and so what our implementations
+compute): componentwise on vectors and colours, a float second operand applying to every
+component. Results are rounded to float32 as a GPU holds them; a result that is not finite (or an
+operation GLSL leaves undefined) is not folded. Matrices are not evaluated.
+"""
+import math
+import struct
+
+VECTOR_SIZES = {"float": 1, "color3": 3, "color4": 4, "vector2": 2, "vector3": 3, "vector4": 4}
+
+
+class NotFoldable(Exception):
+    pass
+
+
+def f32(x: float) -> float:
+    try:
+        return struct.unpack("<f", struct.pack("<f", x))[0]
+    except OverflowError:
+        raise NotFoldable from None
+
+
+def componentwise(fn, *args):
+    sizes = {len(a) for a in args if isinstance(a, tuple)}
+    if not sizes:
+        return fn(*args)
+    if len(sizes) > 1:
+        raise NotFoldable
+    n = sizes.pop()
+    return tuple(fn(*(a[i] if isinstance(a, tuple) else a for a in args)) for i in range(n))
+
+
+def _mix(bg, fg, t):
+    return componentwise(lambda b, f, w: b * (1.0 - w) + f * w, bg, fg, t)
+
+
+def _glsl_mod(x, y):
+    return x - y * math.floor(x / y)
+
+
+def _smoothstep(low, high, x):
+    def one(lo, hi, v):
+        if v >= hi:
+            return 1.0
+        if v <= lo:
+            return 0.0
+        t = min(max((v - lo) / (hi - lo), 0.0), 1.0)
+        return t * t * (3.0 - 2.0 * t)
+    return componentwise(one, low, high, x)
+
+
+def _components(v) -> tuple:
+    return v if isinstance(v, tuple) else (v,)
+
+
+def _dot(a, b) -> float:
+    return sum(x * y for x, y in zip(_components(a), _components(b), strict=True))
+
+
+def _normalize(v):
+    length = math.sqrt(_dot(v, v))
+    return componentwise(lambda x: x / length, v)
+
+
+def _convert(v, out_type: str):
+    """convert: scalars broadcast, narrowing drops trailing components, widening to four adds 1
+    (colour alpha, w) and to three adds 0."""
+    if out_type in ("float", "integer", "boolean"):
+        scalar = _components(v)[0]
+        return {"float": float, "integer": int, "boolean": bool}[out_type](scalar)
+    n = VECTOR_SIZES[out_type]
+    if not isinstance(v, tuple):
+        return tuple(float(v) for _ in range(n))
+    if len(v) >= n:
+        return v[:n]
+    if len(v) == 2:
+        return v + ((0.0,) if n == 3 else (0.0, 1.0))
+    return v + (1.0,)
+
+
+def _switch(inputs):
+    which = inputs["which"]
+    for k in range(1, 11):
+        if which < k:
+            return inputs.get(f"in{k}")
+    return None
+
+
+CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
+
+UNARY = {
+    "absval": abs, "floor": math.floor, "ceil": math.ceil, "sqrt": math.sqrt, "exp": math.exp, "ln": math.log,
+    "sin": math.sin, "cos": math.cos, "tan": math.tan, "asin": math.asin, "acos": math.acos,
+    "sign": lambda x: (x > 0) - (x < 0), "round": lambda x: math.floor(x + 0.5),
+    "fract": lambda x: x - math.floor(x),
+}
+BINARY = {
+    "add": lambda a, b: a + b, "subtract": lambda a, b: a - b, "multiply": lambda a, b: a * b,
+    "divide": lambda a, b: a / b, "modulo": _glsl_mod, "power": math.pow, "min": min, "max": max,
+}
+
+
+def _evaluate(category: str, i: dict, out_type: str):
+    if category in UNARY:
+        return componentwise(UNARY[category], i["in"])
+    if category in BINARY:
+        return componentwise(BINARY[category], i["in1"], i["in2"])
+    if category == "atan2":
+        return componentwise(math.atan2, i["iny"], i["inx"])
+    if category == "clamp":
+        return componentwise(lambda x, lo, hi: min(max(x, lo), hi), i["in"], i["low"], i["high"])
+    if category == "invert":
+        return componentwise(lambda x, amount: amount - x, i["in"], i["amount"])
+    if category in ("mix", "dot"):
+        return _mix(i["bg"], i["fg"], i["mix"]) if category == "mix" else i["in"]
+    if category == "remap":
+        return componentwise(lambda x, il, ih, ol, oh: ol + (x - il) * (oh - ol) / (ih - il),
+                             i["in"], i["inlow"], i["inhigh"], i["outlow"], i["outhigh"])
+    if category == "smoothstep":
+        return _smoothstep(i["low"], i["high"], i["in"])
+    if category in ("plus", "minus", "difference", "screen"):
+        blend = {"plus": lambda b, f: b + f, "minus": lambda b, f: b - f, "difference": lambda b, f: abs(b - f),
+                 "screen": lambda b, f: 1.0 - (1.0 - f) * (1.0 - b)}[category]
+        return _mix(i["bg"], componentwise(blend, i["bg"], i["fg"]), i["mix"])
+    if category == "inside":
+        return componentwise(lambda x, m: x * m, i["in"], i["mask"])
+    if category == "outside":
+        return componentwise(lambda x, m: x * (1.0 - m), i["in"], i["mask"])
+    if category in CONDITIONS:
+        taken = CONDITIONS[category](i["value1"], i["value2"])
+        return taken if out_type == "boolean" else (i["in1"] if taken else i["in2"])
+    if category == "switch":
+        return _switch(i)
+    if category in ("and", "or", "xor", "not"):
+        return {"and": lambda: i["in1"] and i["in2"], "or": lambda: i["in1"] or i["in2"],
+                "xor": lambda: i["in1"] != i["in2"], "not": lambda: not i["in"]}[category]()
+    if category == "magnitude":
+        return math.sqrt(_dot(i["in"], i["in"]))
+    if category == "distance":
+        d = componentwise(lambda a, b: a - b, i["in1"], i["in2"])
+        return math.sqrt(_dot(d, d))
+    if category == "dotproduct":
+        return _dot(i["in1"], i["in2"])
+    if category == "normalize":
+        return _normalize(i["in"])
+    if category == "crossproduct":
+        (ax, ay, az), (bx, by, bz) = i["in1"], i["in2"]
+        return (ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx)
+    if category == "convert":
+        return _convert(i["in"], out_type)
+    if category == "extract":
+        return _components(i["in"])[int(i["index"])]
+    if category in ("combine2", "combine3", "combine4"):
+        return tuple(c for k in range(1, int(category[-1]) + 1) for c in _components(i[f"in{k}"]))
+    if category == "luminance":
+        rgb = _components(i["in"])
+        y = _dot(rgb[:3], i["lumacoeffs"])
+        return (y, y, y) if len(rgb) == 3 else (y, y, y, rgb[3])
+    raise NotFoldable
+
+
+def _typed(value, type_name: str):
+    """The value as the output type holds it (float32 components); NotFoldable when it is not finite."""
+    if type_name == "integer":
+        return int(value)
+    if type_name == "boolean":
+        return bool(value)
+    if type_name not in VECTOR_SIZES or value is None:
+        raise NotFoldable
+    if isinstance(value, tuple) != (type_name != "float"):
+        raise NotFoldable
+    comps = tuple(f32(float(c)) for c in _components(value))
+    if not all(math.isfinite(c) for c in comps):
+        raise NotFoldable
+    comps = tuple(shortest_float32(c) for c in comps)
+    return comps if isinstance(value, tuple) else comps[0]
+
+
+def evaluate_outputs(category: str, inputs: dict, outputs: list[tuple[str, str]]) -> dict:
+    """{output name: value} of a node from constant inputs: separate2/3/4 give one component per
+    output, every other node its one output. NotFoldable when this node cannot be computed here."""
+    try:
+        if category in ("separate2", "separate3", "separate4"):
+            comps = _components(inputs["in"])
+            return {name: _typed(comps[k], t) for k, (name, t) in enumerate(outputs)}
+        if len(outputs) != 1:
+            raise NotFoldable
+        (name, t), = outputs
+        return {name: _typed(_evaluate(category, inputs, t), t)}
+    except (ValueError, ZeroDivisionError, OverflowError, TypeError, KeyError, IndexError):
+        raise NotFoldable from None
+
+
+def shortest_float32(x: float) -> float:
+    """The shortest decimal that is the same float32: folded literals stay readable."""
+    for digits in range(1, 10):
+        candidate = float(f"{x:.{digits}g}")
+        if f32(candidate) == x:
+            return candidate
+    return x

@@ -1,0 +1,110 @@
+"""Folding by value: a node whose inputs are all constants becomes its value in the inputs that
+read it (shadergen/evaluate.py computes it); nodes with some constant inputs simplify by algebraic
+identities (x*1, x*0, x+0, mix at 0 or 1, a conditional on constants, a switch on a constant).
+The constants are what the interface left fixed, so `specialized` folds the most."""
+from ..evaluate import NotFoldable, evaluate_outputs
+from ..graph import Graph, Input, Node
+from ..types import TYPES, default_value
+from .edit import can_pass, pass_through, readers, set_constant
+from .order import topological_order
+
+BLENDS = ("mix", "plus", "minus", "difference", "screen", "overlay", "burn", "dodge")  # bg at mix 0
+CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
+
+
+def fold_constants(graph: Graph) -> int:
+    """Returns how many nodes were folded or simplified."""
+    reading = readers(graph)
+    count = 0
+    for node in graph.nodes:
+        if fold_node(node, reading) or simplify(graph, node, reading):
+            count += 1
+    graph.nodes = topological_order(graph.outputs)
+    return count
+
+
+def constant(node: Node, name: str):
+    """(True, value) when the input is a constant, else (False, None)."""
+    inp = node.inputs.get(name)
+    if inp is None or not inp.is_constant() or inp.type == "filename":
+        return False, None
+    return True, inp.value
+
+
+def fold_node(node: Node, reading: dict) -> bool:
+    if not node.inputs or any(not inp.is_constant() or inp.type == "filename" for inp in node.inputs.values()):
+        return False
+    if not any(id(out) in reading for out in node.outputs.values()):
+        return False  # nothing reads it (a shader output): it stays as it is
+    try:
+        values = evaluate_outputs(node.category, {n: i.value for n, i in node.inputs.items()},
+                                  [(o.name, o.type) for o in node.outputs.values()])
+    except NotFoldable:
+        return False
+    for out in node.outputs.values():
+        for inp in reading.pop(id(out), []):
+            set_constant(inp, values[out.name])
+    return True
+
+
+def _all(value, wanted: float) -> bool:
+    return all(c == wanted for c in value) if isinstance(value, tuple) else value == wanted
+
+
+def simplify(graph: Graph, node: Node, reading: dict) -> bool:
+    """An identity that lets an input stand for the node (or a zero for its output)."""
+    source = identity_source(node)
+    if isinstance(source, Input):
+        if not can_pass(source, node):
+            return False
+        pass_through(graph, node, source, reading)
+        return True
+    if source == "zero":
+        out = next(iter(node.outputs.values()))
+        if id(out) not in reading:
+            return False
+        for inp in reading.pop(id(out)):
+            set_constant(inp, default_value(out.type))  # what the emitted literal of no value is
+        return True
+    return False
+
+
+def identity_source(node: Node):
+    """The input the node's output equals, "zero" when it is the type's zero, or None."""
+    c, i = node.category, node.inputs
+    if c in BLENDS and "bg" in i:
+        known, w = constant(node, "mix")
+        if known and _all(w, 0.0):
+            return i["bg"]
+        if known and c == "mix" and _all(w, 1.0):
+            return i["fg"]
+    if c in CONDITIONS and "in1" in i:
+        (k1, v1), (k2, v2) = constant(node, "value1"), constant(node, "value2")
+        if k1 and k2:
+            return i["in1"] if CONDITIONS[c](v1, v2) else i["in2"]
+    if c == "switch":
+        known, which = constant(node, "which")
+        if known:
+            return next((i[f"in{k}"] for k in range(1, 11) if which < k and f"in{k}" in i), "zero")
+    if c in ("add", "subtract", "multiply", "divide", "power") and "in2" in i:
+        return _arithmetic_identity(node)
+    return None
+
+
+def _arithmetic_identity(node: Node):
+    c, i = node.category, node.inputs
+    (k1, a), (k2, b) = constant(node, "in1"), constant(node, "in2")
+    closure = TYPES[i["in1"].type].is_closure
+    if c == "add" and k2 and _all(b, 0.0):
+        return i["in1"]
+    if c == "add" and k1 and _all(a, 0.0):
+        return i["in2"]
+    if c == "subtract" and k2 and _all(b, 0.0):
+        return i["in1"]
+    if c in ("multiply", "divide", "power") and k2 and _all(b, 1.0):
+        return i["in1"]
+    if c == "multiply" and k1 and not closure and _all(a, 1.0):
+        return i["in2"]
+    if c == "multiply" and ((k2 and _all(b, 0.0) and i["in1"].type != "BSDF") or (k1 and not closure and _all(a, 0.0))):
+        return "zero"  # a BSDF scaled by 0 still passes light to what lies beneath: kept
+    return None
