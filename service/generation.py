@@ -30,12 +30,14 @@ class GenerateParams:
     interface: str = "complete"
     source: bool = True
     document_format: str = "mtlx"  # or a USD upload: usda (text) or usdz (a package)
+    keep: tuple[str, ...] = ()  # inputs left live by `specialized`
 
 
 def request_digest(output_key: str, params: GenerateParams, document: bytes) -> str:
     """`output_key`: fingerprint.output_key of the generator that answers (its `library_hash`)."""
     h = hashlib.sha256()
-    for part in (output_key, params.target, params.element or "", params.interface, params.document_format):
+    for part in (output_key, params.target, params.element or "", params.interface, params.document_format,
+                 *sorted(set(params.keep))):
         h.update(part.encode() + b"\0")
     h.update(document)
     return h.hexdigest()
@@ -111,7 +113,8 @@ class GenerationService:
         # the document travels as the frame's payload: bytes as they are (binary for usdz), and no
         # JSON escaping of a large XML text on either side
         request = {"op": "generate", "format": params.document_format, "target": params.target,
-                   "element": params.element, "interface": params.interface, "digest": digest}
+                   "element": params.element, "interface": params.interface, "keep": list(params.keep),
+                   "digest": digest}
         context = {"element": params.element, "target": params.target}
         try:
             reply, record = await self.pool.run(request, document)

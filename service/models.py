@@ -3,10 +3,13 @@ from them). Records come from the generator; their models describe the contract'
 let the generator add more."""
 from typing import Annotated, Any, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstraints
 
 Interface = Literal["complete", "reduced", "specialized"]
 Mesh = Literal["sphere", "plane"]
+INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
+                 "specialized: values folded into the code and whatever cannot contribute removed (zero-weight "
+                 "lobes, untaken branches, unused functions, uniforms and vertex data), inputs in `keep` left live")
 
 
 def _encodable(value: str) -> str:
@@ -19,6 +22,7 @@ def _encodable(value: str) -> str:
 
 
 Text = Annotated[str, AfterValidator(_encodable)]
+Keep = Annotated[Text, StringConstraints(min_length=1, max_length=1024)]
 
 
 # -- requests ----------------------------------------------------------------------------------
@@ -27,7 +31,10 @@ class GenerateRequest(BaseModel):
     document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
     target: Text = Field("glsl", max_length=64, description="glsl, essl, osl, ...")
     element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
-    interface: Interface = "complete"
+    interface: Interface = Field("complete", description=INTERFACE_DOC)
+    keep: list[Keep] = Field(default_factory=list, max_length=256,
+                             description="with interface specialized: document inputs (node/input) that stay live "
+                                         "uniforms and keep their lobes")
     source: bool = Field(True, description="false: listings without stage source")
 
 
@@ -35,7 +42,8 @@ class ThumbnailRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
     element: Text | None = Field(None, max_length=1024)
-    interface: Interface = "complete"
+    interface: Interface = Field("specialized", description="specialized (default) renders the same image as "
+                                                            "complete from the smallest shader")
     size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
     mesh: Mesh = "sphere"
 

@@ -123,10 +123,11 @@ class Generator:
         return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
-                    interface: str = "complete", base_dir: str | None = None,
+                    interface: str = "complete", keep=(), base_dir: str | None = None,
                     allow_includes: bool = True, document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
-        place, so one bad material does not hide the others."""
+        place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
+        that stay live uniforms in the `specialized` interface."""
         syntax_for(target)  # unknown targets fail before any work
         if interface not in INTERFACES:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
@@ -144,7 +145,7 @@ class Generator:
             try:
                 if e.path in doc.failures:
                     raise doc.failures[e.path]
-                out.append(self._prepare(doc, scope, e, target, interface))
+                out.append(self._prepare(doc, scope, e, target, Options(interface, frozenset(keep))))
             except ELEMENT_FAILURES as exc:
                 out.append(element_error(exc, doc.label(e.path), doc))
         return out
@@ -200,7 +201,7 @@ class Generator:
             raise ShaderGenError("unknown_element", f"no element '{element}' in the document", element)
         return [e]
 
-    def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, interface: str) -> Prepared:
+    def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, options: Options) -> Prepared:
         t0 = time.perf_counter()
         lib_target = "genglsl" if target == "glsl" else target
         builder = GraphBuilder(scope, lib_target, doc.root)
@@ -219,14 +220,14 @@ class Generator:
         else:
             root = builder.node_for(elem)
             outputs = {name: out for name, out in root.outputs.items()}
-        graph = prepare(builder, outputs, root, Options(interface))
+        graph = prepare(builder, outputs, root, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
-        h = graph_hash(graph, target=target, interface=interface, library_hash=self.library.content_hash,
+        h = graph_hash(graph, target=target, interface=options.interface, library_hash=self.library.content_hash,
                        local_ids=local)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h = hashlib.sha256(json.dumps([h, doc.labels], sort_keys=True).encode()).hexdigest()
-        return Prepared(self, doc, doc.label(elem.path), target, interface, h, graph, scope,
+        return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, graph, scope,
                         doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
 
 
@@ -241,7 +242,7 @@ def default_generator() -> Generator:
 
 
 def generate_file(path: str, *, target: str = "glsl", element: str | None = None, all: bool = False,
-                  interface: str = "complete") -> list[dict]:
+                  interface: str = "complete", keep=()) -> list[dict]:
     """Records for a document file (used by the renderer's CLI)."""
     return list(default_generator().records(Path(path), target=target, element=element, all=all,
-                                            interface=interface))
+                                            interface=interface, keep=keep))

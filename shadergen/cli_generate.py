@@ -22,7 +22,10 @@ def add_arguments(p) -> None:
                    help="name path of the element to generate (default: the first renderable element)")
     p.add_argument("--all", action="store_true", help="every renderable element instead of the first")
     p.add_argument("--interface", default="complete",
-                   help="complete (every input a uniform) or reduced (only connected inputs and filenames)")
+                   help="complete (every input a uniform), reduced (only interface inputs and textures) or "
+                        "specialized (values folded into the code and whatever cannot contribute removed)")
+    p.add_argument("--keep", default="", metavar="NODE/INPUT,...",
+                   help="with --interface specialized: document inputs that stay live uniforms (and keep their lobes)")
     p.add_argument("--out", metavar="DIR", help="also write stage files and listings under DIR (see below)")
     p.add_argument("--no-source", action="store_true", help="records without stage source (listings only)")
 
@@ -57,6 +60,10 @@ class OutputFiles:
         return None
 
 
+def keep_list(text: str) -> tuple[str, ...]:
+    return tuple(p.strip() for p in text.split(",") if p.strip())
+
+
 def run(args) -> int:
     from .api import default_generator
     from .errors import ShaderGenError
@@ -69,7 +76,8 @@ def run(args) -> int:
         return 1
     out = OutputFiles(args.out) if args.out else None
     for doc in args.documents:
-        options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface)
+        options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface,
+                       keep=keep_list(args.keep))
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:

@@ -46,7 +46,8 @@ async def generate(
             req = GenerateRequest.model_validate_json(body)
         except ValidationError as exc:
             raise from_validation_error(exc) from None
-        document, params = req.document.encode(), GenerateParams(req.target, req.element, req.interface, req.source)
+        document, params = req.document.encode(), GenerateParams(req.target, req.element, req.interface, req.source,
+                                                                 keep=tuple(req.keep))
     else:
         raise ServiceError("unsupported_media_type", "send application/json, application/xml, model/vnd.usda or "
                            f"model/vnd.usdz+zip, not {media_type}")

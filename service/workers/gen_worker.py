@@ -43,7 +43,8 @@ class GenerateHandler:
         try:
             prepared = self.generator.prepare(
                 document, target=message["target"], element=message["element"], interface=message["interface"],
-                base_dir=None, allow_includes=False, document_format=document_format,
+                keep=message.get("keep", ()), base_dir=None, allow_includes=False,
+                document_format=document_format,
             )
             key = "rec:" + prepared.hash
             stored = self.store.get(key)

@@ -29,6 +29,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--record", metavar="REC.json",
                         help="render this shader record (JSON, or JSON Lines: first record or --element; - for stdin)")
     parser.add_argument("--element", metavar="NAMEPATH", help="renderable element (default: the first)")
+    parser.add_argument("--interface", default="specialized",
+                        help="interface of the generated shader (default specialized: values folded into the code, "
+                             "the same image as complete, the smallest shader); complete | reduced | specialized")
     parser.add_argument("-o", "--output", metavar="OUT.png", help="sRGB PNG composited on --background")
     parser.add_argument("--exr", metavar="OUT.exr", help="linear RGBA EXR")
     parser.add_argument("--npy", metavar="OUT.npy", help="the linear RGBA float32 framebuffer, top row first")
@@ -74,7 +77,8 @@ def _run(args) -> int:
         raise RenderError("invalid_request", "nothing to write: give -o OUT.png, --exr or --npy")
     if bool(args.document) == bool(args.record):
         raise RenderError("invalid_request", "give either a document or --record REC.json")
-    record = _record_from_file(args.record, args.element) if args.record else _record_from_document(args.document, args.element)
+    record = _record_from_file(args.record, args.element) if args.record \
+        else _record_from_document(args.document, args.element, args.interface)
     if args.irr and not args.env:
         raise RenderError("invalid_request", "--irr needs --env (the procedural sky computes its own)")
     env = Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
@@ -114,13 +118,13 @@ def _record_from_file(path: str, element: str | None) -> dict:
     return _choose(records, element, path)
 
 
-def _record_from_document(path: str, element: str | None) -> dict:
+def _record_from_document(path: str, element: str | None, interface: str) -> dict:
     try:
         from shadergen.api import generate_file
     except ImportError as exc:
         raise RenderError("unavailable", "this build has no generator (shadergen.api); render a record "
                           "with --record REC.json instead") from exc
-    return _choose(generate_file(path, target="glsl", element=element), element, path)
+    return _choose(generate_file(path, target="glsl", element=element, interface=interface), element, path)
 
 
 def _choose(records: list, element: str | None, source: str) -> dict:

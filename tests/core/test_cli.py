@@ -94,3 +94,17 @@ def test_every_option_of_every_command_is_explained(command):
     importlib.import_module(SUBCOMMANDS[command][0]).add_arguments(parser)
     unexplained = [a.dest for a in parser._actions if not a.help]
     assert not unexplained, f"{command}: {unexplained} have no help"
+
+
+def test_generate_specialized_keeps_the_inputs_named(tmp_path):
+    src = tmp_path / "d.mtlx"
+    src.write_text(doc('<add name="a" type="float"><input name="in1" type="float" value="1"/>'
+                       '<input name="in2" type="float" value="2"/></add>'
+                       '<sin name="s" type="float"><input name="in" type="float" nodename="a"/></sin>'
+                       '<output name="o" type="float" nodename="s"/>'))
+    folded = json.loads(run("generate", str(src), "--interface", "specialized").stdout)
+    assert "sin(3.0)" in folded["stages"]["pixel"] and folded["passes"]["fold"] == 1
+    p = run("generate", str(src), "--interface", "specialized", "--keep", "a/in1, a/in2")
+    kept = json.loads(p.stdout)
+    assert [v["path"] for v in kept["blocks"]["pixel"]["PublicUniforms"]] == ["a/in1", "a/in2"]
+    assert "a_out = a_in1 + a_in2;" in kept["stages"]["pixel"]

@@ -58,6 +58,14 @@ def test_source_false_gives_listings_only(client):
     assert "mul_in2" in names
 
 
+def test_specialized_with_keep_leaves_chosen_inputs_live(client):
+    folded = generate(client, "ramp.mtlx", interface="specialized").json()
+    kept = generate(client, "ramp.mtlx", interface="specialized", keep=["NG_ramp/mul/in2"]).json()
+    assert folded["interface"] == "specialized" and folded["passes"]["fold"] >= 0
+    assert [v["path"] for v in kept["blocks"]["pixel"]["PublicUniforms"]] == ["NG_ramp/mul/in2"]
+    assert folded["blocks"]["pixel"]["PublicUniforms"] == [] and kept["hash"] != folded["hash"]
+
+
 def test_get_shader_by_hash(client):
     rec = generate(client, "ramp.mtlx", target="essl").json()
     got = client.get(f"/v1/shaders/{rec['hash']}", params={"target": "essl"})
@@ -164,6 +172,8 @@ def test_chunked_body_over_the_limit_is_cut_off_while_streaming(server, route):
     ({"target": "x" * 65}, 422, "invalid_request"),
     ({"element": "NoSuchElement"}, 422, "unknown_element"),
     ({"interface": "bogus"}, 422, "invalid_request"),
+    ({"keep": "NG_ramp/mul/in2"}, 422, "invalid_request"),  # a list of inputs
+    ({"keep": [""]}, 422, "invalid_request"),
     ({"unknown_field": 1}, 422, "invalid_request"),
 ])
 def test_bad_parameters(client, params, status, code):

@@ -1,0 +1,245 @@
+"""The passes of shadergen/passes/, each on small graphs, by what they fold, remove and keep."""
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+from shadergen.evaluate import NotFoldable, evaluate_outputs, f32
+from shadergen.targets.glsl import ClosureConvention
+
+from .conftest import doc
+
+
+def record(gen, body, **kw):
+    return gen.prepare(doc(body), **kw).emit()
+
+
+def main_of(rec) -> str:
+    src = rec["stages"]["pixel"]
+    return src[src.index("void main()"):]
+
+
+def public_paths(rec) -> set:
+    return {v["path"] for v in rec["blocks"]["pixel"]["PublicUniforms"]}
+
+
+OUT = '<output name="o" type="{t}" nodename="{n}"/>'
+
+
+# -- evaluate.py -------------------------------------------------------------------------------------
+def test_evaluation_rounds_to_float32_and_gives_the_shortest_literal():
+    value = evaluate_outputs("multiply", {"in1": 0.1, "in2": 3.0}, [("out", "float")])["out"]
+    assert f32(value) == f32(0.1 * 3.0) and value == 0.3
+    assert evaluate_outputs("add", {"in1": (1.0, 2.0, 3.0), "in2": 0.5}, [("out", "color3")]) == {"out": (1.5, 2.5, 3.5)}
+    assert evaluate_outputs("convert", {"in": (0.25, 0.5, 1.0)}, [("out", "color4")])["out"] == (0.25, 0.5, 1.0, 1.0)
+    assert evaluate_outputs("separate3", {"in": (1.0, 2.0, 3.0)},
+                            [("outr", "float"), ("outg", "float"), ("outb", "float")]) == {"outr": 1.0, "outg": 2.0, "outb": 3.0}
+    assert evaluate_outputs("ifgreater", {"value1": 2.0, "value2": 1.0, "in1": 5.0, "in2": 6.0},
+                            [("out", "float")])["out"] == 5.0
+    assert evaluate_outputs("switch", {"which": 1.5, "in1": 1.0, "in2": 2.0}, [("out", "float")])["out"] == 2.0
+
+
+@pytest.mark.parametrize("category,inputs", [
+    ("divide", {"in1": 1.0, "in2": 0.0}),  # infinity: no literal holds it
+    ("sqrt", {"in": -1.0}),
+    ("noise3d", {"amplitude": 1.0}),  # not computable here
+])
+def test_what_cannot_be_computed_is_not_folded(category, inputs):
+    with pytest.raises(NotFoldable):
+        evaluate_outputs(category, inputs, [("out", "float")])
+
+
+# -- fold ----------------------------------------------------------------------------------------------
+def test_constant_math_folds_into_its_reader_in_specialized(gen):
+    body = ('<add name="a" type="float"><input name="in1" type="float" value="0.25"/>'
+            '<input name="in2" type="float" value="0.5"/></add>'
+            '<sin name="s" type="float"><input name="in" type="float" nodename="a"/></sin>' + OUT.format(t="float", n="s"))
+    specialized = record(gen, body, interface="specialized")
+    assert "float s_out = sin(0.75);" in main_of(specialized)
+    assert "a_out" not in specialized["stages"]["pixel"]
+    assert specialized["passes"]["fold"] == 1 and specialized["blocks"]["pixel"]["PublicUniforms"] == []
+    complete = record(gen, body)
+    assert "a_out" in main_of(complete) and complete["passes"]["fold"] == 0  # every input is live
+
+
+@pytest.mark.parametrize("node,gone", [
+    ('<multiply name="m" type="vector3"><input name="in1" type="vector3" nodename="p"/>'
+     '<input name="in2" type="vector3" value="1, 1, 1"/></multiply>', "m_out"),
+    ('<add name="m" type="vector3"><input name="in1" type="vector3" value="0, 0, 0"/>'
+     '<input name="in2" type="vector3" nodename="p"/></add>', "m_out"),
+    ('<mix name="m" type="vector3"><input name="fg" type="vector3" value="1, 0, 0"/>'
+     '<input name="bg" type="vector3" nodename="p"/><input name="mix" type="float" value="0"/></mix>', "m_out"),
+    ('<ifgreater name="m" type="vector3"><input name="value1" type="float" value="1"/>'
+     '<input name="value2" type="float" value="0"/><input name="in1" type="vector3" nodename="p"/>'
+     '<input name="in2" type="vector3" value="0, 0, 1"/></ifgreater>', "m_out"),
+    ('<switch name="m" type="vector3"><input name="which" type="float" value="1"/>'
+     '<input name="in1" type="vector3" value="0, 0, 1"/><input name="in2" type="vector3" nodename="p"/></switch>', "m_out"),
+])
+def test_identities_let_the_live_input_stand_for_the_node(gen, node, gone):
+    body = ('<position name="p" type="vector3"/>' + node
+            + '<normalize name="n" type="vector3"><input name="in" type="vector3" nodename="m"/></normalize>'
+            + OUT.format(t="vector3", n="n"))
+    rec = record(gen, body, interface="specialized")
+    assert gone not in rec["stages"]["pixel"]
+    assert "vec3 n_out = normalize(p_out);" in main_of(rec)
+    assert rec["passes"]["fold"] == 1
+
+
+def test_times_zero_is_the_zero_of_the_type(gen):
+    body = ('<position name="p" type="vector3"/><multiply name="m" type="vector3">'
+            '<input name="in1" type="vector3" nodename="p"/><input name="in2" type="float" value="0"/></multiply>'
+            '<cos name="c" type="vector3"><input name="in" type="vector3" nodename="m"/></cos>' + OUT.format(t="vector3", n="c"))
+    rec = record(gen, body, interface="specialized")
+    assert "vec3 c_out = cos(vec3(0.0, 0.0, 0.0));" in main_of(rec) and "p_out" not in rec["stages"]["pixel"]
+
+
+# -- closures ------------------------------------------------------------------------------------------
+def surface(bsdf: str, edf: str = "") -> str:
+    edf_input = '<input name="edf" type="EDF" nodename="e"/>' if edf else ""
+    return (bsdf + edf + '<surface name="srf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="top"/>'
+            + edf_input + '</surface><surfacematerial name="mat" type="material">'
+            '<input name="surfaceshader" type="surfaceshader" nodename="srf"/></surfacematerial>')
+
+
+def lobe(name: str, category: str, weight: str, extra: str = "") -> str:
+    return f'<{category} name="{name}" type="BSDF"><input name="weight" type="float" value="{weight}"/>{extra}</{category}>'
+
+
+DIFFUSE = lobe("diffuse", "oren_nayar_diffuse_bsdf", "1")
+COAT_OFF = lobe("coat", "dielectric_bsdf", "0")
+LAYER = ('<layer name="top" type="BSDF"><input name="top" type="BSDF" nodename="coat"/>'
+         '<input name="base" type="BSDF" nodename="diffuse"/></layer>')
+
+
+def test_a_zero_weight_lobe_is_removed_and_its_layer_is_the_base(gen):
+    body = surface(COAT_OFF + DIFFUSE + LAYER)
+    specialized = main_of(record(gen, body, interface="specialized"))
+    assert "mx_dielectric_bsdf(" not in specialized and "mx_layer_bsdf(" not in specialized
+    assert "mx_oren_nayar_diffuse_bsdf(" in specialized
+    assert "mx_dielectric_bsdf(" in main_of(record(gen, body))  # complete: the weight is a live uniform
+
+
+def test_a_layer_with_a_removed_base_is_its_top(gen):
+    coat = lobe("coat", "dielectric_bsdf", "1")
+    body = surface(coat + lobe("diffuse", "sheen_bsdf", "0") + LAYER)
+    main = main_of(record(gen, body, interface="specialized"))
+    assert "mx_layer_bsdf(" not in main and "mx_sheen_bsdf(" not in main and "mx_dielectric_bsdf(" in main
+
+
+def test_add_of_a_removed_operand_is_the_other(gen):
+    body = surface(COAT_OFF + DIFFUSE + '<add name="top" type="BSDF"><input name="in1" type="BSDF" nodename="coat"/>'
+                   '<input name="in2" type="BSDF" nodename="diffuse"/></add>')
+    rec = record(gen, body, interface="specialized")
+    assert "mx_add_bsdf(" not in main_of(rec) and rec["passes"]["prune_closures"] == 2
+
+
+@pytest.mark.parametrize("weight,kept,dropped", [("0", "mx_oren_nayar_diffuse_bsdf(", "mx_sheen_bsdf("),
+                                                  ("1", "mx_sheen_bsdf(", "mx_oren_nayar_diffuse_bsdf(")])
+def test_mix_at_zero_or_one_keeps_one_side(gen, weight, kept, dropped):
+    body = surface(DIFFUSE + lobe("sheen", "sheen_bsdf", "1")
+                   + f'<mix name="top" type="BSDF"><input name="fg" type="BSDF" nodename="sheen"/>'
+                   f'<input name="bg" type="BSDF" nodename="diffuse"/><input name="mix" type="float" value="{weight}"/></mix>')
+    main = main_of(record(gen, body, interface="specialized"))
+    assert kept in main and dropped not in main and "mx_mix_bsdf(" not in main
+
+
+def test_multiply_of_a_removed_closure_is_removed_and_by_one_is_the_closure(gen):
+    scaled = ('<multiply name="top" type="BSDF"><input name="in1" type="BSDF" nodename="coat"/>'
+              '<input name="in2" type="float" value="{w}"/></multiply>')
+    removed = record(gen, surface(COAT_OFF + scaled.format(w="0.5")), interface="specialized")
+    assert "BSDF" not in main_of(removed) and "CLOSURE_TYPE" not in main_of(removed)
+    kept = main_of(record(gen, surface(lobe("coat", "dielectric_bsdf", "1") + scaled.format(w="1")), interface="specialized"))
+    assert "mx_multiply_bsdf" not in kept and "mx_dielectric_bsdf(" in kept
+
+
+def test_transmission_context_only_with_a_transmitting_lobe(gen):
+    def main(mode):
+        glass = lobe("top", "dielectric_bsdf", "1", f'<input name="scatter_mode" type="string" value="{mode}"/>')
+        return main_of(record(gen, surface(glass), interface="specialized"))
+    assert "CLOSURE_TYPE_TRANSMISSION" not in main("R")
+    assert "CLOSURE_TYPE_TRANSMISSION" in main("RT")
+    assert "CLOSURE_TYPE_TRANSMISSION" not in main_of(record(gen, surface(lobe("top", "oren_nayar_diffuse_bsdf", "1"))))
+
+
+def test_no_emission_code_without_an_emitter(gen):
+    emitter = '<uniform_edf name="e" type="EDF"><input name="color" type="color3" value="{c}"/></uniform_edf>'
+    diffuse = lobe("top", "oren_nayar_diffuse_bsdf", "1")
+    assert "CLOSURE_TYPE_EMISSION" not in main_of(record(gen, surface(diffuse)))
+    assert "CLOSURE_TYPE_EMISSION" not in main_of(record(gen, surface(diffuse, emitter.format(c="0, 0, 0")),
+                                                         interface="specialized"))
+    assert "CLOSURE_TYPE_EMISSION" in main_of(record(gen, surface(diffuse, emitter.format(c="1, 0, 0")),
+                                                     interface="specialized"))
+
+
+def test_the_closure_convention_reads_what_a_lobe_gives_at_zero_weight():
+    convention = ClosureConvention()
+    empty = "void f(ClosureData c, float weight, inout BSDF bsdf)\n{\n    if (weight < MX_EPS)\n        return;\n" \
+            "    bsdf.throughput = vec3(0.5);\n}\n"
+    opaque = "void f(ClosureData c, float weight, inout BSDF bsdf)\n{\n    bsdf.throughput = vec3(0.0);\n" \
+             "    if (weight < MX_EPS)\n        return;\n}\n"
+    assert convention.empty_at_zero_weight(empty, "f") and not convention.empty_at_zero_weight(opaque, "f")
+
+
+def test_an_opaque_lobe_at_zero_weight_is_kept_where_its_throughput_is_seen(gen):
+    opaque = lobe("coat", "burley_diffuse_bsdf", "0")
+    body = surface(opaque + lobe("diffuse", "sheen_bsdf", "1") + LAYER)
+    if ClosureConvention().empty_at_zero_weight(open(_source("mx_burley_diffuse_bsdf.glsl")).read(),
+                                                "mx_burley_diffuse_bsdf"):
+        pytest.skip("the library's burley lobe is empty at zero weight")
+    assert "mx_burley_diffuse_bsdf(" in main_of(record(gen, body, interface="specialized"))
+
+
+def _source(name: str) -> str:
+    from pathlib import Path
+    return str(Path(__file__).resolve().parents[2] / "libraries" / "pbrlib" / "genglsl" / name)
+
+
+# -- specialized, keep ---------------------------------------------------------------------------------
+STANDARD = ('<standard_surface name="SR" type="surfaceshader"><input name="base_color" type="color3" value="0.2, 0.4, 0.8"/>'
+            '<input name="coat" type="float" value="0"/></standard_surface>'
+            '<surfacematerial name="M" type="material"><input name="surfaceshader" type="surfaceshader" nodename="SR"/>'
+            '</surfacematerial>')
+
+
+def test_keep_leaves_an_input_live_with_its_lobe(gen):
+    plain = record(gen, STANDARD, interface="specialized")
+    kept = record(gen, STANDARD, interface="specialized", keep=["SR/coat", "SR/base_color"])
+    assert public_paths(plain) == set()
+    assert public_paths(kept) == {"SR/coat", "SR/base_color"}
+    assert "SR_coat" in main_of(kept)
+    assert main_of(kept).count("mx_dielectric_bsdf(") > main_of(plain).count("mx_dielectric_bsdf(")
+    assert plain["hash"] != kept["hash"]
+
+
+def test_keep_naming_nothing_is_a_warning(gen):
+    rec = record(gen, STANDARD, interface="specialized", keep=["SR/no_such_input"])
+    assert any("SR/no_such_input" in w for w in rec["warnings"])
+
+
+def test_specialized_is_smaller_and_emits_only_what_it_calls(gen):
+    complete, specialized = record(gen, STANDARD), record(gen, STANDARD, interface="specialized")
+    assert len(specialized["stages"]["pixel"]) < len(complete["stages"]["pixel"])
+    for rec in (complete, specialized):
+        src = rec["stages"]["pixel"]
+        defined = set(re.findall(r"^\w+ (\w+)\(", src, re.M)) - {"main"}
+        for name in defined:
+            assert len(re.findall(rf"\b{name}\b", src)) > 1, f"{name} is defined but never called"
+    assert "struct VDF" not in specialized["stages"]["pixel"]
+    read = specialized["stages"]["pixel"]
+    for block in ("PrivateUniforms", "PublicUniforms"):
+        for v in specialized["blocks"]["pixel"][block]:
+            assert len(re.findall(rf"\b{v['name']}\b", read)) > 1, f"uniform {v['name']} is never read"
+
+
+# -- determinism ---------------------------------------------------------------------------------------
+def test_generation_is_deterministic_across_processes(tmp_path):
+    path = tmp_path / "m.mtlx"
+    path.write_text(doc(STANDARD))
+    script = ("import json, sys; from pathlib import Path; from shadergen.api import Generator; "
+              "r = Generator().prepare(Path(sys.argv[1]), interface='specialized').emit(); "
+              "print(json.dumps([r['hash'], r['stages'], r['blocks']]))")
+    runs = [subprocess.run([sys.executable, "-c", script, str(path)], capture_output=True, text=True, check=True,
+                           env=dict(os.environ, PYTHONHASHSEED=seed)).stdout for seed in ("1", "2")]
+    assert runs[0] == runs[1] and runs[0]
