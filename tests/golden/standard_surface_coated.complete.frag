@@ -5,6 +5,7 @@ struct displacementshader { vec3 offset; float scale; };
 struct lightshader { vec3 intensity; vec3 direction; };
 struct BSDF { vec3 response; vec3 throughput; };
 #define EDF vec3
+struct VDF { vec3 response; vec3 throughput; };
 #define material surfaceshader
 #define MAX_LIGHT_SOURCES 3
 struct LightData { int type; vec3 position; vec3 direction; vec3 color; float intensity; float decay_rate; float inner_angle; float outer_angle; };
@@ -747,27 +748,6 @@ void mx_dielectric_bsdf(ClosureData closureData, float weight, vec3 tint, float 
 }
 
 
-// <conductor_bsdf>: GGX reflection off a metal of complex index ior + i extinction, with an
-// optional thin film. Opaque.
-
-void mx_conductor_bsdf(ClosureData closureData, float weight, vec3 ior_n, vec3 ior_k, vec2 roughness, bool retroreflective,
-                       float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X, int distribution, inout BSDF bsdf)
-{
-    bsdf.throughput = vec3(0.0);
-    int context = closureData.closureType;
-    if (weight < MX_EPS || (context != CLOSURE_TYPE_REFLECTION && context != CLOSURE_TYPE_INDIRECT))
-        return;
-
-    vec3 V = retroreflective ? reflect(-closureData.V, N) : closureData.V;
-    N = mx_facing_normal(N, V);
-    vec2 alpha = clamp(roughness, MX_EPS, 1.0);
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, ior_n, ior_k, vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
-                                     thinfilm_thickness, thinfilm_ior);
-    vec3 comp;
-    bsdf.response = mx_specular_lobe(closureData, N, V, X, alpha, fd, comp) * weight;
-}
-
-
 // Sheen: the Imageworks microfiber lobe (Conty & Kulla 2017) and Zeltner et al.'s multiple-
 // scattering LTC sheen (2022), each with its directional albedo for layering.
 
@@ -884,6 +864,75 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
         bsdf.response = mx_environment_irradiance(N) * color * albedo * weight;
     }
     bsdf.throughput = vec3(1.0 - albedo * weight);
+}
+
+
+// <conductor_bsdf>: GGX reflection off a metal of complex index ior + i extinction, with an
+// optional thin film. Opaque.
+
+void mx_conductor_bsdf(ClosureData closureData, float weight, vec3 ior_n, vec3 ior_k, vec2 roughness, bool retroreflective,
+                       float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X, int distribution, inout BSDF bsdf)
+{
+    bsdf.throughput = vec3(0.0);
+    int context = closureData.closureType;
+    if (weight < MX_EPS || (context != CLOSURE_TYPE_REFLECTION && context != CLOSURE_TYPE_INDIRECT))
+        return;
+
+    vec3 V = retroreflective ? reflect(-closureData.V, N) : closureData.V;
+    N = mx_facing_normal(N, V);
+    vec2 alpha = clamp(roughness, MX_EPS, 1.0);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, ior_n, ior_k, vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
+                                     thinfilm_thickness, thinfilm_ior);
+    vec3 comp;
+    bsdf.response = mx_specular_lobe(closureData, N, V, X, alpha, fd, comp) * weight;
+}
+
+
+// Media. The hardware targets model a medium by its transmittance over a unit distance,
+// exp(-absorption), answered in the TRANSMISSION context (the only one that looks through a surface).
+
+// <absorption_vdf>: a purely absorbing medium.
+void mx_absorption_vdf(ClosureData closureData, vec3 absorption, inout VDF result)
+{
+    if (closureData.closureType == CLOSURE_TYPE_TRANSMISSION)
+    {
+        result.response = vec3(0.0);
+        result.throughput = exp(-absorption);
+    }
+}
+
+
+// <anisotropic_vdf>: absorption and Henyey-Greenstein scattering; scattering is not rendered by the
+// hardware targets, so only absorption filters the light (as in MaterialX's GLSL).
+void mx_anisotropic_vdf(ClosureData closureData, vec3 absorption, vec3 scattering, float anisotropy, inout VDF result)
+{
+    mx_absorption_vdf(closureData, absorption, result);
+}
+
+
+// <layer>: vertical layering. The base is lit by what the top layer lets through.
+
+void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result)
+{
+    result.response = top.response + base.response * top.throughput;
+    result.throughput = top.throughput * base.throughput;
+}
+
+
+// A BSDF over a medium: the medium filters what the top layer scatters and lets through.
+void mx_layer_vdf(ClosureData closureData, BSDF top, VDF base, out BSDF result)
+{
+    result.response = top.response * base.throughput;
+    result.throughput = top.throughput * base.throughput;
+}
+
+
+// <mix> of closures: linear interpolation, bg at 0 and fg at 1.
+
+void mx_mix_bsdf(ClosureData closureData, BSDF fg, BSDF bg, float mixValue, out BSDF result)
+{
+    result.response = mix(bg.response, fg.response, mixValue);
+    result.throughput = mix(bg.throughput, fg.throughput, mixValue);
 }
 
 
@@ -1061,21 +1110,6 @@ void mx_subsurface_bsdf(ClosureData closureData, float weight, vec3 color, vec3 
 }
 
 
-// <mix> of closures: linear interpolation, bg at 0 and fg at 1.
-
-void mx_mix_bsdf(ClosureData closureData, BSDF fg, BSDF bg, float mixValue, out BSDF result)
-{
-    result.response = mix(bg.response, fg.response, mixValue);
-    result.throughput = mix(bg.throughput, fg.throughput, mixValue);
-}
-
-
-void mx_mix_edf(ClosureData closureData, EDF fg, EDF bg, float mixValue, out EDF result)
-{
-    result = mix(bg, fg, mixValue);
-}
-
-
 // <oren_nayar_diffuse_bsdf>: opaque diffuse reflection, Lambert at roughness 0.
 
 
@@ -1109,15 +1143,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
 }
 
 
-// <layer>: vertical layering. The base is lit by what the top layer lets through.
-
-void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result)
-{
-    result.response = top.response + base.response * top.throughput;
-    result.throughput = top.throughput * base.throughput;
-}
-
-
 // <multiply> of a closure by a weight (float or colour).
 
 // A BSDF's response is scaled by the weight clamped to [0, 1]; what it lets through is unchanged.
@@ -1125,13 +1150,6 @@ void mx_multiply_bsdf_color3(ClosureData closureData, BSDF in1, vec3 in2, out BS
 {
     result.response = in1.response * clamp(in2, 0.0, 1.0);
     result.throughput = in1.throughput;
-}
-
-
-// Emission scales freely.
-void mx_multiply_edf_color3(ClosureData closureData, EDF in1, vec3 in2, out EDF result)
-{
-    result = in1 * in2;
 }
 
 
@@ -1220,203 +1238,208 @@ void main()
     mx_roughness_anisotropy(SR_coated_coat_roughness, SR_coated_coat_anisotropy, SR_coated_coat_alpha_out);
     vec3 geomprop_Nworld_out = normalize(vd.normalWorld);
     vec3 geomprop_Tworld_out = normalize(vd.tangentWorld);
+    float SR_coated_coat_angle_out = SR_coated_coat_rotation * 180.0;
     vec3 SR_coated_coat_tangent_out;
-    if (SR_coated_coat_anisotropy > 0.0)
-    {
-        float SR_coated_coat_rotation_degrees_out = SR_coated_coat_rotation * 360.0;
-        vec3 SR_coated_coat_tangent_rotated_out;
-        mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_coat_rotation_degrees_out, geomprop_Nworld_out, SR_coated_coat_tangent_rotated_out);
-        vec3 SR_coated_coat_tangent_rotated_unit_out = normalize(SR_coated_coat_tangent_rotated_out);
-        SR_coated_coat_tangent_out = SR_coated_coat_tangent_rotated_unit_out;
-    }
-    else
-    {
-        SR_coated_coat_tangent_out = geomprop_Tworld_out;
-    }
-    vec3 SR_coated_metal_reflectivity_out = SR_coated_base_color * SR_coated_base;
-    vec3 SR_coated_metal_edge_color_out = SR_coated_specular_color * SR_coated_specular;
-    vec3 SR_coated_metal_fresnel_ior;
-    vec3 SR_coated_metal_fresnel_extinction;
-    mx_artistic_ior(SR_coated_metal_reflectivity_out, SR_coated_metal_edge_color_out, SR_coated_metal_fresnel_ior, SR_coated_metal_fresnel_extinction);
-    float SR_coated_coat_times_roughness_out = SR_coated_coat * SR_coated_coat_roughness;
-    float SR_coated_coat_roughening_out = SR_coated_coat_times_roughness_out * SR_coated_coat_affect_roughness;
-    float SR_coated_specular_roughness_coated_out = mix(SR_coated_specular_roughness, 1.0, SR_coated_coat_roughening_out);
+    mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_coat_angle_out, geomprop_Nworld_out, SR_coated_coat_tangent_out);
+    float SR_coated_coat_saturation_out = SR_coated_coat * SR_coated_coat_affect_color;
+    float SR_coated_saturation_exponent_out = SR_coated_coat_saturation_out + 1.0;
+    vec3 SR_coated_saturated_base_color_out = pow(SR_coated_base_color, vec3(SR_coated_saturation_exponent_out));
+    vec3 SR_coated_metal_reflectivity_out = SR_coated_saturated_base_color_out * SR_coated_base;
+    vec3 SR_coated_metal_ior_ior;
+    vec3 SR_coated_metal_ior_extinction;
+    mx_artistic_ior(SR_coated_metal_reflectivity_out, SR_coated_specular_color, SR_coated_metal_ior_ior, SR_coated_metal_ior_extinction);
+    float SR_coated_coat_gloss_loss_out = SR_coated_coat * SR_coated_coat_affect_roughness;
+    float SR_coated_coat_roughening_out = SR_coated_coat_gloss_loss_out * SR_coated_coat_roughness;
+    float SR_coated_base_roughness_out = mix(SR_coated_specular_roughness, 1.0, SR_coated_coat_roughening_out);
     vec2 SR_coated_specular_alpha_out;
-    mx_roughness_anisotropy(SR_coated_specular_roughness_coated_out, SR_coated_specular_anisotropy, SR_coated_specular_alpha_out);
+    mx_roughness_anisotropy(SR_coated_base_roughness_out, SR_coated_specular_anisotropy, SR_coated_specular_alpha_out);
+    float SR_coated_specular_angle_out = SR_coated_specular_rotation * 180.0;
     vec3 SR_coated_specular_tangent_out;
-    if (SR_coated_specular_anisotropy > 0.0)
-    {
-        float SR_coated_specular_rotation_degrees_out = SR_coated_specular_rotation * 360.0;
-        vec3 SR_coated_specular_tangent_rotated_out;
-        mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_specular_rotation_degrees_out, geomprop_Nworld_out, SR_coated_specular_tangent_rotated_out);
-        vec3 SR_coated_specular_tangent_rotated_unit_out = normalize(SR_coated_specular_tangent_rotated_out);
-        SR_coated_specular_tangent_out = SR_coated_specular_tangent_rotated_unit_out;
-    }
-    else
-    {
-        SR_coated_specular_tangent_out = geomprop_Tworld_out;
-    }
-    float SR_coated_transmission_roughness_sum_out = SR_coated_specular_roughness + SR_coated_transmission_extra_roughness;
-    float SR_coated_transmission_roughness_clamped_out = clamp(SR_coated_transmission_roughness_sum_out, 0.0, 1.0);
-    float SR_coated_transmission_roughness_coated_out = mix(SR_coated_transmission_roughness_clamped_out, 1.0, SR_coated_coat_roughening_out);
+    mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_specular_angle_out, geomprop_Nworld_out, SR_coated_specular_tangent_out);
+    float SR_coated_transmission_bsdf_has_medium_out = (SR_coated_transmission_depth > 0.0) ? 1.0 : 0.0;
+    vec3 SR_coated_transmission_bsdf_interface_tint_out = mix(SR_coated_transmission_color, vec3(1.0, 1.0, 1.0), SR_coated_transmission_bsdf_has_medium_out);
+    float SR_coated_transmission_roughness_sum_out = SR_coated_base_roughness_out + SR_coated_transmission_extra_roughness;
+    float SR_coated_transmission_roughness_out = clamp(SR_coated_transmission_roughness_sum_out, 0.0, 1.0);
     vec2 SR_coated_transmission_alpha_out;
-    mx_roughness_anisotropy(SR_coated_transmission_roughness_coated_out, SR_coated_specular_anisotropy, SR_coated_transmission_alpha_out);
-    vec3 SR_coated_subsurface_color_positive_out = max(SR_coated_subsurface_color, 0.0);
-    float SR_coated_coat_clamped_out = clamp(SR_coated_coat, 0.0, 1.0);
-    float SR_coated_coat_saturation_out = SR_coated_coat_clamped_out * SR_coated_coat_affect_color;
-    float SR_coated_coat_saturation_exponent_out = SR_coated_coat_saturation_out + 1.0;
-    vec3 SR_coated_subsurface_color_saturated_out = pow(SR_coated_subsurface_color_positive_out, vec3(SR_coated_coat_saturation_exponent_out));
-    vec3 SR_coated_subsurface_mean_free_path_out = SR_coated_subsurface_radius * SR_coated_subsurface_scale;
+    mx_roughness_anisotropy(SR_coated_transmission_roughness_out, SR_coated_specular_anisotropy, SR_coated_transmission_alpha_out);
+    vec3 SR_coated_transmission_bsdf_medium_color_v_out = SR_coated_transmission_color;
+    vec3 SR_coated_transmission_bsdf_medium_positive_color_out = max(SR_coated_transmission_bsdf_medium_color_v_out, 1.0e-6);
+    vec3 SR_coated_transmission_bsdf_medium_log_transmittance_out = log(SR_coated_transmission_bsdf_medium_positive_color_out);
+    float SR_coated_transmission_bsdf_medium_safe_depth_out = max(SR_coated_transmission_depth, 1.0e-6);
+    vec3 SR_coated_transmission_bsdf_medium_log_per_depth_out = SR_coated_transmission_bsdf_medium_log_transmittance_out / SR_coated_transmission_bsdf_medium_safe_depth_out;
+    vec3 SR_coated_transmission_bsdf_medium_scatter_v_out = SR_coated_transmission_scatter;
+    vec3 SR_coated_transmission_bsdf_medium_scattering_out = SR_coated_transmission_bsdf_medium_scatter_v_out / SR_coated_transmission_bsdf_medium_safe_depth_out;
+    vec3 SR_coated_transmission_bsdf_medium_log_per_depth_and_scattering_out = SR_coated_transmission_bsdf_medium_log_per_depth_out + SR_coated_transmission_bsdf_medium_scattering_out;
+    vec3 SR_coated_transmission_bsdf_medium_negative_absorption_out = min(SR_coated_transmission_bsdf_medium_log_per_depth_and_scattering_out, 0.0);
+    vec3 SR_coated_transmission_bsdf_medium_absorption_out = SR_coated_transmission_bsdf_medium_negative_absorption_out * (-1.0);
+    vec3 SR_coated_saturated_subsurface_color_out = pow(SR_coated_subsurface_color, vec3(SR_coated_saturation_exponent_out));
+    vec3 SR_coated_mean_free_path_out = SR_coated_subsurface_radius * SR_coated_subsurface_scale;
     float SR_coated_thin_walled_weight_out = float(SR_coated_thin_walled);
-    vec3 SR_coated_base_color_positive_out = max(SR_coated_base_color, 0.0);
-    vec3 SR_coated_base_color_saturated_out = pow(SR_coated_base_color_positive_out, vec3(SR_coated_coat_saturation_exponent_out));
-    vec3 SR_coated_coat_transmittance_out = mix(vec3(1.0, 1.0, 1.0), SR_coated_coat_color, SR_coated_coat);
-    float SR_coated_coat_ior_times_four_out = SR_coated_coat_IOR * 4.0;
-    float SR_coated_coat_ior_plus_one_out = SR_coated_coat_IOR + 1.0;
-    float SR_coated_coat_ior_plus_one_squared_out = SR_coated_coat_ior_plus_one_out * SR_coated_coat_ior_plus_one_out;
-    float SR_coated_coat_transmission_normal_out = SR_coated_coat_ior_times_four_out / SR_coated_coat_ior_plus_one_squared_out;
-    vec3 SR_coated_coat_transmission_normal_color_out = vec3(SR_coated_coat_transmission_normal_out);
+    vec3 SR_coated_coat_absorption_out = mix(vec3(1.0, 1.0, 1.0), SR_coated_coat_color, SR_coated_coat);
+    float SR_coated_emission_edf_ior_minus_one_out = SR_coated_coat_IOR - 1.0;
+    float SR_coated_emission_edf_ior_plus_one_out = SR_coated_coat_IOR + 1.0;
+    float SR_coated_emission_edf_amplitude_ratio_out = SR_coated_emission_edf_ior_minus_one_out / SR_coated_emission_edf_ior_plus_one_out;
+    float SR_coated_emission_edf_f0_out = SR_coated_emission_edf_amplitude_ratio_out * SR_coated_emission_edf_amplitude_ratio_out;
+    float SR_coated_emission_edf_t0_out = 1.0 - SR_coated_emission_edf_f0_out;
+    vec3 SR_coated_emission_edf_tinted_t0_out = SR_coated_coat_color * SR_coated_emission_edf_t0_out;
+    vec3 SR_coated_emission_edf_facing_out = mix(vec3(1.0, 1.0, 1.0), SR_coated_emission_edf_tinted_t0_out, SR_coated_coat);
+    float SR_coated_emission_edf_uncoated_out = 1.0 - SR_coated_coat;
+    vec3 SR_coated_emission_edf_grazing_out = vec3(SR_coated_emission_edf_uncoated_out);
     vec3 SR_coated_emission_radiance_out = SR_coated_emission_color * SR_coated_emission;
-    vec3 SR_coated_opacity_luminance_out = vec3(dot(SR_coated_opacity, vec3(0.2722287, 0.6740818, 0.0536895)));
-    float SR_coated_opacity_scalar_out = SR_coated_opacity_luminance_out[0];
-    surfaceshader SR_coated_surface_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec3 SR_coated_opacity_v_out = SR_coated_opacity;
+    float SR_coated_opacity_mean_out = dot(SR_coated_opacity_v_out, vec3(0.333333, 0.333333, 0.333334));
+    surfaceshader SR_coated_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd.normalWorld);
         vec3 V = normalize(u_viewPosition - vd.positionWorld);
         vec3 P = vd.positionWorld;
         vec3 L = vec3(0.0);
         float occlusion = 1.0;
-        float surfaceOpacity = SR_coated_opacity_scalar_out;
+        float surfaceOpacity = SR_coated_opacity_mean_out;
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); ++activeLightIndex)
         {
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_lobe_out);
-            BSDF SR_coated_metal_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_conductor_bsdf(closureData, 1.0, SR_coated_metal_fresnel_ior, SR_coated_metal_fresnel_extinction, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, SR_coated_metal_lobe_out);
-            BSDF SR_coated_specular_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular, SR_coated_specular_color, SR_coated_specular_IOR, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_lobe_out);
-            BSDF SR_coated_transmission_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, SR_coated_transmission_color, SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1, SR_coated_transmission_lobe_out);
-            BSDF SR_coated_sheen_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness, geomprop_Nworld_out, 0, SR_coated_sheen_lobe_out);
-            BSDF SR_coated_translucent_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, 1.0, SR_coated_subsurface_color_saturated_out, geomprop_Nworld_out, SR_coated_translucent_lobe_out);
-            BSDF SR_coated_subsurface_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, 1.0, SR_coated_subsurface_color_saturated_out, SR_coated_subsurface_mean_free_path_out, SR_coated_subsurface_anisotropy, geomprop_Nworld_out, SR_coated_subsurface_lobe_out);
-            BSDF SR_coated_subsurface_select_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_translucent_lobe_out, SR_coated_subsurface_lobe_out, SR_coated_thin_walled_weight_out, SR_coated_subsurface_select_out);
-            BSDF SR_coated_diffuse_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_base, SR_coated_base_color_saturated_out, SR_coated_diffuse_roughness, geomprop_Nworld_out, false, SR_coated_diffuse_lobe_out);
-            BSDF SR_coated_diffuse_subsurface_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_select_out, SR_coated_diffuse_lobe_out, SR_coated_subsurface, SR_coated_diffuse_subsurface_blend_out);
-            BSDF SR_coated_sheen_over_body_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_lobe_out, SR_coated_diffuse_subsurface_blend_out, SR_coated_sheen_over_body_out);
-            BSDF SR_coated_transmission_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_lobe_out, SR_coated_sheen_over_body_out, SR_coated_transmission, SR_coated_transmission_blend_out);
-            BSDF SR_coated_specular_over_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_lobe_out, SR_coated_transmission_blend_out, SR_coated_specular_over_dielectric_out);
-            BSDF SR_coated_metalness_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_lobe_out, SR_coated_specular_over_dielectric_out, SR_coated_metalness, SR_coated_metalness_blend_out);
-            BSDF SR_coated_substrate_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_metalness_blend_out, SR_coated_coat_transmittance_out, SR_coated_substrate_under_coat_out);
-            BSDF SR_coated_coat_over_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_lobe_out, SR_coated_substrate_under_coat_out, SR_coated_coat_over_substrate_out);
-            SR_coated_surface_shader_out.color += lightShader.intensity * SR_coated_coat_over_substrate_out.response;
+            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness, geomprop_Nworld_out, 0, SR_coated_sheen_brdf_out);
+            BSDF SR_coated_metal_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_conductor_bsdf(closureData, 1.0, SR_coated_metal_ior_ior, SR_coated_metal_ior_extinction, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, SR_coated_metal_brdf_out);
+            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, SR_coated_specular, SR_coated_specular_color, SR_coated_specular_IOR, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            BSDF SR_coated_transmission_bsdf_interface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 1.0, SR_coated_transmission_bsdf_interface_tint_out, SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1, SR_coated_transmission_bsdf_interface_out);
+            VDF SR_coated_transmission_bsdf_medium_medium_out = VDF(vec3(0.0), vec3(1.0));
+            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out, SR_coated_transmission_bsdf_medium_scattering_out, SR_coated_transmission_scatter_anisotropy, SR_coated_transmission_bsdf_medium_medium_out);
+            BSDF SR_coated_transmission_bsdf_interface_over_medium_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_medium_medium_out, SR_coated_transmission_bsdf_interface_over_medium_out);
+            BSDF SR_coated_transmission_bsdf_transmission_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out, SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_has_medium_out, SR_coated_transmission_bsdf_transmission_out);
+            BSDF SR_coated_thin_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, 1.0, SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out, SR_coated_thin_subsurface_out);
+            BSDF SR_coated_volume_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, 1.0, SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out, SR_coated_subsurface_anisotropy, geomprop_Nworld_out, SR_coated_volume_subsurface_out);
+            BSDF SR_coated_subsurface_bsdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out, SR_coated_thin_walled_weight_out, SR_coated_subsurface_bsdf_out);
+            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_base, SR_coated_saturated_base_color_out, SR_coated_diffuse_roughness, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
+            BSDF SR_coated_opaque_base_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out, SR_coated_subsurface, SR_coated_opaque_base_out);
+            BSDF SR_coated_dielectric_substrate_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out, SR_coated_opaque_base_out, SR_coated_transmission, SR_coated_dielectric_substrate_out);
+            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out, SR_coated_dielectric_out);
+            BSDF SR_coated_base_substrate_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out, SR_coated_metalness, SR_coated_base_substrate_out);
+            BSDF SR_coated_sheen_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out, SR_coated_sheen_layer_out);
+            BSDF SR_coated_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out, SR_coated_under_coat_out);
+            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out, SR_coated_coat_layer_out);
+            SR_coated_shader_out.color += lightShader.intensity * SR_coated_coat_layer_out.response;
         }
         // environment
         {
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_lobe_out);
-            BSDF SR_coated_metal_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_conductor_bsdf(closureData, 1.0, SR_coated_metal_fresnel_ior, SR_coated_metal_fresnel_extinction, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, SR_coated_metal_lobe_out);
-            BSDF SR_coated_specular_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular, SR_coated_specular_color, SR_coated_specular_IOR, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_lobe_out);
-            BSDF SR_coated_transmission_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, SR_coated_transmission_color, SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1, SR_coated_transmission_lobe_out);
-            BSDF SR_coated_sheen_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness, geomprop_Nworld_out, 0, SR_coated_sheen_lobe_out);
-            BSDF SR_coated_translucent_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, 1.0, SR_coated_subsurface_color_saturated_out, geomprop_Nworld_out, SR_coated_translucent_lobe_out);
-            BSDF SR_coated_subsurface_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, 1.0, SR_coated_subsurface_color_saturated_out, SR_coated_subsurface_mean_free_path_out, SR_coated_subsurface_anisotropy, geomprop_Nworld_out, SR_coated_subsurface_lobe_out);
-            BSDF SR_coated_subsurface_select_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_translucent_lobe_out, SR_coated_subsurface_lobe_out, SR_coated_thin_walled_weight_out, SR_coated_subsurface_select_out);
-            BSDF SR_coated_diffuse_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_base, SR_coated_base_color_saturated_out, SR_coated_diffuse_roughness, geomprop_Nworld_out, false, SR_coated_diffuse_lobe_out);
-            BSDF SR_coated_diffuse_subsurface_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_select_out, SR_coated_diffuse_lobe_out, SR_coated_subsurface, SR_coated_diffuse_subsurface_blend_out);
-            BSDF SR_coated_sheen_over_body_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_lobe_out, SR_coated_diffuse_subsurface_blend_out, SR_coated_sheen_over_body_out);
-            BSDF SR_coated_transmission_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_lobe_out, SR_coated_sheen_over_body_out, SR_coated_transmission, SR_coated_transmission_blend_out);
-            BSDF SR_coated_specular_over_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_lobe_out, SR_coated_transmission_blend_out, SR_coated_specular_over_dielectric_out);
-            BSDF SR_coated_metalness_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_lobe_out, SR_coated_specular_over_dielectric_out, SR_coated_metalness, SR_coated_metalness_blend_out);
-            BSDF SR_coated_substrate_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_metalness_blend_out, SR_coated_coat_transmittance_out, SR_coated_substrate_under_coat_out);
-            BSDF SR_coated_coat_over_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_lobe_out, SR_coated_substrate_under_coat_out, SR_coated_coat_over_substrate_out);
-            SR_coated_surface_shader_out.color += occlusion * SR_coated_coat_over_substrate_out.response;
+            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness, geomprop_Nworld_out, 0, SR_coated_sheen_brdf_out);
+            BSDF SR_coated_metal_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_conductor_bsdf(closureData, 1.0, SR_coated_metal_ior_ior, SR_coated_metal_ior_extinction, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, SR_coated_metal_brdf_out);
+            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, SR_coated_specular, SR_coated_specular_color, SR_coated_specular_IOR, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            BSDF SR_coated_transmission_bsdf_interface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 1.0, SR_coated_transmission_bsdf_interface_tint_out, SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1, SR_coated_transmission_bsdf_interface_out);
+            VDF SR_coated_transmission_bsdf_medium_medium_out = VDF(vec3(0.0), vec3(1.0));
+            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out, SR_coated_transmission_bsdf_medium_scattering_out, SR_coated_transmission_scatter_anisotropy, SR_coated_transmission_bsdf_medium_medium_out);
+            BSDF SR_coated_transmission_bsdf_interface_over_medium_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_medium_medium_out, SR_coated_transmission_bsdf_interface_over_medium_out);
+            BSDF SR_coated_transmission_bsdf_transmission_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out, SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_has_medium_out, SR_coated_transmission_bsdf_transmission_out);
+            BSDF SR_coated_thin_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, 1.0, SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out, SR_coated_thin_subsurface_out);
+            BSDF SR_coated_volume_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, 1.0, SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out, SR_coated_subsurface_anisotropy, geomprop_Nworld_out, SR_coated_volume_subsurface_out);
+            BSDF SR_coated_subsurface_bsdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out, SR_coated_thin_walled_weight_out, SR_coated_subsurface_bsdf_out);
+            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_base, SR_coated_saturated_base_color_out, SR_coated_diffuse_roughness, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
+            BSDF SR_coated_opaque_base_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out, SR_coated_subsurface, SR_coated_opaque_base_out);
+            BSDF SR_coated_dielectric_substrate_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out, SR_coated_opaque_base_out, SR_coated_transmission, SR_coated_dielectric_substrate_out);
+            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out, SR_coated_dielectric_out);
+            BSDF SR_coated_base_substrate_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out, SR_coated_metalness, SR_coated_base_substrate_out);
+            BSDF SR_coated_sheen_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out, SR_coated_sheen_layer_out);
+            BSDF SR_coated_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out, SR_coated_under_coat_out);
+            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out, SR_coated_coat_layer_out);
+            SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
         }
         // emission
         {
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
-            EDF SR_coated_emission_lobe_out = EDF(0.0);
-            mx_uniform_edf(closureData, SR_coated_emission_radiance_out, SR_coated_emission_lobe_out);
-            EDF SR_coated_emission_coat_tinted_out = EDF(0.0);
-            mx_multiply_edf_color3(closureData, SR_coated_emission_lobe_out, SR_coated_coat_color, SR_coated_emission_coat_tinted_out);
-            EDF SR_coated_emission_through_coat_out = EDF(0.0);
-            mx_generalized_schlick_edf(closureData, SR_coated_coat_transmission_normal_color_out, vec3(0.0, 0.0, 0.0), 5.0, SR_coated_emission_coat_tinted_out, SR_coated_emission_through_coat_out);
-            EDF SR_coated_emission_coat_blend_out = EDF(0.0);
-            mx_mix_edf(closureData, SR_coated_emission_through_coat_out, SR_coated_emission_lobe_out, SR_coated_coat, SR_coated_emission_coat_blend_out);
-            SR_coated_surface_shader_out.color += SR_coated_emission_coat_blend_out;
+            EDF SR_coated_emission_edf_emission_out = EDF(0.0);
+            mx_uniform_edf(closureData, SR_coated_emission_radiance_out, SR_coated_emission_edf_emission_out);
+            EDF SR_coated_emission_edf_through_coat_out = EDF(0.0);
+            mx_generalized_schlick_edf(closureData, SR_coated_emission_edf_facing_out, SR_coated_emission_edf_grazing_out, 5.0, SR_coated_emission_edf_emission_out, SR_coated_emission_edf_through_coat_out);
+            SR_coated_shader_out.color += SR_coated_emission_edf_through_coat_out;
         }
         // transmission, seen along the view direction
         {
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_lobe_out);
-            BSDF SR_coated_metal_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_conductor_bsdf(closureData, 1.0, SR_coated_metal_fresnel_ior, SR_coated_metal_fresnel_extinction, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, SR_coated_metal_lobe_out);
-            BSDF SR_coated_specular_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular, SR_coated_specular_color, SR_coated_specular_IOR, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_lobe_out);
-            BSDF SR_coated_transmission_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, SR_coated_transmission_color, SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1, SR_coated_transmission_lobe_out);
-            BSDF SR_coated_sheen_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness, geomprop_Nworld_out, 0, SR_coated_sheen_lobe_out);
-            BSDF SR_coated_translucent_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, 1.0, SR_coated_subsurface_color_saturated_out, geomprop_Nworld_out, SR_coated_translucent_lobe_out);
-            BSDF SR_coated_subsurface_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, 1.0, SR_coated_subsurface_color_saturated_out, SR_coated_subsurface_mean_free_path_out, SR_coated_subsurface_anisotropy, geomprop_Nworld_out, SR_coated_subsurface_lobe_out);
-            BSDF SR_coated_subsurface_select_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_translucent_lobe_out, SR_coated_subsurface_lobe_out, SR_coated_thin_walled_weight_out, SR_coated_subsurface_select_out);
-            BSDF SR_coated_diffuse_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_base, SR_coated_base_color_saturated_out, SR_coated_diffuse_roughness, geomprop_Nworld_out, false, SR_coated_diffuse_lobe_out);
-            BSDF SR_coated_diffuse_subsurface_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_select_out, SR_coated_diffuse_lobe_out, SR_coated_subsurface, SR_coated_diffuse_subsurface_blend_out);
-            BSDF SR_coated_sheen_over_body_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_lobe_out, SR_coated_diffuse_subsurface_blend_out, SR_coated_sheen_over_body_out);
-            BSDF SR_coated_transmission_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_lobe_out, SR_coated_sheen_over_body_out, SR_coated_transmission, SR_coated_transmission_blend_out);
-            BSDF SR_coated_specular_over_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_lobe_out, SR_coated_transmission_blend_out, SR_coated_specular_over_dielectric_out);
-            BSDF SR_coated_metalness_blend_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_lobe_out, SR_coated_specular_over_dielectric_out, SR_coated_metalness, SR_coated_metalness_blend_out);
-            BSDF SR_coated_substrate_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_metalness_blend_out, SR_coated_coat_transmittance_out, SR_coated_substrate_under_coat_out);
-            BSDF SR_coated_coat_over_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_lobe_out, SR_coated_substrate_under_coat_out, SR_coated_coat_over_substrate_out);
-            SR_coated_surface_shader_out.color += SR_coated_coat_over_substrate_out.response;
+            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness, geomprop_Nworld_out, 0, SR_coated_sheen_brdf_out);
+            BSDF SR_coated_metal_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_conductor_bsdf(closureData, 1.0, SR_coated_metal_ior_ior, SR_coated_metal_ior_extinction, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, SR_coated_metal_brdf_out);
+            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, SR_coated_specular, SR_coated_specular_color, SR_coated_specular_IOR, SR_coated_specular_alpha_out, false, SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            BSDF SR_coated_transmission_bsdf_interface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 1.0, SR_coated_transmission_bsdf_interface_tint_out, SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1, SR_coated_transmission_bsdf_interface_out);
+            VDF SR_coated_transmission_bsdf_medium_medium_out = VDF(vec3(0.0), vec3(1.0));
+            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out, SR_coated_transmission_bsdf_medium_scattering_out, SR_coated_transmission_scatter_anisotropy, SR_coated_transmission_bsdf_medium_medium_out);
+            BSDF SR_coated_transmission_bsdf_interface_over_medium_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_medium_medium_out, SR_coated_transmission_bsdf_interface_over_medium_out);
+            BSDF SR_coated_transmission_bsdf_transmission_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out, SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_has_medium_out, SR_coated_transmission_bsdf_transmission_out);
+            BSDF SR_coated_thin_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, 1.0, SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out, SR_coated_thin_subsurface_out);
+            BSDF SR_coated_volume_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, 1.0, SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out, SR_coated_subsurface_anisotropy, geomprop_Nworld_out, SR_coated_volume_subsurface_out);
+            BSDF SR_coated_subsurface_bsdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out, SR_coated_thin_walled_weight_out, SR_coated_subsurface_bsdf_out);
+            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_base, SR_coated_saturated_base_color_out, SR_coated_diffuse_roughness, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
+            BSDF SR_coated_opaque_base_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out, SR_coated_subsurface, SR_coated_opaque_base_out);
+            BSDF SR_coated_dielectric_substrate_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out, SR_coated_opaque_base_out, SR_coated_transmission, SR_coated_dielectric_substrate_out);
+            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out, SR_coated_dielectric_out);
+            BSDF SR_coated_base_substrate_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out, SR_coated_metalness, SR_coated_base_substrate_out);
+            BSDF SR_coated_sheen_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out, SR_coated_sheen_layer_out);
+            BSDF SR_coated_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out, SR_coated_under_coat_out);
+            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out, SR_coated_coat_layer_out);
+            SR_coated_shader_out.color += SR_coated_coat_layer_out.response;
         }
-        SR_coated_surface_shader_out.color *= surfaceOpacity;
-        SR_coated_surface_shader_out.transparency = mix(vec3(1.0), SR_coated_surface_shader_out.transparency, surfaceOpacity);
+        SR_coated_shader_out.color *= surfaceOpacity;
+        SR_coated_shader_out.transparency = mix(vec3(1.0), SR_coated_shader_out.transparency, surfaceOpacity);
     }
-    material Coated_out = SR_coated_surface_shader_out;
+    material Coated_out = SR_coated_shader_out;
     out1 = vec4(Coated_out.color, 1.0);
 }

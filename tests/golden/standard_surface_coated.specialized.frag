@@ -93,6 +93,19 @@ void mx_roughness_anisotropy(float roughness, float anisotropy, out vec2 result)
     }
 }
 
+
+// rotate3d: turn a vector by `degrees` about `axis` (normalized here).
+// MaterialX multiplies row vectors (v' = v * M), so the sense of rotation is that of
+// Rodrigues' formula with the cross product taken as v x k.
+void mx_rotate3d_vector3(vec3 v, float degrees, vec3 axis, out vec3 result)
+{
+    vec3 k = normalize(axis);
+    float angle = radians(degrees);
+    float c = cos(angle);
+    float s = sin(angle);
+    result = v * c + cross(v, k) * s + k * (dot(k, v) * (1.0 - c));
+}
+
 #define CLOSURE_TYPE_REFLECTION 1
 
 #define CLOSURE_TYPE_TRANSMISSION 2
@@ -829,9 +842,13 @@ void main()
     mx_roughness_anisotropy(0.05, 0.0, SR_coated_coat_alpha_out);
     vec3 geomprop_Nworld_out = normalize(vd.normalWorld);
     vec3 geomprop_Tworld_out = normalize(vd.tangentWorld);
+    vec3 SR_coated_coat_tangent_out;
+    mx_rotate3d_vector3(geomprop_Tworld_out, 0.0, geomprop_Nworld_out, SR_coated_coat_tangent_out);
     vec2 SR_coated_specular_alpha_out;
     mx_roughness_anisotropy(0.35, 0.0, SR_coated_specular_alpha_out);
-    surfaceshader SR_coated_surface_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec3 SR_coated_specular_tangent_out;
+    mx_rotate3d_vector3(geomprop_Tworld_out, 0.0, geomprop_Nworld_out, SR_coated_specular_tangent_out);
+    surfaceshader SR_coated_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd.normalWorld);
         vec3 V = normalize(u_viewPosition - vd.positionWorld);
@@ -845,36 +862,36 @@ void main()
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_coat_lobe_out);
-            BSDF SR_coated_specular_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_specular_lobe_out);
-            BSDF SR_coated_diffuse_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_lobe_out);
-            BSDF SR_coated_specular_over_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_lobe_out, SR_coated_diffuse_lobe_out, SR_coated_specular_over_dielectric_out);
-            BSDF SR_coated_coat_over_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_lobe_out, SR_coated_specular_over_dielectric_out, SR_coated_coat_over_substrate_out);
-            SR_coated_surface_shader_out.color += lightShader.intensity * SR_coated_coat_over_substrate_out.response;
+            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
+            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out, SR_coated_dielectric_out);
+            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out, SR_coated_coat_layer_out);
+            SR_coated_shader_out.color += lightShader.intensity * SR_coated_coat_layer_out.response;
         }
         // environment
         {
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_coat_lobe_out);
-            BSDF SR_coated_specular_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_specular_lobe_out);
-            BSDF SR_coated_diffuse_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_lobe_out);
-            BSDF SR_coated_specular_over_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_lobe_out, SR_coated_diffuse_lobe_out, SR_coated_specular_over_dielectric_out);
-            BSDF SR_coated_coat_over_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_lobe_out, SR_coated_specular_over_dielectric_out, SR_coated_coat_over_substrate_out);
-            SR_coated_surface_shader_out.color += occlusion * SR_coated_coat_over_substrate_out.response;
+            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
+            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out, SR_coated_dielectric_out);
+            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out, SR_coated_coat_layer_out);
+            SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
         }
-        SR_coated_surface_shader_out.color *= surfaceOpacity;
-        SR_coated_surface_shader_out.transparency = mix(vec3(1.0), SR_coated_surface_shader_out.transparency, surfaceOpacity);
+        SR_coated_shader_out.color *= surfaceOpacity;
+        SR_coated_shader_out.transparency = mix(vec3(1.0), SR_coated_shader_out.transparency, surfaceOpacity);
     }
-    material Coated_out = SR_coated_surface_shader_out;
+    material Coated_out = SR_coated_shader_out;
     out1 = vec4(Coated_out.color, 1.0);
 }
