@@ -11,11 +11,16 @@
              TestSuite/stdlib (or the documents --documents names), our record (shadergen.api) and the oracle's drawn by our Renderer
              the same way. Prints the PSNR distribution, the share >= 40 dB and the worst ten.
 
+  interfaces Our `specialized` shader against our `complete` one (same values, same renderer, same
+             environment), every renderable element of the documents given: specialized must not change
+             the image (>= 60 dB). Prints the minimum, the worst five, the count under 60 dB.
+
 PSNR is over the linear RGBA framebuffers (peak 1.0); identical images print "inf".
 
   .venv/bin/python bench/accuracy.py renderer  [--corpus ../shared/corpus] [--out DIR] [--size 256]
   .venv/bin/python bench/accuracy.py generator [--corpus ../shared/corpus] [--filter math] [--json out.json]
   .venv/bin/python bench/accuracy.py generator --documents 'resources/Materials/Examples/**/*.mtlx'
+  .venv/bin/python bench/accuracy.py interfaces --documents 'resources/Materials/**/*.mtlx'
 
 The oracle runs only as a subprocess of its own venv ($ORACLE_VENV, default ~/.cache/mx-oracle/venv).
 """
@@ -199,6 +204,56 @@ def measure_generator(args) -> int:
     return report_generator(rows, args)
 
 
+def measure_interfaces(args) -> int:
+    sys.path.insert(0, ROOT)
+    from shadergen.api import generate_file
+    from shadergen.render import Renderer, RenderError
+
+    corpus = os.path.abspath(args.corpus)
+    documents = sorted(glob.glob(os.path.join(corpus, args.documents), recursive=True))
+    documents = [d for d in documents if not args.filter or args.filter in d]
+    renderer = Renderer(search_paths=[corpus])
+    rows, undrawable = [], 0
+    for document in documents:
+        relative = os.path.relpath(document, corpus)
+        records = {i: {r.get("element"): r for r in generate_file(document, all=True, interface=i)}
+                   for i in ("complete", "specialized")}
+        for element, complete in records["complete"].items():
+            specialized = records["specialized"].get(element, {"error": {"code": "missing"}})
+            if "error" in complete:
+                continue  # not renderable by us at all: nothing to compare
+            try:
+                a = renderer.render(complete, size=args.size, document_dir=os.path.dirname(document)).rgba
+            except RenderError:
+                undrawable += 1
+                continue
+            row = {"document": relative, "element": element,
+                   "lines": (complete["stages"]["pixel"].count("\n"),
+                             specialized.get("stages", {}).get("pixel", "").count("\n"))}
+            try:
+                row["psnr"] = psnr(renderer.render(specialized, size=args.size,
+                                                   document_dir=os.path.dirname(document)).rgba, a) \
+                    if "error" not in specialized else float("-inf")
+            except RenderError as exc:
+                row["psnr"], row["problem"] = float("-inf"), exc.code
+            rows.append(row)
+        print(f"  {relative}", file=sys.stderr)
+    scores = sorted(rows, key=lambda r: r["psnr"])
+    under = [r for r in rows if r["psnr"] < 60.0]
+    print(f"\nspecialized vs complete, same renderer and values, {args.size}x{args.size}: {len(rows)} elements "
+          f"drawn ({undrawable} that complete itself cannot draw left out)")
+    print(f"minimum PSNR {fmt_db(scores[0]['psnr']) if scores else '-'} dB; under 60 dB: {len(under)}; identical: "
+          f"{sum(r['psnr'] == float('inf') for r in rows)}; fragment lines total complete "
+          f"{sum(r['lines'][0] for r in rows)}, specialized {sum(r['lines'][1] for r in rows)}")
+    print("\nWorst five:\n\n| document | element | PSNR dB |\n|---|---|---:|")
+    for r in scores[:5]:
+        print(f"| {r['document']} | {r['element']} | {fmt_db(r['psnr'])} |")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(rows, f, indent=1)
+    return 0 if rows and not under else 1
+
+
 def report_generator(rows: list[dict], args) -> int:
     measured = [r for r in rows if "skipped" not in r]
     scores = [r.get("psnr", float("-inf")) for r in measured]  # no image of ours counts as the worst
@@ -244,17 +299,18 @@ def report_generator(rows: list[dict], args) -> int:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("measurement", choices=["renderer", "generator"])
+    parser.add_argument("measurement", choices=["renderer", "generator", "interfaces"])
     parser.add_argument("--corpus", default=os.path.join(SHARED, "corpus"))
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--repeat", type=int, default=5, help="frames timed per render (renderer measurement)")
     parser.add_argument("--documents", default="resources/Materials/TestSuite/stdlib/**/*.mtlx",
-                        help="glob of the documents below the corpus (generator measurement)")
+                        help="glob of the documents below the corpus (generator and interfaces)")
     parser.add_argument("--filter", help="only documents whose path contains this (generator measurement)")
     parser.add_argument("--out", help="keep records and images here (renderer measurement)")
     parser.add_argument("--json", help="also write the per-element results here")
     args = parser.parse_args()
-    return measure_renderer(args) if args.measurement == "renderer" else measure_generator(args)
+    return {"renderer": measure_renderer, "generator": measure_generator,
+            "interfaces": measure_interfaces}[args.measurement](args)
 
 
 if __name__ == "__main__":

@@ -22,7 +22,7 @@ from .graph import GraphBuilder, Output
 from .passes import Options, prepare
 from .hashing import graph_hash
 from .library import Library, Scope, default_library
-from .targets import syntax_for
+from .targets import target_for
 from .usd import is_usd_path, parse_usd, read_usd
 
 INTERFACES = ("complete", "reduced", "specialized")
@@ -83,7 +83,7 @@ class Prepared:
 
     def emit(self, source: bool = True) -> dict:
         t0 = time.perf_counter()
-        ctx = EmitContext(syntax_for(self.target), self.scope, "genglsl" if self.target == "glsl" else self.target)
+        ctx = EmitContext(target_for(self.target), self.scope)
         stages = emit_shader(ctx, self.graph)
         blocks = {name: st.listing() for name, st in ctx.stages.items()}
         if self.document.labels:  # variables name their inputs as the source document does
@@ -128,7 +128,7 @@ class Generator:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
         that stay live uniforms in the `specialized` interface."""
-        syntax_for(target)  # unknown targets fail before any work
+        target_for(target)  # unknown targets fail before any work
         if interface not in INTERFACES:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
                                  + ", ".join(INTERFACES), interface)
@@ -203,8 +203,8 @@ class Generator:
 
     def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, options: Options) -> Prepared:
         t0 = time.perf_counter()
-        lib_target = "genglsl" if target == "glsl" else target
-        builder = GraphBuilder(scope, lib_target, doc.root)
+        shading_language = target_for(target)
+        builder = GraphBuilder(scope, shading_language.library, doc.root)
         root = None
         if elem.category == "output":
             src = builder.source_of(elem)
@@ -220,7 +220,7 @@ class Generator:
         else:
             root = builder.node_for(elem)
             outputs = {name: out for name, out in root.outputs.items()}
-        graph = prepare(builder, outputs, root, options)
+        graph = prepare(builder, outputs, root, shading_language, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         h = graph_hash(graph, target=target, interface=options.interface, library_hash=self.library.content_hash,

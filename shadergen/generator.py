@@ -13,23 +13,23 @@ from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .nodes.base import expand_includes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
-from .targets.deadcode import identifiers, used_functions
-from .targets.glsl import STRUCTS, Syntax
+from .targets.deadcode import identifiers
 
 CLOSURES = ("BSDF", "EDF", "VDF")
-CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}
+CONDITIONS = {"ifgreater": "greater", "ifgreatereq": "greatereq", "ifequal": "equal"}
 
 
 class Namer:
     """One namer per shader: valid identifiers, no reserved words or gl_ prefix, no clashes."""
 
-    def __init__(self, reserved: set[str]):
+    def __init__(self, reserved: set[str], reserved_prefixes: tuple[str, ...]):
         self.reserved = reserved
+        self.reserved_prefixes = reserved_prefixes
         self.used: set[str] = set()
 
     def __call__(self, wanted: str) -> str:
         name = re.sub(r"\W", "_", wanted) or "v"
-        if name[0].isdigit() or name.startswith("gl_") or name.startswith("__"):
+        if name[0].isdigit() or name.startswith(self.reserved_prefixes):
             name = "v_" + name
         base, n = name, 1
         while name in self.used or name in self.reserved:
@@ -42,17 +42,17 @@ class Namer:
 class EmitContext:
     """Shared state of one generation; node implementations write through it."""
 
-    def __init__(self, syntax: Syntax, scope: Scope, target: str):
-        self.syntax = syntax
+    def __init__(self, target, scope: Scope):
+        self.target = target  # the Target: its syntax and the hooks every line is written through
+        self.syntax = target.syntax
         self.scope = scope
-        self.target = target
         self.stages = {VERTEX: Stage(VERTEX), PIXEL: Stage(PIXEL)}
-        self.namer = Namer(syntax.reserved)
+        self.namer = Namer(self.syntax.reserved, self.syntax.reserved_prefixes)
         self.closure = None  # shading context for BSDF nodes (see nodes/base.py)
         self.vars: dict[int, str] = {}  # id(Output | Input | Socket) -> expression naming its value
         self.used_types: set[str] = set()
         self.body: Writer = self.pixel.main
-        self.vertex_main: list[str] = []
+        self.vertex_main: dict[str, str] = {}  # vertex data member -> the statement assigning it
         self.function_names: dict[int, str] = {}  # id(Function) -> its name in the shader
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
 
@@ -95,22 +95,21 @@ class EmitContext:
         return self.vars[id(out)]
 
     def assign(self, out: Output, expression: str) -> None:
-        self.body.line(f"{self.syntax.type_name(out.type)} {self.output_name(out)} = {expression};")
+        self.body.line(self.target.declare(out.type, self.output_name(out), expression))
 
     def declare(self, out: Output) -> str:
         name = self.output_name(out)
-        if out.type in CLOSURES:  # closure functions accumulate into their result: start from zero
-            self.body.line(f"{self.syntax.type_name(out.type)} {name} = {self.syntax.literal(out.type, None)};")
-        else:
-            self.body.line(f"{self.syntax.type_name(out.type)} {name};")
+        # closure functions accumulate into their result: it starts from zero
+        zero = self.syntax.literal(out.type, None) if out.type in CLOSURES else None
+        self.body.line(self.target.declare(out.type, name, zero))
         return name
 
     def call(self, function: str, node: Node) -> None:
         outs = [self.declare(o) for o in node.outputs.values()]
         args = [self.value(i) for i in node.inputs.values()] + outs
         if is_closure_node(node):
-            args.insert(0, "closureData")
-        self.body.line(f"{function}({', '.join(args)});")
+            args = self.target.closure_arguments() + args
+        self.body.line(self.target.call(function, args))
 
     # -- variables ---------------------------------------------------------------------------
     def add_variable(self, stage: str, block: str, var: Variable) -> Variable:
@@ -131,10 +130,9 @@ class EmitContext:
         the vertex stage's main. Returns how the pixel stage reads it."""
         for s in (VERTEX, PIXEL):
             self.add_variable(s, "VertexData", Variable(name, type_name))
-        if name not in self.vertex.calculated:
-            self.vertex.calculated.add(name)
-            self.vertex_main.append(f"{self.syntax.vertex_data_member(name)} = {vertex_expression};")
-        return self.syntax.vertex_data_member(name)
+        member = self.syntax.vertex_data_member(name)
+        self.vertex_main.setdefault(name, self.target.assign(member, vertex_expression))
+        return member
 
     # -- functions -------------------------------------------------------------------------------
     def emit_source_file(self, path: str) -> None:
@@ -153,16 +151,15 @@ class EmitContext:
         params = []
         for s in function.params:
             self.vars[id(s)] = pname = self.namer(f"{fname}_{s.name}")
-            params.append(f"{self.syntax.type_name(s.type)} {pname}")
+            params.append((s.type, pname))
             self.used_types.add(s.type)
         out_params = [(self.namer(f"{fname}_{out.name}"), out) for out in function.outputs]
-        params += [f"out {self.syntax.type_name(out.type)} {p}" for p, out in out_params]
         try:
             self.define_functions(function.graph)
-            with self.body.block(f"void {fname}({', '.join(params)})"):
+            with self.body.block(self.target.function_opener(fname, params, [(o.type, p) for p, o in out_params])):
                 self.emit_nodes(function.graph, ())
                 for p, out in out_params:
-                    self.body.line(f"{p} = {self.vars[id(out)]};")
+                    self.body.line(self.target.assign(p, self.vars[id(out)]))
             self.pixel.functions.extend(self.body.text())
             self.pixel.functions.line()
         finally:
@@ -217,26 +214,23 @@ class EmitContext:
         out = next(iter(node.outputs.values()))
         result = self.declare(out)
         for i, (branch, condition) in enumerate(self.branch_conditions(node)):
-            opener = ("if" if i == 0 else "else if") + f" ({condition})" if condition else "else"
-            with self.body.block(opener):
+            with self.body.block(self.target.branch_opener(i, condition)):
                 if branch is None:  # no input selected: the type's zero, as the inline form gives
-                    self.body.line(f"{result} = {self.syntax.literal(out.type, None)};")
+                    self.body.line(self.target.assign(result, self.syntax.literal(out.type, None)))
                     continue
                 self.emit_nodes(graph, node.scope + ((node, branch),))
-                self.body.line(f"{result} = {self.value(node.inputs[branch])};")
+                self.body.line(self.target.assign(result, self.value(node.inputs[branch])))
 
     def branch_conditions(self, node: Node) -> list[tuple[str | None, str | None]]:
         """(branch input, condition) in order; a None condition is the final else."""
         if node.category in CONDITIONS:
-            op = CONDITIONS[node.category]
             v1, v2 = self.value(node.inputs["value1"]), self.value(node.inputs["value2"])
-            return [("in1", f"{v1} {op} {v2}"), ("in2", None)]
+            return [("in1", self.target.compare(CONDITIONS[node.category], v1, v2)), ("in2", None)]
         which = node.inputs["which"]
         w = self.value(which)
-        bound = (lambda k: str(k)) if which.type == "integer" else (lambda k: f"{k}.0")
         names = [n for n in BRANCH_INPUTS["switch"] if n in node.inputs]
         # `which` below k selects input k; from the number of inputs on, none is selected
-        return [(n, f"{w} < {bound(k)}") for k, n in enumerate(names, start=1)] + [(None, None)]
+        return [(n, self.target.below(w, k, which.type)) for k, n in enumerate(names, start=1)] + [(None, None)]
 
 
 def is_closure_node(node: Node) -> bool:
@@ -249,23 +243,7 @@ def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
             raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn", name)
         var = ctx.namer(name)
         ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
-        ctx.body.line(f"{var} = {display_value(out.type, ctx.vars[id(out)])};")
-
-
-def display_value(type_name: str, v: str) -> str:
-    """Every pixel output is a vec4 colour."""
-    if type_name in ("float", "integer", "boolean"):
-        s = v if type_name == "float" else f"float({v})"
-        return f"vec4({s}, {s}, {s}, 1.0)"
-    if type_name == "vector2":
-        return f"vec4({v}, 0.0, 1.0)"
-    if type_name in ("vector3", "color3"):
-        return f"vec4({v}, 1.0)"
-    if type_name in ("vector4", "color4"):
-        return v
-    if type_name in ("surfaceshader", "material", "volumeshader"):
-        return f"vec4({v}.color, 1.0)"
-    return "vec4(0.0, 0.0, 0.0, 1.0)"
+        ctx.body.line(ctx.target.assign(var, ctx.target.output_color(out.type, ctx.vars[id(out)])))
 
 
 def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
@@ -278,7 +256,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)
     drop_unused(ctx, graph.interface_mode == "specialized")
-    return {VERTEX: assemble_vertex(ctx), PIXEL: assemble_pixel(ctx)}
+    return {VERTEX: ctx.target.assemble_vertex(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
 
 
 FIXED_VERTEX = {"i_position", "u_worldMatrix", "u_viewProjectionMatrix"}  # the position transform always runs
@@ -289,7 +267,7 @@ def drop_unused(ctx: EmitContext, variables: bool) -> None:
     `variables` (specialized), uniforms nothing reads and vertex data the pixel stage does not read
     are dropped too, from the code and from the listings."""
     main = "\n".join(ctx.pixel.main.lines)
-    ctx.pixel.functions.lines = used_functions(ctx.pixel.functions.lines, main)
+    ctx.pixel.functions.lines = ctx.target.used_functions(ctx.pixel.functions.lines, main)
     used = identifiers(main + "\n".join(ctx.pixel.functions.lines))
     if variables:
         blocks = ctx.pixel.blocks
@@ -302,79 +280,11 @@ def drop_unused(ctx: EmitContext, variables: bool) -> None:
         for stage in ctx.stages.values():
             stage.blocks["VertexData"].variables = {n: v for n, v in stage.blocks["VertexData"].variables.items()
                                                     if n in read}
-        ctx.vertex_main = [ln for ln in ctx.vertex_main
-                           if any(ln.startswith(f"{ctx.syntax.vertex_data_member(n)} = ") for n in read)]
-        vertex_used = identifiers("\n".join(ctx.vertex_main)) | FIXED_VERTEX
+        ctx.vertex_main = {n: line for n, line in ctx.vertex_main.items() if n in read}
+        vertex_used = identifiers("\n".join(ctx.vertex_main.values())) | FIXED_VERTEX
         for block in ("AppData", "PrivateUniforms"):
             vb = ctx.vertex.blocks[block]
             vb.variables = {n: v for n, v in vb.variables.items() if n in vertex_used}
     declared = {v.type for st in ctx.stages.values() for b in st.blocks.values() for v in b}
-    ctx.used_types = {t for t in ctx.used_types if t not in STRUCTS or t in used or t in declared}
-
-
-def _declarations(ctx: EmitContext, stage: Stage, w: Writer) -> None:
-    syntax = ctx.syntax
-    for block in ("PrivateUniforms", "PublicUniforms"):
-        variables = list(stage.blocks[block])
-        if variables:
-            w.line(f"// Uniform block: {block}")
-            for v in variables:
-                meta = {"enum": ""}  # listing values of enums are already indices
-                w.line(syntax.uniform_declaration(v.type, v.name, v.value, meta))
-            w.line()
-
-
-def _vertex_data(ctx: EmitContext, stage: Stage, w: Writer, direction: str) -> None:
-    members = list(stage.blocks["VertexData"])
-    if not members:
-        return
-    if ctx.syntax.vertex_data_block:
-        w.line(f"{direction} VertexData")
-        w.line("{")
-        for v in members:
-            w.line(f"    {ctx.syntax.type_name(v.type)} {v.name};")
-        w.line("} vd;")
-    else:
-        for v in members:
-            w.line(f"{direction} {ctx.syntax.type_name(v.type)} {ctx.syntax.vertex_data_member(v.name)};")
-    w.line()
-
-
-def assemble_pixel(ctx: EmitContext) -> str:
-    w = Writer()
-    for line in ctx.syntax.header():
-        w.line(line)
-    w.line()
-    structs = ctx.syntax.struct_definitions({t for t in ctx.used_types if t in STRUCTS})
-    if structs:
-        for s in structs:
-            w.line(s)
-        w.line()
-    _declarations(ctx, ctx.pixel, w)
-    _vertex_data(ctx, ctx.pixel, w, "in")
-    for v in ctx.pixel.blocks["Outputs"]:
-        w.line(f"out vec4 {v.name};")
-    w.line()
-    if ctx.pixel.functions.lines:
-        w.lines.extend(ctx.pixel.functions.lines)
-    with w.block("void main()"):
-        w.lines.extend("    " + ln if ln else "" for ln in ctx.pixel.main.lines)
-    return w.text()
-
-
-def assemble_vertex(ctx: EmitContext) -> str:
-    w = Writer()
-    for line in ctx.syntax.header():
-        w.line(line)
-    w.line()
-    _declarations(ctx, ctx.vertex, w)
-    for v in ctx.vertex.blocks["AppData"]:
-        w.line(f"in {ctx.syntax.type_name(v.type)} {v.name};")
-    w.line()
-    _vertex_data(ctx, ctx.vertex, w, "out")
-    with w.block("void main()"):
-        w.line("vec4 hPositionWorld = u_worldMatrix * vec4(i_position, 1.0);")
-        w.line("gl_Position = u_viewProjectionMatrix * hPositionWorld;")
-        for line in ctx.vertex_main:
-            w.line(line)
-    return w.text()
+    structs = ctx.syntax.struct_types
+    ctx.used_types = {t for t in ctx.used_types if t not in structs or t in used or t in declared}

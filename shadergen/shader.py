@@ -101,7 +101,6 @@ class Stage:
     functions: Writer = field(default_factory=Writer)  # function definitions, in emission order
     main: Writer = field(default_factory=Writer)  # body of main()
     emitted: set = field(default_factory=set)  # ids of function definitions and includes already written
-    calculated: set = field(default_factory=set)  # vertex data already assigned in main()
 
     def __post_init__(self):
         for b in BLOCKS[self.name]:

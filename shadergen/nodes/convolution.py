@@ -8,7 +8,7 @@ from .base import NodeImpl, register
 BLUR_TYPES = ("float", "color3", "color4", "vector2", "vector3", "vector4")
 
 
-@register(*(f"IM_blur_{t}_genglsl" for t in BLUR_TYPES))
+@register(*(f"IM_blur_{t}" for t in BLUR_TYPES))
 class Blur(NodeImpl):
     def emit_function_call(self, node, ctx):
         ctx.assign(next(iter(node.outputs.values())), ctx.value(node.inputs["in"]))

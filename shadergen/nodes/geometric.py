@@ -16,8 +16,8 @@ def _space(node) -> str:
 class _SpaceVector(NodeImpl):
     """position, normal, tangent, bitangent in object (= model) or world space."""
     stream = ""  # app data suffix: position, normal, ...
-    world = ""  # vertex expression for world space
-    normalized = True
+    matrix = ""  # the matrix taking it to world space
+    normalized = True  # a direction (normalized), not a point
     fixed_inputs = frozenset({"space", "index"})
 
     @classmethod
@@ -26,7 +26,8 @@ class _SpaceVector(NodeImpl):
         attr = ctx.app_data(f"i_{cls.stream}", "vector3")
         if space == "world":
             ctx.private_uniform(cls.matrix, "matrix44", ("vertex",))
-            expr = cls.world.format(attr=attr, m=cls.matrix)
+            expr = ctx.target.normalize(ctx.target.transform(cls.matrix, attr, point=False)) if cls.normalized \
+                else ctx.target.world_position()
         else:
             expr = attr
         return ctx.vertex_data(f"{cls.stream}{space.capitalize()}", "vector3", expr)
@@ -34,28 +35,25 @@ class _SpaceVector(NodeImpl):
     def emit_function_call(self, node, ctx):
         varying = self.varying(ctx, _space(node))
         out = next(iter(node.outputs.values()))
-        ctx.assign(out, f"normalize({varying})" if self.normalized else varying)
+        ctx.assign(out, ctx.target.normalize(varying) if self.normalized else varying)
 
 
-@register("IM_position_vector3_genglsl")
+@register("IM_position_vector3")
 class Position(_SpaceVector):
     stream, matrix, normalized = "position", "u_worldMatrix", False
-    world = "hPositionWorld.xyz"
 
 
-@register("IM_normal_vector3_genglsl")
+@register("IM_normal_vector3")
 class Normal(_SpaceVector):
     stream, matrix = "normal", "u_worldInverseTransposeMatrix"
-    world = "normalize(({m} * vec4({attr}, 0.0)).xyz)"
 
 
-@register("IM_tangent_vector3_genglsl")
+@register("IM_tangent_vector3")
 class Tangent(_SpaceVector):
     stream, matrix = "tangent", "u_worldMatrix"
-    world = "normalize(({m} * vec4({attr}, 0.0)).xyz)"
 
 
-@register("IM_bitangent_vector3_genglsl")
+@register("IM_bitangent_vector3")
 class Bitangent(NodeImpl):
     """Meshes carry normals and tangents; the bitangent is their cross product in the vertex stage."""
     fixed_inputs = frozenset({"space", "index"})
@@ -63,15 +61,15 @@ class Bitangent(NodeImpl):
     def emit_function_call(self, node, ctx):
         space = _space(node)
         n, t = ctx.app_data("i_normal", "vector3"), ctx.app_data("i_tangent", "vector3")
-        expr = f"cross({n}, {t})"
+        expr = ctx.target.cross(n, t)
         if space == "world":
             m = ctx.private_uniform("u_worldMatrix", "matrix44", ("vertex",))
-            expr = f"normalize(({m} * vec4({expr}, 0.0)).xyz)"
+            expr = ctx.target.normalize(ctx.target.transform(m, expr, point=False))
         varying = ctx.vertex_data(f"bitangent{space.capitalize()}", "vector3", expr)
-        ctx.assign(next(iter(node.outputs.values())), f"normalize({varying})")
+        ctx.assign(next(iter(node.outputs.values())), ctx.target.normalize(varying))
 
 
-@register("IM_texcoord_vector2_genglsl", "IM_texcoord_vector3_genglsl")
+@register("IM_texcoord_vector2", "IM_texcoord_vector3")
 class TexCoord(NodeImpl):
     """The index selects the stream when the shader is generated; it stays listed as MaterialX does."""
 
@@ -82,22 +80,22 @@ class TexCoord(NodeImpl):
         ctx.assign(out, ctx.vertex_data(f"texcoord_{index}", out.type, attr))
 
 
-@register("IM_geomcolor_float_genglsl", "IM_geomcolor_color3_genglsl", "IM_geomcolor_color4_genglsl")
+@register("IM_geomcolor_float", "IM_geomcolor_color3", "IM_geomcolor_color4")
 class GeomColor(NodeImpl):
     fixed_inputs = frozenset({"index"})
-    SWIZZLE = {"float": ".r", "color3": ".rgb", "color4": ""}
+    COMPONENTS = {"float": "r", "color3": "rgb", "color4": ""}
 
     def emit_function_call(self, node, ctx):
         out = next(iter(node.outputs.values()))
         index = int(node.input_value("index", 0))
         attr = ctx.app_data(f"i_color_{index}", "color4")
-        ctx.assign(out, ctx.vertex_data(f"color_{index}", "color4", attr) + self.SWIZZLE[out.type])
+        ctx.assign(out, ctx.target.components(ctx.vertex_data(f"color_{index}", "color4", attr), self.COMPONENTS[out.type]))
 
 
 GEOMPROP_TYPES = ("integer", "float", "color3", "color4", "vector2", "vector3", "vector4")
 
 
-@register(*(f"IM_geompropvalue_{t}_genglsl" for t in GEOMPROP_TYPES))
+@register(*(f"IM_geompropvalue_{t}" for t in GEOMPROP_TYPES))
 class GeomPropValue(NodeImpl):
     """A named primvar: a vertex stream `i_geomprop_<name>`; booleans cannot be vertex attributes,
     so they come from a uniform `u_geomprop_<name>` instead (and stay editable, as uniforms are).
@@ -112,17 +110,18 @@ class GeomPropValue(NodeImpl):
             return
         attr = ctx.app_data(f"i_geomprop_{name}", out.type)
         if out.type == "integer":  # integer varyings would need `flat`: carry it as a float
-            ctx.assign(out, f"int({ctx.vertex_data(f'geomprop_{name}', 'float', f'float({attr})')})")
+            carried = ctx.vertex_data(f"geomprop_{name}", "float", ctx.target.convert(attr, "float"))
+            ctx.assign(out, ctx.target.convert(carried, "integer"))
         else:
             ctx.assign(out, ctx.vertex_data(f"geomprop_{name}", out.type, attr))
 
 
-@register("IM_geompropvalue_boolean_genglsl")
+@register("IM_geompropvalue_boolean")
 class GeomPropValueBoolean(GeomPropValue):
     fixed_inputs = frozenset()
 
 
-@register("IM_geompropvalueuniform_string_genglsl", "IM_geompropvalueuniform_filename_genglsl")
+@register("IM_geompropvalueuniform_string", "IM_geompropvalueuniform_filename")
 class GeomPropValueUniform(NodeImpl):
     fixed_inputs = frozenset({"geomprop"})
 

@@ -2,7 +2,7 @@
 from .base import NodeImpl, register
 
 
-@register("IM_surfacematerial_genglsl", "IM_volumematerial_genglsl")
+@register("IM_surfacematerial", "IM_volumematerial")
 class Material(NodeImpl):
     def emit_function_call(self, node, ctx):
         shader_input = node.inputs.get("surfaceshader") or node.inputs.get("volumeshader")

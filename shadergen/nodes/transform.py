@@ -13,8 +13,7 @@ MATRIX = {  # (kind, to world?) -> matrix uniform
 
 
 class _Transform(NodeImpl):
-    kind = ""
-    w = "0.0"
+    kind = ""  # point, vector or normal
 
     def emit_function_call(self, node, ctx):
         src = "object" if node.input_value("fromspace", "object") in OBJECT_SPACES else "world"
@@ -25,20 +24,20 @@ class _Transform(NodeImpl):
             ctx.assign(out, value)
             return
         m = ctx.private_uniform(MATRIX[(self.kind, dst == "world")], "matrix44")
-        expr = f"({m} * vec4({value}, {self.w})).xyz"
-        ctx.assign(out, f"normalize({expr})" if self.kind == "normal" else expr)
+        expr = ctx.target.transform(m, value, point=self.kind == "point")
+        ctx.assign(out, ctx.target.normalize(expr) if self.kind == "normal" else expr)
 
 
-@register("IM_transformpoint_vector3_genglsl")
+@register("IM_transformpoint_vector3")
 class TransformPoint(_Transform):
-    kind, w = "point", "1.0"
+    kind = "point"
 
 
-@register("IM_transformvector_vector3_genglsl")
+@register("IM_transformvector_vector3")
 class TransformVector(_Transform):
     kind = "vector"
 
 
-@register("IM_transformnormal_vector3_genglsl")
+@register("IM_transformnormal_vector3")
 class TransformNormal(_Transform):
     kind = "normal"

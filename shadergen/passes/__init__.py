@@ -22,8 +22,9 @@ class Options:
     keep: frozenset[str] = frozenset()  # document inputs that stay live in `specialized`
 
 
-def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None,
+def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None, target,
             options: Options = Options()) -> Graph:
+    """`target`: the Target the shader is for (the closure pass reads its closure convention)."""
     graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface)
 
     def run(name: str, edit) -> None:
@@ -36,7 +37,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     run("fold", lambda: fold_constants(graph))
     for node in graph.nodes:
         implementation(node)
-    run("prune_closures", lambda: prune_closures(graph))
+    run("prune_closures", lambda: prune_closures(graph, target.closures))
     run("textures", lambda: publish_textures(graph))
     run("functions", lambda: share_functions(graph, uniform_flow))
     run("scopes", lambda: assign_scopes(graph.nodes, uniform_flow))

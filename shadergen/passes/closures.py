@@ -16,13 +16,11 @@ context is only written where it can contribute.
 """
 from ..graph import Graph, Input, Node
 from ..nodes.base import SourceFunctionImpl
-from ..targets.glsl import ClosureConvention
 from ..types import TYPES
 from .edit import can_pass, pass_through, readers, set_constant
 from .fold import constant
 from .order import topological_order
 
-CONVENTION = ClosureConvention()
 PASS_THROUGH = {"layer": (("top", "base"), ("base", "top")), "add": (("in1", "in2"), ("in2", "in1"))}
 
 
@@ -34,14 +32,15 @@ def closure_inputs(node: Node) -> list[Input]:
     return [i for i in node.inputs.values() if TYPES[i.type].is_closure]
 
 
-def prune_closures(graph: Graph) -> int:
-    """Returns how many closure nodes were removed or bypassed."""
+def prune_closures(graph: Graph, convention) -> int:
+    """Returns how many closure nodes were removed or bypassed. `convention`: the target's closure
+    convention (what a lobe's source says about zero weight and transmission)."""
     reading = readers(graph)
     count = 0
     for node in graph.nodes:
         if not is_closure_node(node):
             continue
-        if removable(node):
+        if removable(node, convention):
             for out in node.outputs.values():
                 for inp in reading.pop(id(out), []):
                     set_constant(inp, None)
@@ -56,7 +55,7 @@ def prune_closures(graph: Graph) -> int:
     graph.nodes = topological_order(graph.outputs)
     for node in graph.nodes:
         if node.category == "surface" and "bsdf" in node.inputs:
-            node.facts["transmission"] = any(transmits(n) for n in closure_tree(node.inputs["bsdf"]))
+            node.facts["transmission"] = any(transmits(n, convention) for n in closure_tree(node.inputs["bsdf"]))
     return count
 
 
@@ -64,14 +63,14 @@ def _is_removed(inp: Input) -> bool:
     return inp.connection is None and inp.socket is None and not inp.public
 
 
-def removable(node: Node) -> bool:
+def removable(node: Node, convention) -> bool:
     closures = closure_inputs(node)
     if closures:
         return all(_is_removed(i) for i in closures)
     known, weight = constant(node, "weight")
     if known and _at_most_zero(weight):
         impl = node.impl
-        return isinstance(impl, SourceFunctionImpl) and CONVENTION.empty_at_zero_weight(impl.source, impl.function)
+        return isinstance(impl, SourceFunctionImpl) and convention.empty_at_zero_weight(impl.source, impl.function)
     known, color = constant(node, "color")
     return known and next(iter(node.outputs.values())).type == "EDF" and _at_most_zero(color, exact=True)
 
@@ -94,11 +93,11 @@ def closure_tree(inp: Input) -> list[Node]:
     return found
 
 
-def transmits(node: Node) -> bool:
+def transmits(node: Node, convention) -> bool:
     """Whether a closure node can answer the transmission context: its source handles it (and its
     scatter_mode, when a constant, is not reflection only). Other kinds are assumed to."""
     known, mode = constant(node, "scatter_mode")
     if known and mode == "R":
         return False
     impl = node.impl
-    return CONVENTION.handles_transmission(impl.source) if isinstance(impl, SourceFunctionImpl) else True
+    return convention.handles_transmission(impl.source) if isinstance(impl, SourceFunctionImpl) else True

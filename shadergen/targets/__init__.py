@@ -1,13 +1,14 @@
-"""Targets: one Syntax per shading language; the generator is shared (seed 2.2)."""
+"""Targets: one per shading language, each a Syntax plus the hooks the generator writes through
+(glsl_target.py describes them); the passes and the generator are shared (seed 2.2)."""
 from ..errors import ShaderGenError
-from .glsl import EsslSyntax, GlslSyntax, Syntax
+from .glsl_target import EsslTarget, GlslTarget
 
-SYNTAXES: dict[str, type[Syntax]] = {"glsl": GlslSyntax, "essl": EsslSyntax}
+TARGETS: dict[str, type[GlslTarget]] = {"glsl": GlslTarget, "essl": EsslTarget}
 
 
-def syntax_for(target: str) -> Syntax:
+def target_for(name: str):
     try:
-        return SYNTAXES[target]()
+        return TARGETS[name]()
     except KeyError:
-        raise ShaderGenError("unsupported_target", f"unknown target '{target}'; supported: "
-                             + ", ".join(sorted(SYNTAXES)), target) from None
+        raise ShaderGenError("unsupported_target", f"unknown target '{name}'; supported: "
+                             + ", ".join(sorted(TARGETS)), name) from None

@@ -74,6 +74,8 @@ class Syntax:
     uniform_initializers = True
     vertex_data_block = True  # interface blocks for vertex -> pixel data
     reserved = RESERVED
+    reserved_prefixes = ("gl_", "__")
+    struct_types = frozenset(STRUCTS)  # types declared as structs (closures, shaders, lights)
 
     def type_name(self, type_name: str) -> str:
         return TYPE_NAMES.get(type_name, type_name)
