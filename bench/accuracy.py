@@ -148,15 +148,21 @@ def measure_renderer(args) -> int:
 
 # -- measurement 2: two shaders, one renderer ----------------------------------------------------------
 
-def measure_generator(args) -> int:
+def corpus_documents(args):
+    """(corpus, the documents --documents and --filter select, a Renderer finding their textures)."""
     sys.path.insert(0, ROOT)
-    from shadergen.api import generate_file
-    from shadergen.render import Renderer, RenderError
+    from shadergen.render import Renderer
 
     corpus = os.path.abspath(args.corpus)
     documents = sorted(glob.glob(os.path.join(corpus, args.documents), recursive=True))
-    documents = [d for d in documents if not args.filter or args.filter in d]
-    renderer = Renderer(search_paths=[corpus])
+    return corpus, [d for d in documents if not args.filter or args.filter in d], Renderer(search_paths=[corpus])
+
+
+def measure_generator(args) -> int:
+    corpus, documents, renderer = corpus_documents(args)
+    from shadergen.api import generate_file
+    from shadergen.render import RenderError
+
     rows = []
 
     def draw(record, document):
@@ -205,14 +211,10 @@ def measure_generator(args) -> int:
 
 
 def measure_interfaces(args) -> int:
-    sys.path.insert(0, ROOT)
+    corpus, documents, renderer = corpus_documents(args)
     from shadergen.api import generate_file
-    from shadergen.render import Renderer, RenderError
+    from shadergen.render import RenderError
 
-    corpus = os.path.abspath(args.corpus)
-    documents = sorted(glob.glob(os.path.join(corpus, args.documents), recursive=True))
-    documents = [d for d in documents if not args.filter or args.filter in d]
-    renderer = Renderer(search_paths=[corpus])
     rows, undrawable = [], 0
     for document in documents:
         relative = os.path.relpath(document, corpus)
