@@ -10,6 +10,7 @@ from shadergen.errors import ShaderGenError
 
 from . import Environment, RenderError, Renderer
 from .imageio import write_image
+from .renderer import ENV_METHODS
 
 
 TEXTURE_ROOTS_VARIABLE = "SHADERGEN_TEXTURE_ROOTS"
@@ -41,7 +42,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--env", metavar="LATLONG", help="lat-long radiance map (.hdr/.exr); default: procedural sky")
     parser.add_argument("--irr", metavar="LATLONG", help="lat-long irradiance map; default: computed from --env")
     parser.add_argument("--env-intensity", type=float, default=1.0, help="u_envLightIntensity")
-    parser.add_argument("--env-samples", type=int, default=16, help="u_envRadianceSamples")
+    parser.add_argument("--env-samples", type=int, default=16, help="u_envRadianceSamples (with --env-method fis)")
+    parser.add_argument("--env-method", choices=ENV_METHODS, default="fis",
+                        help="environment lighting: fis (filtered importance sampling, --env-samples per pixel) or "
+                             "prefilter (a GGX-prefiltered map and a DFG table: one lookup)")
     parser.add_argument("--lights", metavar="LIGHTS.mtlx", help="light rig: a document of lightshader nodes")
     parser.add_argument("--search-path", action="append", default=[], metavar="DIR",
                         help="folder to resolve texture names in after the document's own (repeatable)")
@@ -87,6 +91,7 @@ def _run(args) -> int:
     renderer = Renderer(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
                         confined=args.confine)
     result = renderer.render(record, size=args.size, mesh=args.mesh, env=env, env_samples=args.env_samples,
+                             env_method=args.env_method,
                              lights=args.lights, supersample=args.ss, document_dir=document_dir,
                              frames=args.repeat)
     for path in outputs:

@@ -16,6 +16,7 @@ from .context import gl_context
 from .environment import ENV_MATRIX, Environment
 from .errors import RenderError
 from .geometry import Mesh, load_mesh
+from .prefilter import prefiltered_chain
 from .lights import Light, light_type_ids, light_uniforms, load_lights
 from .program import Program
 from .record import check_record, source_digest, uniform_variables
@@ -24,6 +25,11 @@ from .textures import GL_CLAMP_TO_EDGE, Sampling, TextureCache, bind, resolve_fi
 from .values import numbers
 
 ENV_SAMPLERS = ("u_envRadiance", "u_envIrradiance")
+# How the generated code lights with the environment: by filtered importance sampling of the
+# radiance map (u_envRadianceSamples), or from its GGX-prefiltered chain, which the pixel stage
+# reads when compiled with PREFILTER_DEFINE (libraries/pbrlib/genglsl/lib/mx_environment_prefilter.glsl).
+ENV_METHODS = ("fis", "prefilter")
+PREFILTER_DEFINE = "MX_ENV_PREFILTER"
 # Lat-long maps wrap around in longitude and stop at the poles.
 ENV_SAMPLING = Sampling(wrap_v=GL_CLAMP_TO_EDGE)
 MAX_IMAGE_SIDE = 8192
@@ -50,6 +56,19 @@ class RenderResult:
     warnings: list[str] = field(default_factory=list)
 
 
+@dataclass
+class _EnvironmentTextures:
+    environment: Environment
+    radiance: object
+    irradiance: object
+    prefiltered: object = None  # made when a prefilter render first needs it
+
+    def release(self) -> None:
+        for texture in (self.radiance, self.irradiance, self.prefiltered):
+            if texture is not None:
+                texture.release()
+
+
 class Renderer:
     """Renders shader records. `search_paths`: folders where relative texture names are looked up
     (after the document's folder); `texture_roots`: further folders textures may be read from.
@@ -67,15 +86,17 @@ class Renderer:
         self.max_programs = max_programs
         self._programs: OrderedDict[str, Program] = OrderedDict()
         self._meshes: dict[str, Mesh] = {}
-        self._environments: OrderedDict[str, tuple[Environment, object, object]] = OrderedDict()
+        self._environments: OrderedDict[str, _EnvironmentTextures] = OrderedDict()
         self._textures = TextureCache(texture_budget_bytes)
         self._framebuffers: dict[int, object] = {}
 
     def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int = ENV_SAMPLES,
-               lights=None, supersample: int = 1, document_dir: str | None = None, frames: int = 1) -> RenderResult:
+               env_method: str = "fis", lights=None, supersample: int = 1, document_dir: str | None = None,
+               frames: int = 1) -> RenderResult:
         """Draw `record` on `mesh` ('sphere', 'plane' or an .obj path), lit by `env` (None: the
-        procedural sky; a lat-long file path; or an Environment) and `lights` (None, a light-rig
-        .mtlx path, or a list of Light). `frames` > 1 draws again to time a steady frame."""
+        procedural sky; a lat-long file path; or an Environment) with `env_method` (ENV_METHODS),
+        and `lights` (None, a light-rig .mtlx path, or a list of Light). `frames` > 1 draws again
+        to time a steady frame."""
         start = time.perf_counter()
         vertex, pixel = check_record(record)
         element = record.get("element")
@@ -83,13 +104,18 @@ class Renderer:
         side = size * supersample
         if not (size >= 1 and supersample >= 1 and side <= MAX_IMAGE_SIDE):
             raise RenderError("invalid_request", f"size x supersample must be within 1..{MAX_IMAGE_SIDE}", element)
+        if env_method not in ENV_METHODS:
+            raise RenderError("invalid_request", f"unknown env_method {env_method!r}; supported: "
+                              + ", ".join(ENV_METHODS), element)
+        if env_method == "prefilter":
+            pixel = _with_define(pixel, PREFILTER_DEFINE)
         ctx = gl_context(self.lp_threads)
         import moderngl
 
         warnings: list[str] = []
         program, compile_link_ms = self._program(ctx, vertex, pixel, element)
         vao = program.vertex_array(ctx, *self._mesh(mesh))
-        environment, radiance, irradiance = self._environment(ctx, env)
+        environment, radiance, irradiance = self._environment(ctx, env, env_method)
         if document_dir is None and isinstance(record.get("document"), str):
             document_dir = os.path.dirname(os.path.abspath(record["document"]))
 
@@ -146,7 +172,8 @@ class Renderer:
             self._meshes[key] = load_mesh(spec)
         return key, self._meshes[key]
 
-    def _environment(self, ctx, env) -> tuple[Environment, object, object]:
+    def _environment(self, ctx, env, env_method: str) -> tuple[Environment, object, object]:
+        """The environment and the textures to bind as u_envRadiance and u_envIrradiance."""
         if isinstance(env, Environment):
             key = env.key
         elif env is None:
@@ -156,15 +183,18 @@ class Renderer:
         if key not in self._environments:
             if not isinstance(env, Environment):
                 env = Environment.procedural() if env is None else Environment.load(str(env))
-            self._environments[key] = (env, upload(ctx, env.radiance), upload(ctx, env.irradiance))
+            self._environments[key] = _EnvironmentTextures(env, upload(ctx, env.radiance), upload(ctx, env.irradiance))
             while len(self._environments) > 4:
-                _, old_radiance, old_irradiance = self._environments.popitem(last=False)[1]
-                old_radiance.release()
-                old_irradiance.release()
+                self._environments.popitem(last=False)[1].release()
         self._environments.move_to_end(key)
-        cached, radiance, irradiance = self._environments[key]
+        cached = self._environments[key]
+        radiance = cached.radiance
+        if env_method == "prefilter":
+            if cached.prefiltered is None:
+                cached.prefiltered = prefiltered_chain(ctx, cached.environment.radiance, cached.radiance, ENV_SAMPLING)
+            radiance = cached.prefiltered
         # An Environment passed in may differ from the cached one in intensity only.
-        return (env if isinstance(env, Environment) else cached), radiance, irradiance
+        return (env if isinstance(env, Environment) else cached.environment), radiance, cached.irradiance
 
     def _framebuffer(self, ctx, side: int):
         if side not in self._framebuffers:
@@ -251,6 +281,14 @@ def _siblings(variable: dict, variables: list[dict]) -> dict[str, object]:
     if not prefix:
         return {}
     return {v["name"][len(prefix):]: v.get("value") for v in variables if v["name"].startswith(prefix)}
+
+
+def _with_define(source: str, name: str) -> str:
+    """`source` with `#define name` after its #version line (which must come first)."""
+    first, newline, rest = source.partition("\n")
+    if first.lstrip().startswith("#version"):
+        return f"{first}\n#define {name}\n{rest}"
+    return f"#define {name}\n{source}"
 
 
 def _mtime(path) -> int:

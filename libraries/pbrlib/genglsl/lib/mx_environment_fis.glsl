@@ -1,26 +1,14 @@
 // Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
 // & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
-// sample fetched from the mip level whose texel covers the sample's solid angle.
+// sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
+// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl).
 //
 // Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
 // in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
-//
-// Map convention: texel (u, v) with v = 0 the top row holds map direction
-// (cos(lat) sin(lon), sin(lat), -cos(lat) cos(lon)), lat = (0.5 - v) pi, lon = (u - 0.5) 2 pi.
 #include "mx_ggx.glsl"
-
-vec2 mx_envmap_uv(vec3 dir)
-{
-    return vec2(atan(dir.x, -dir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(dir.y) * MX_INV_PI);
-}
-
-// The map `envMap` seen along world direction `dir`, at mip level `lod`.
-vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
-{
-    vec3 mapDir = normalize((u_envMatrix * vec4(dir, 0.0)).xyz);
-    return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
-}
+#include "mx_environment_map.glsl"
+#include "mx_environment_prefilter.glsl"
 
 // Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
 // with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
@@ -29,20 +17,6 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
     float coarsest = float(u_envRadianceMips - 1) - 1.5;
     float stretch = sqrt(1.0 - dir.y * dir.y);
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
-}
-
-// Direction leaving a solid sphere of index `ior` that ray direction R enters where the normal is N.
-// Where a refraction is total internal reflection the ray reflects instead, so a direction always
-// comes back.
-vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
-{
-    float eta = max(ior, 1.0e-3);
-    vec3 inside = refract(R, N, 1.0 / eta);
-    if (dot(inside, inside) == 0.0)
-        return reflect(R, N);
-    vec3 exitNormal = normalize(inside * dot(inside, N) - N * 0.5);
-    vec3 leaving = refract(inside, exitNormal, eta);
-    return (dot(leaving, leaving) == 0.0) ? reflect(inside, exitNormal) : leaving;
 }
 
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
@@ -58,6 +32,9 @@ vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
 // what a layer below must not receive again.
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
+#ifdef MX_ENV_PREFILTER
+    return mx_environment_prefiltered_radiance(N, V, alpha, fd, albedo);
+#else
     albedo = vec3(0.0);
     int sampleCount = u_envRadianceSamples;
     if (sampleCount <= 0)
@@ -93,10 +70,5 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     }
     albedo *= scale;
     return carried * (scale * u_envLightIntensity);
-}
-
-// Irradiance / pi arriving at a point with normal N: what a white Lambert surface reflects.
-vec3 mx_environment_irradiance(vec3 N)
-{
-    return mx_envmap_fetch(u_envIrradiance, N, 0.0) * u_envLightIntensity;
+#endif
 }
