@@ -7,6 +7,7 @@ from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstra
 
 Interface = Literal["complete", "reduced", "specialized"]
 Mesh = Literal["sphere", "plane"]
+EnvMethod = Literal["fis", "prefilter"]
 INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
                  "specialized: values folded into the code and whatever cannot contribute removed (zero-weight "
                  "lobes, untaken branches, unused functions, uniforms and vertex data), inputs in `keep` left live")
@@ -46,6 +47,8 @@ class ThumbnailRequest(BaseModel):
                                                             "complete from the smallest shader")
     size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
     mesh: Mesh = "sphere"
+    env_method: EnvMethod = Field("fis", description="environment lighting: fis (16 importance samples per pixel) "
+                                  "or prefilter (a GGX-prefiltered map and a DFG table: one lookup)")
 
 
 # -- responses ---------------------------------------------------------------------------------

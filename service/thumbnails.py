@@ -23,6 +23,7 @@ class ThumbnailOrder:
     params: GenerateParams
     size: int = 256
     mesh: str = "sphere"
+    env_method: str = "fis"
 
 
 class ThumbnailService:
@@ -34,7 +35,7 @@ class ThumbnailService:
 
     async def _render_request(self, order: ThumbnailOrder) -> dict:
         record = json.loads(await self.generation.generate(order.document, order.params))
-        request = {"record": record, "size": order.size, "mesh": order.mesh}
+        request = {"record": record, "size": order.size, "mesh": order.mesh, "env_method": order.env_method}
         if order.params.document_format == "usdz":
             # the record's textures are members of the package (the translation refuses any that
             # leave it): the job carries the package and reads them there, never in the roots
@@ -45,7 +46,8 @@ class ThumbnailService:
 
     @staticmethod
     def _key(request: dict) -> str:
-        options = f'{request["record"]["hash"]}:{request["size"]}:{request["mesh"]}:{request.get("package", "")}'
+        options = (f'{request["record"]["hash"]}:{request["size"]}:{request["mesh"]}:{request["env_method"]}:'
+                   f'{request.get("package", "")}')
         return "png:" + hashlib.sha256(options.encode()).hexdigest()
 
     async def thumbnail(self, order: ThumbnailOrder) -> bytes:

@@ -2,16 +2,22 @@
 """The split-sum DFG table of the prefiltered environment (libraries/pbrlib/genglsl/lib/mx_environment_dfg.glsl).
 
 With the radiance map prefiltered per roughness (shadergen/render/prefilter.py), the GGX reflection
-of the environment is split into the prefiltered radiance times the directional albedo of the
-BRDF. With Schlick's Fresnel, F = F0 + (F90 - F0) (1 - VdotH)^5, that albedo is F0 A + F90 B with
+of the environment is split into the prefiltered radiance times the directional albedo of the BRDF,
 
-    A(NdotV, alpha) = integral over L of  D G2 / (4 NdotV) (1 - (1 - VdotH)^5)
-    B(NdotV, alpha) = integral over L of  D G2 / (4 NdotV) (1 - VdotH)^5
+    E(NdotV, alpha) = integral over L of  F(VdotH) D G2 / (4 NdotV)
 
-(the cosine of L cancels the BRDF's 1 / (4 NdotV NdotL)). Both are computed here by numerical
-integration: GGX visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible Normals")
-drawn on a stratified grid, each weighted by G2 / G1(V), the Smith height-correlated masking-
-shadowing (Heitz 2014, "Understanding the Masking-Shadowing Function", eq. 99) over the masking of V.
+(the cosine of L cancels the BRDF's 1 / (4 NdotV NdotL)). F is any of the library's Fresnel models
+(dielectric, conductor, Schlick with F82, thin film), so instead of Schlick's scale and bias the
+table holds a two-point Gauss quadrature in VdotH of the measure D G2 / (4 NdotV) dL:
+E = w1 F(c1) + w2 F(c2), exact when F is a cubic in VdotH, within 1e-3 of the integral for
+conductors and 2e-2 for a dielectric of ior 1.5 at grazing angles (Schlick's split is off by 0.1
+for a copper-coloured conductor). The nodes and weights come from the measure's moments
+m_k = integral of VdotH^k (Golub & Welsch 1969: the roots of the degree-2 orthogonal polynomial).
+
+The moments are computed here by numerical integration: GGX visible normals (Heitz 2018,
+"Sampling the GGX Distribution of Visible Normals") drawn on a stratified grid, each weighted by
+G2 / G1(V), the Smith height-correlated masking-shadowing (Heitz 2014, "Understanding the
+Masking-Shadowing Function", eq. 99) over the masking of V.
 
 The table has TABLE_SIZE x TABLE_SIZE entries: rows sqrt(NdotV) = i / (TABLE_SIZE - 1) (denser at
 grazing angles, where the albedo changes fastest), columns roughness = j / (TABLE_SIZE - 1) with
@@ -60,21 +66,40 @@ def visible_normals(n_dot_v: float, alpha: float, grid: int) -> tuple[np.ndarray
     return h / np.linalg.norm(h, axis=1)[:, None], view
 
 
-def integrate(n_dot_v: float, alpha: float, grid: int = GRID) -> tuple[float, float]:
-    """(A, B) at one point, by visible-normal quadrature."""
+def moments(n_dot_v: float, alpha: float, grid: int = GRID) -> np.ndarray:
+    """m_k = integral of VdotH^k D G2 / (4 NdotV) over L, k = 0..3, by visible-normal quadrature."""
     h, view = visible_normals(n_dot_v, alpha, grid)
     v_dot_h = np.clip(h @ view, 0.0, 1.0)
     n_dot_l = (2.0 * v_dot_h[:, None] * h - view)[:, 2]
     lambda_v = smith_lambda(np.array(n_dot_v), alpha)
     weight = np.where(n_dot_l > 0.0, (1.0 + lambda_v) / (1.0 + lambda_v + smith_lambda(n_dot_l, alpha)), 0.0)
-    schlick = (1.0 - v_dot_h) ** 5
-    return float(np.mean(weight * (1.0 - schlick))), float(np.mean(weight * schlick))
+    return np.array([np.mean(weight * v_dot_h ** k) for k in range(4)])
+
+
+def gauss_rule(m: np.ndarray) -> tuple[float, float, float, float]:
+    """(c1, c2, w1, w2): the two-point Gauss rule of moments m0..m3, c1 <= c2 in [0, 1]: in units
+    of the measure's spread around its mean, a two-point rule with the measure's skewness g has
+    nodes (g -+ sqrt(g^2 + 4)) / 2. A measure without spread (a mirror) gets one node, twice."""
+    mean = m[1] / m[0]
+    variance = m[2] / m[0] - mean * mean
+    if variance < 1e-8:
+        return mean, mean, m[0] / 2.0, m[0] / 2.0
+    spread = np.sqrt(variance)
+    skewness = (m[3] / m[0] - 3.0 * mean * variance - mean ** 3) / spread ** 3
+    root = np.sqrt(skewness * skewness + 4.0)
+    z1, z2 = (skewness - root) / 2.0, (skewness + root) / 2.0
+    c1, c2 = np.clip([mean + spread * z1, mean + spread * z2], 0.0, 1.0)
+    return float(c1), float(c2), float(m[0] * z2 / (z2 - z1)), float(-m[0] * z1 / (z2 - z1))
 
 
 def table(size: int = TABLE_SIZE, grid: int = GRID) -> np.ndarray:
-    """(size, size, 2): [row sqrt(NdotV), column roughness] -> (A, B)."""
+    """(size, size, 4): [row sqrt(NdotV), column roughness] -> (c1, c2, w1, w2)."""
     steps = np.arange(size) / (size - 1)
-    return np.array([[integrate(max(s * s, MIN_NDOTV), max(r * r, MIN_ALPHA), grid) for r in steps] for s in steps])
+    return np.array([[gauss_rule(moments(max(s * s, MIN_NDOTV), max(r * r, MIN_ALPHA), grid)) for r in steps]
+                     for s in steps])
+
+
+NAMES = ("MX_DFG_C1", "MX_DFG_C2", "MX_DFG_W1", "MX_DFG_W2")
 
 
 def glsl(values: np.ndarray) -> str:
@@ -85,24 +110,36 @@ def glsl(values: np.ndarray) -> str:
         return [f"const float {name}[{size * size}] = float[](", *(f"    {r}," for r in rows[:-1]),
                 f"    {rows[-1]});"]
 
+    def corner(offset: str) -> str:
+        return "vec4(" + ", ".join(f"{name}[k{offset}]" for name in NAMES) + ")"
+
     return "\n".join([
-        "// Split-sum DFG table of GGX: the directional albedo of the BRDF is F0 * A + F90 * B (Schlick's",
-        "// Fresnel). Written by tools/fit_dfg.py (numerical integration over GGX visible normals, Heitz",
-        "// 2018, with Smith height-correlated masking-shadowing, Heitz 2014); do not edit by hand.",
+        "// Split-sum DFG table of GGX: the BRDF's directional albedo for any Fresnel F is",
+        "// w1 F(c1) + w2 F(c2), a two-point Gauss quadrature in VdotH. Written by tools/fit_dfg.py",
+        "// (numerical integration over GGX visible normals, Heitz 2018, with Smith height-correlated",
+        "// masking-shadowing, Heitz 2014); do not edit by hand.",
         f"// Rows: sqrt(NdotV) = i / {size - 1}; columns: roughness = sqrt(alpha) = j / {size - 1}.",
-        *array("MX_DFG_A", 0), *array("MX_DFG_B", 1),
+        '#include "mx_fresnel.glsl"',
         "",
-        "// (A, B) at NdotV and alpha, interpolated bilinearly.",
-        "vec2 mx_environment_dfg(float NdotV, float alpha)",
+        *(line for channel, name in enumerate(NAMES) for line in array(name, channel)),
+        "",
+        "// (c1, c2, w1, w2) at NdotV and alpha, interpolated bilinearly.",
+        "vec4 mx_environment_dfg_rule(float NdotV, float alpha)",
         "{",
         f"    vec2 p = clamp(vec2(sqrt(NdotV), sqrt(alpha)), 0.0, 1.0) * {float(size - 1):.1f};",
         f"    ivec2 i = min(ivec2(p), ivec2({size - 2}));",
         "    vec2 f = p - vec2(i);",
         f"    int k = i.x * {size} + i.y;",
-        f"    vec2 low = mix(vec2(MX_DFG_A[k], MX_DFG_B[k]), vec2(MX_DFG_A[k + 1], MX_DFG_B[k + 1]), f.y);",
-        f"    vec2 high = mix(vec2(MX_DFG_A[k + {size}], MX_DFG_B[k + {size}]), "
-        f"vec2(MX_DFG_A[k + {size + 1}], MX_DFG_B[k + {size + 1}]), f.y);",
+        f"    vec4 low = mix({corner('')}, {corner(' + 1')}, f.y);",
+        f"    vec4 high = mix({corner(f' + {size}')}, {corner(f' + {size + 1}')}, f.y);",
         "    return mix(low, high, f.x);",
+        "}",
+        "",
+        "// Directional albedo of GGX reflection with Fresnel fd, seen at NdotV.",
+        "vec3 mx_environment_dfg(float NdotV, float alpha, FresnelData fd)",
+        "{",
+        "    vec4 rule = mx_environment_dfg_rule(NdotV, alpha);",
+        "    return rule.z * mx_fresnel_eval(rule.x, fd) + rule.w * mx_fresnel_eval(rule.y, fd);",
         "}",
         "",
     ])

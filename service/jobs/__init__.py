@@ -1,7 +1,7 @@
 """One job interface for thumbnails, two back ends: the local render pool (default: processes on
 this machine, nothing else to start) and Celery on Redis (`SHADERGEN_BROKER=redis://...`, workers
 on any machine started with `shadergen worker`). A job is a render request,
-`{"record": <shader record>, "size": int, "mesh": str}`; its result a PNG."""
+`{"record": <shader record>, "size": int, "mesh": str, "env_method": str}`; its result a PNG."""
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 

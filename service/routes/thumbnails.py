@@ -9,7 +9,7 @@ from pydantic import ValidationError
 from ..deps import ThumbnailsDep
 from ..errors import ServiceError, from_validation_error
 from ..generation import GenerateParams
-from ..models import Interface, JobAccepted, Mesh, ThumbnailRequest
+from ..models import EnvMethod, Interface, JobAccepted, Mesh, ThumbnailRequest
 from ..thumbnails import ThumbnailOrder
 from .common import ERRORS, JSON, PNG, PNG_RESPONSE, USD_TYPES, media_type_of
 
@@ -20,7 +20,8 @@ WITH_USD = "with a USD body"
 BODY = {"requestBody": {"required": True, "content": {
     JSON: {"schema": ThumbnailRequest.model_json_schema()},
     "model/vnd.usda": {"schema": {"type": "string", "description": "a USD layer that refers to no other file; "
-                                  "textures come from the texture roots; element, interface, size and mesh come "
+                                  "textures come from the texture roots; element, interface, size, mesh and env_method "
+                                  "come "
                                   "from the query"}},
     "model/vnd.usdz+zip": {"schema": {"type": "string", "format": "binary", "description": "a usdz package; its "
                                       "textures are read from inside it; options from the query"}},
@@ -37,19 +38,20 @@ async def thumbnail(
     interface: Annotated[Interface, Query(description=WITH_USD)] = "complete",
     size: Annotated[int, Query(ge=16, le=1024, description=WITH_USD)] = 256,
     mesh: Annotated[Mesh, Query(description=WITH_USD)] = "sphere",
+    env_method: Annotated[EnvMethod, Query(description=WITH_USD)] = "fis",
 ) -> Response:
     media_type = media_type_of(request)
     body = await request.body()
     if media_type in USD_TYPES:
         params = GenerateParams(element=element, interface=interface, document_format=USD_TYPES[media_type])
-        order = ThumbnailOrder(body, params, size, mesh)
+        order = ThumbnailOrder(body, params, size, mesh, env_method)
     elif media_type == JSON:
         try:
             req = ThumbnailRequest.model_validate_json(body)
         except ValidationError as exc:
             raise from_validation_error(exc) from None
         order = ThumbnailOrder(req.document.encode(), GenerateParams(element=req.element, interface=req.interface),
-                               req.size, req.mesh)
+                               req.size, req.mesh, req.env_method)
     else:
         raise ServiceError("unsupported_media_type", "send application/json, model/vnd.usda or model/vnd.usdz+zip, "
                            f"not {media_type}")

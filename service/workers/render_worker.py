@@ -29,7 +29,7 @@ PACKAGE = "upload.usdz"  # a usdz upload's name in its job's folder
 
 
 def render(renderer, request: dict) -> tuple[dict, bytes]:
-    """Shared with the Celery task: the request is `{"record", "size", "mesh"}`, and `"package"`
+    """Shared with the Celery task: the request is `{"record", "size", "mesh", "env_method"}`, and `"package"`
     (base64) for a usdz upload, whose record names its textures as members of the package."""
     if "package" not in request:
         return _render(renderer, request["record"], request, None)
@@ -50,7 +50,8 @@ def in_package(record: dict, package: str) -> dict:
 
 def _render(renderer, record: dict, request: dict, document_dir: str | None) -> tuple[dict, bytes]:
     try:
-        result = renderer.render(record, size=request["size"], mesh=request["mesh"], document_dir=document_dir)
+        result = renderer.render(record, size=request["size"], mesh=request["mesh"], env_method=request["env_method"],
+                                 document_dir=document_dir)
     except RenderError as exc:
         code = getattr(exc, "code", None) or "render_failed"
         return {"error": {"code": code, "message": str(exc), "where": getattr(exc, "where", None)}}, b""

@@ -28,6 +28,9 @@ def test_png_and_the_thumbnail_cache(client):
     before = count()
     again = thumbnail(client, size=96)
     assert again.content == first.content and count() == before + 1
+    prefiltered = thumbnail(client, size=96, env_method="prefilter")  # a different image, cached apart
+    assert prefiltered.status_code == 200 and is_png(prefiltered.content, 96)
+    assert prefiltered.content != first.content and count() == before + 1
 
 
 def test_async_job(client):
@@ -42,7 +45,8 @@ def test_async_job(client):
 
 
 def test_render_parameters_are_validated(client):
-    for bad in ({"size": 0}, {"size": 100_000}, {"mesh": "/etc/passwd.obj"}, {"interface": "x"}):
+    for bad in ({"size": 0}, {"size": 100_000}, {"mesh": "/etc/passwd.obj"}, {"interface": "x"},
+                {"env_method": "pathtrace"}):
         r = thumbnail(client, **bad)
         assert r.status_code == 422 and r.json()["error"]["code"] == "invalid_request"
 

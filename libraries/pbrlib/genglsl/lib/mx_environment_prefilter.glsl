@@ -4,7 +4,6 @@
 // from our DFG table (mx_environment_dfg.glsl, tools/fit_dfg.py). One lookup instead of
 // u_envRadianceSamples; used when the shader is compiled with MX_ENV_PREFILTER defined, and then
 // u_envRadiance must hold the prefiltered chain.
-#include "mx_fresnel.glsl"
 #include "mx_environment_map.glsl"
 #include "mx_environment_dfg.glsl"
 
@@ -27,14 +26,12 @@ vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData
     float lod = mx_prefiltered_lod(avgAlpha);
     if (fd.refraction)
     {
-        vec3 F = mx_fresnel_eval(NdotV, fd);
+        // what the interface does not reflect, its Fresnel averaged by the reflection's own rule
+        vec4 rule = mx_environment_dfg_rule(NdotV, avgAlpha);
+        vec3 F = (rule.z * mx_fresnel_eval(rule.x, fd) + rule.w * mx_fresnel_eval(rule.y, fd)) / max(rule.z + rule.w, MX_EPS);
         vec3 L = mx_refraction_solid_sphere(-V, N, fd.ior.x);
         return mx_envmap_fetch(u_envRadiance, L, lod) * (vec3(1.0) - F) * u_envLightIntensity;
     }
-    // Fresnel split as Schlick's: its values at normal and grazing incidence weight A and B.
-    vec3 F0 = mx_fresnel_eval(1.0, fd);
-    vec3 F90 = mx_fresnel_eval(MX_EPS, fd);
-    vec2 dfg = mx_environment_dfg(NdotV, avgAlpha);
     vec3 Li = mx_envmap_fetch(u_envRadiance, reflect(-V, N), lod);
-    return Li * (F0 * dfg.x + F90 * dfg.y) * u_envLightIntensity;
+    return Li * mx_environment_dfg(NdotV, avgAlpha, fd) * u_envLightIntensity;
 }
