@@ -28,9 +28,13 @@ def test_png_and_the_thumbnail_cache(client):
     before = count()
     again = thumbnail(client, size=96)
     assert again.content == first.content and count() == before + 1
-    prefiltered = thumbnail(client, size=96, env_method="prefilter")  # a different image, cached apart
-    assert prefiltered.status_code == 200 and is_png(prefiltered.content, 96)
-    assert prefiltered.content != first.content and count() == before + 1
+
+
+def test_env_method_draws_and_caches_apart(client):
+    sampled = thumbnail(client, "metal.mtlx", size=64)
+    prefiltered = thumbnail(client, "metal.mtlx", size=64, env_method="prefilter")
+    assert prefiltered.status_code == 200 and is_png(prefiltered.content, 64)
+    assert prefiltered.content != sampled.content
 
 
 def test_async_job(client):
