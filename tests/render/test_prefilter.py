@@ -9,6 +9,7 @@ import pytest
 
 from shadergen.api import Generator
 from shadergen.render import RenderError
+from shadergen.render.imageio import srgb_encode
 
 ROOT = Path(__file__).resolve().parents[2]
 DFG_GLSL = ROOT / "libraries/pbrlib/genglsl/lib/mx_environment_dfg.glsl"
@@ -73,15 +74,11 @@ def test_script_integration_matches_direct_integration_between_nodes(n_dot_v, al
     assert fit_dfg.moments(n_dot_v, alpha) == pytest.approx(direct_moments(n_dot_v, alpha)[:4], abs=1e-3)
 
 
-def srgb(rgba: np.ndarray) -> np.ndarray:
-    x = np.clip(rgba[..., :3], 0.0, 1.0)
-    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1.0 / 2.4) - 0.055)
-
-
 def psnr(image: np.ndarray, reference: np.ndarray) -> float:
-    """Over the object's pixels, sRGB-encoded, peak 1."""
+    """Over the object's pixels, clipped to [0, 1] and sRGB-encoded, peak 1."""
     covered = reference[..., 3] > 0
-    mse = float(((srgb(image) - srgb(reference))[covered] ** 2).mean())
+    image, reference = (srgb_encode(np.clip(x[..., :3], 0.0, 1.0)) for x in (image, reference))
+    mse = float(((image - reference)[covered] ** 2).mean())
     return 10.0 * np.log10(1.0 / mse)
 
 
