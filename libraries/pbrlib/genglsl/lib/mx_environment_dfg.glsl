@@ -3,7 +3,6 @@
 // (numerical integration over GGX visible normals, Heitz 2018, with Smith height-correlated
 // masking-shadowing, Heitz 2014); do not edit by hand.
 // Rows: sqrt(NdotV) = i / 15; columns: roughness = sqrt(alpha) = j / 15.
-#include "mx_fresnel.glsl"
 
 const float MX_DFG_C1[256] = float[](
     0.0010, 0.0147, 0.0428, 0.0749, 0.1084, 0.1420, 0.1744, 0.2050, 0.2334, 0.2591, 0.2820, 0.3021, 0.3193, 0.3339, 0.3461, 0.3562,
@@ -84,11 +83,4 @@ vec4 mx_environment_dfg_rule(float NdotV, float alpha)
     vec4 low = mix(vec4(MX_DFG_C1[k], MX_DFG_C2[k], MX_DFG_W1[k], MX_DFG_W2[k]), vec4(MX_DFG_C1[k + 1], MX_DFG_C2[k + 1], MX_DFG_W1[k + 1], MX_DFG_W2[k + 1]), f.y);
     vec4 high = mix(vec4(MX_DFG_C1[k + 16], MX_DFG_C2[k + 16], MX_DFG_W1[k + 16], MX_DFG_W2[k + 16]), vec4(MX_DFG_C1[k + 17], MX_DFG_C2[k + 17], MX_DFG_W1[k + 17], MX_DFG_W2[k + 17]), f.y);
     return mix(low, high, f.x);
-}
-
-// Directional albedo of GGX reflection with Fresnel fd, seen at NdotV.
-vec3 mx_environment_dfg(float NdotV, float alpha, FresnelData fd)
-{
-    vec4 rule = mx_environment_dfg_rule(NdotV, alpha);
-    return rule.z * mx_fresnel_eval(rule.x, fd) + rule.w * mx_fresnel_eval(rule.y, fd);
 }
