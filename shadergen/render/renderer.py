@@ -16,8 +16,8 @@ from .context import gl_context
 from .environment import ENV_MATRIX, Environment
 from .errors import RenderError
 from .geometry import Mesh, load_mesh
-from .prefilter import prefiltered_chain
 from .lights import Light, light_type_ids, light_uniforms, load_lights
+from .prefilter import prefiltered_chain
 from .program import Program
 from .record import check_record, source_digest, uniform_variables
 from .scene import matrix_bytes, scene_uniforms
