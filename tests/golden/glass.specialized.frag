@@ -586,13 +586,8 @@ vec3 mx_ggx_energy_compensation(float NdotV, float alpha, vec3 F)
 }
 
 
-// Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
-// & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
-// sample fetched from the mip level whose texel covers the sample's solid angle.
-//
-// Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
-// u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
-// in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
+// The lat-long environment map: lookups along world directions, shared by the two ways of lighting
+// with it (mx_environment_fis.glsl, mx_environment_prefilter.glsl).
 //
 // Map convention: texel (u, v) with v = 0 the top row holds map direction
 // (cos(lat) sin(lon), sin(lat), -cos(lat) cos(lon)), lat = (0.5 - v) pi, lon = (u - 0.5) 2 pi.
@@ -611,16 +606,6 @@ vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
 }
 
 
-// Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
-// with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
-float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
-{
-    float coarsest = float(u_envRadianceMips - 1) - 1.5;
-    float stretch = sqrt(1.0 - dir.y * dir.y);
-    return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
-}
-
-
 // Direction leaving a solid sphere of index `ior` that ray direction R enters where the normal is N.
 // Where a refraction is total internal reflection the ray reflects instead, so a direction always
 // comes back.
@@ -633,6 +618,166 @@ vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
     vec3 exitNormal = normalize(inside * dot(inside, N) - N * 0.5);
     vec3 leaving = refract(inside, exitNormal, eta);
     return (dot(leaving, leaving) == 0.0) ? reflect(inside, exitNormal) : leaving;
+}
+
+
+// Split-sum DFG table of GGX: the BRDF's directional albedo for any Fresnel F is
+// w1 F(c1) + w2 F(c2), a two-point Gauss quadrature in VdotH. Written by tools/fit_dfg.py
+// (numerical integration over GGX visible normals, Heitz 2018, with Smith height-correlated
+// masking-shadowing, Heitz 2014); do not edit by hand.
+// Rows: sqrt(NdotV) = i / 15; columns: roughness = sqrt(alpha) = j / 15.
+
+const float MX_DFG_C1[256] = float[](
+    0.0010, 0.0147, 0.0428, 0.0749, 0.1084, 0.1420, 0.1744, 0.2050, 0.2334, 0.2591, 0.2820, 0.3021, 0.3193, 0.3339, 0.3461, 0.3562,
+    0.0044, 0.0133, 0.0420, 0.0749, 0.1089, 0.1427, 0.1752, 0.2060, 0.2344, 0.2602, 0.2832, 0.3034, 0.3209, 0.3358, 0.3483, 0.3588,
+    0.0177, 0.0208, 0.0428, 0.0762, 0.1114, 0.1461, 0.1793, 0.2104, 0.2390, 0.2650, 0.2882, 0.3088, 0.3267, 0.3422, 0.3556, 0.3670,
+    0.0399, 0.0412, 0.0544, 0.0830, 0.1178, 0.1530, 0.1867, 0.2182, 0.2471, 0.2734, 0.2970, 0.3180, 0.3365, 0.3525, 0.3665, 0.3787,
+    0.0710, 0.0714, 0.0793, 0.1000, 0.1309, 0.1650, 0.1985, 0.2301, 0.2592, 0.2855, 0.3092, 0.3303, 0.3491, 0.3656, 0.3802, 0.3933,
+    0.1109, 0.1108, 0.1156, 0.1292, 0.1536, 0.1841, 0.2161, 0.2469, 0.2756, 0.3018, 0.3253, 0.3465, 0.3653, 0.3820, 0.3969, 0.4104,
+    0.1598, 0.1591, 0.1622, 0.1702, 0.1873, 0.2122, 0.2407, 0.2696, 0.2972, 0.3226, 0.3457, 0.3664, 0.3850, 0.4017, 0.4167, 0.4301,
+    0.2176, 0.2163, 0.2181, 0.2218, 0.2321, 0.2502, 0.2736, 0.2991, 0.3244, 0.3484, 0.3704, 0.3905, 0.4085, 0.4248, 0.4395, 0.4527,
+    0.2843, 0.2824, 0.2831, 0.2832, 0.2874, 0.2985, 0.3156, 0.3363, 0.3582, 0.3797, 0.4001, 0.4188, 0.4359, 0.4514, 0.4654, 0.4781,
+    0.3598, 0.3573, 0.3570, 0.3538, 0.3524, 0.3565, 0.3668, 0.3816, 0.3990, 0.4171, 0.4350, 0.4518, 0.4674, 0.4816, 0.4946, 0.5063,
+    0.4443, 0.4412, 0.4390, 0.4329, 0.4262, 0.4237, 0.4269, 0.4352, 0.4472, 0.4610, 0.4755, 0.4898, 0.5033, 0.5158, 0.5273, 0.5377,
+    0.5376, 0.5339, 0.5295, 0.5192, 0.5076, 0.4990, 0.4954, 0.4971, 0.5030, 0.5118, 0.5222, 0.5332, 0.5440, 0.5543, 0.5639, 0.5727,
+    0.6399, 0.6355, 0.6269, 0.6117, 0.5948, 0.5808, 0.5712, 0.5666, 0.5666, 0.5700, 0.5758, 0.5829, 0.5905, 0.5980, 0.6053, 0.6120,
+    0.7510, 0.7461, 0.7278, 0.7068, 0.6844, 0.6671, 0.6531, 0.6434, 0.6380, 0.6363, 0.6374, 0.6402, 0.6442, 0.6486, 0.6532, 0.6575,
+    0.8711, 0.8657, 0.8291, 0.7911, 0.7751, 0.7552, 0.7398, 0.7278, 0.7191, 0.7136, 0.7107, 0.7096, 0.7100, 0.7111, 0.7128, 0.7147,
+    1.0000, 0.9957, 0.9386, 0.7953, 0.8307, 0.8398, 0.8393, 0.8345, 0.8297, 0.8256, 0.8217, 0.8184, 0.8154, 0.8130, 0.8109, 0.8093);
+
+const float MX_DFG_C2[256] = float[](
+    0.0075, 0.5866, 0.6189, 0.6477, 0.6741, 0.6982, 0.7203, 0.7405, 0.7590, 0.7757, 0.7907, 0.8042, 0.8162, 0.8270, 0.8365, 0.8450,
+    0.0055, 0.5778, 0.6147, 0.6453, 0.6723, 0.6967, 0.7191, 0.7394, 0.7581, 0.7750, 0.7902, 0.8038, 0.8160, 0.8269, 0.8365, 0.8451,
+    0.0181, 0.4944, 0.6000, 0.6360, 0.6650, 0.6924, 0.7162, 0.7376, 0.7568, 0.7741, 0.7897, 0.8037, 0.8162, 0.8273, 0.8373, 0.8461,
+    0.0402, 0.3171, 0.5801, 0.6219, 0.6568, 0.6868, 0.7129, 0.7358, 0.7560, 0.7741, 0.7903, 0.8047, 0.8176, 0.8291, 0.8393, 0.8484,
+    0.0713, 0.2208, 0.5589, 0.6058, 0.6463, 0.6807, 0.7097, 0.7345, 0.7561, 0.7752, 0.7920, 0.8070, 0.8203, 0.8321, 0.8426, 0.8520,
+    0.1113, 0.1962, 0.5392, 0.5907, 0.6351, 0.6740, 0.7068, 0.7341, 0.7575, 0.7777, 0.7953, 0.8109, 0.8246, 0.8367, 0.8474, 0.8569,
+    0.1602, 0.2141, 0.5238, 0.5790, 0.6253, 0.6686, 0.7048, 0.7350, 0.7602, 0.7818, 0.8003, 0.8164, 0.8304, 0.8427, 0.8536, 0.8631,
+    0.2180, 0.2551, 0.5152, 0.5731, 0.6196, 0.6656, 0.7050, 0.7377, 0.7648, 0.7877, 0.8070, 0.8236, 0.8379, 0.8502, 0.8611, 0.8705,
+    0.2846, 0.3116, 0.5173, 0.5752, 0.6204, 0.6673, 0.7085, 0.7431, 0.7718, 0.7957, 0.8157, 0.8325, 0.8469, 0.8592, 0.8697, 0.8789,
+    0.3602, 0.3804, 0.5343, 0.5877, 0.6303, 0.6757, 0.7170, 0.7524, 0.7818, 0.8062, 0.8265, 0.8433, 0.8575, 0.8694, 0.8795, 0.8881,
+    0.4446, 0.4599, 0.5615, 0.6125, 0.6513, 0.6932, 0.7325, 0.7669, 0.7959, 0.8199, 0.8397, 0.8561, 0.8696, 0.8808, 0.8901, 0.8979,
+    0.5379, 0.5494, 0.6127, 0.6506, 0.6853, 0.7219, 0.7569, 0.7883, 0.8151, 0.8375, 0.8559, 0.8709, 0.8832, 0.8932, 0.9013, 0.9080,
+    0.6401, 0.6484, 0.6812, 0.7068, 0.7343, 0.7638, 0.7923, 0.8183, 0.8409, 0.8599, 0.8755, 0.8881, 0.8983, 0.9065, 0.9130, 0.9182,
+    0.7512, 0.7567, 0.7683, 0.7832, 0.8009, 0.8211, 0.8408, 0.8588, 0.8747, 0.8881, 0.8991, 0.9080, 0.9150, 0.9205, 0.9248, 0.9280,
+    0.8711, 0.8739, 0.8761, 0.8802, 0.8884, 0.8964, 0.9045, 0.9120, 0.9184, 0.9236, 0.9278, 0.9311, 0.9336, 0.9354, 0.9368, 0.9378,
+    1.0000, 1.0000, 0.9994, 0.9973, 0.9943, 0.9902, 0.9854, 0.9801, 0.9748, 0.9699, 0.9655, 0.9618, 0.9588, 0.9565, 0.9548, 0.9537);
+
+const float MX_DFG_W1[256] = float[](
+    0.9913, 0.9435, 0.9355, 0.8891, 0.8320, 0.7714, 0.7111, 0.6536, 0.6002, 0.5517, 0.5083, 0.4701, 0.4367, 0.4077, 0.3828, 0.3614,
+    0.9665, 0.8848, 0.9073, 0.8780, 0.8267, 0.7681, 0.7084, 0.6508, 0.5971, 0.5483, 0.5045, 0.4658, 0.4318, 0.4024, 0.3771, 0.3553,
+    0.7713, 0.9615, 0.8646, 0.8456, 0.8085, 0.7570, 0.7000, 0.6429, 0.5886, 0.5387, 0.4935, 0.4534, 0.4181, 0.3874, 0.3606, 0.3375,
+    0.6387, 0.9896, 0.9049, 0.8326, 0.7908, 0.7434, 0.6890, 0.6325, 0.5776, 0.5263, 0.4797, 0.4379, 0.4010, 0.3686, 0.3403, 0.3156,
+    0.5802, 0.9922, 0.9514, 0.8592, 0.7893, 0.7340, 0.6785, 0.6214, 0.5654, 0.5126, 0.4641, 0.4205, 0.3818, 0.3477, 0.3178, 0.2917,
+    0.5514, 0.9870, 0.9726, 0.8977, 0.8084, 0.7354, 0.6720, 0.6115, 0.5533, 0.4984, 0.4479, 0.4024, 0.3618, 0.3261, 0.2947, 0.2672,
+    0.5352, 0.9743, 0.9801, 0.9244, 0.8358, 0.7479, 0.6721, 0.6045, 0.5421, 0.4844, 0.4315, 0.3840, 0.3417, 0.3044, 0.2717, 0.2430,
+    0.5252, 0.9529, 0.9810, 0.9360, 0.8568, 0.7644, 0.6776, 0.6009, 0.5326, 0.4710, 0.4155, 0.3658, 0.3218, 0.2831, 0.2493, 0.2198,
+    0.5185, 0.9210, 0.9772, 0.9353, 0.8641, 0.7750, 0.6832, 0.5989, 0.5242, 0.4582, 0.3997, 0.3479, 0.3023, 0.2625, 0.2279, 0.1979,
+    0.5136, 0.8767, 0.9677, 0.9224, 0.8540, 0.7716, 0.6817, 0.5943, 0.5151, 0.4451, 0.3837, 0.3300, 0.2832, 0.2425, 0.2074, 0.1773,
+    0.5099, 0.8183, 0.9414, 0.8914, 0.8215, 0.7469, 0.6650, 0.5811, 0.5015, 0.4299, 0.3668, 0.3118, 0.2641, 0.2231, 0.1880, 0.1581,
+    0.5067, 0.7437, 0.8876, 0.8225, 0.7542, 0.6915, 0.6242, 0.5516, 0.4783, 0.4093, 0.3470, 0.2922, 0.2447, 0.2040, 0.1694, 0.1402,
+    0.5038, 0.6491, 0.7499, 0.6788, 0.6286, 0.5915, 0.5488, 0.4971, 0.4387, 0.3788, 0.3217, 0.2698, 0.2242, 0.1849, 0.1515, 0.1236,
+    0.5007, 0.5258, 0.4265, 0.4195, 0.4215, 0.4334, 0.4285, 0.4082, 0.3747, 0.3325, 0.2870, 0.2425, 0.2015, 0.1653, 0.1344, 0.1085,
+    0.5000, 0.3488, 0.1168, 0.1262, 0.1927, 0.2334, 0.2647, 0.2803, 0.2794, 0.2643, 0.2391, 0.2085, 0.1768, 0.1467, 0.1198, 0.0968,
+    0.5000, 0.0063, 0.0067, 0.0085, 0.0244, 0.0535, 0.0915, 0.1315, 0.1669, 0.1917, 0.2019, 0.1978, 0.1828, 0.1613, 0.1375, 0.1142);
+
+const float MX_DFG_W2[256] = float[](
+    0.0029, 0.0133, 0.0530, 0.1057, 0.1650, 0.2264, 0.2869, 0.3444, 0.3976, 0.4457, 0.4885, 0.5262, 0.5589, 0.5870, 0.6111, 0.6314,
+    0.0334, 0.0073, 0.0453, 0.0992, 0.1596, 0.2219, 0.2829, 0.3404, 0.3935, 0.4413, 0.4836, 0.5204, 0.5520, 0.5790, 0.6018, 0.6207,
+    0.2287, 0.0030, 0.0274, 0.0787, 0.1411, 0.2062, 0.2692, 0.3281, 0.3814, 0.4286, 0.4694, 0.5041, 0.5330, 0.5567, 0.5758, 0.5906,
+    0.3612, 0.0032, 0.0172, 0.0584, 0.1182, 0.1847, 0.2502, 0.3110, 0.3651, 0.4119, 0.4514, 0.4836, 0.5093, 0.5292, 0.5440, 0.5541,
+    0.4198, 0.0057, 0.0132, 0.0457, 0.0985, 0.1630, 0.2294, 0.2918, 0.3470, 0.3938, 0.4320, 0.4620, 0.4845, 0.5004, 0.5104, 0.5154,
+    0.4486, 0.0125, 0.0120, 0.0401, 0.0864, 0.1460, 0.2109, 0.2735, 0.3293, 0.3759, 0.4129, 0.4406, 0.4598, 0.4715, 0.4769, 0.4770,
+    0.4648, 0.0255, 0.0127, 0.0395, 0.0822, 0.1369, 0.1982, 0.2591, 0.3142, 0.3600, 0.3955, 0.4207, 0.4365, 0.4441, 0.4448, 0.4400,
+    0.4748, 0.0470, 0.0153, 0.0434, 0.0854, 0.1368, 0.1938, 0.2514, 0.3040, 0.3479, 0.3811, 0.4034, 0.4155, 0.4188, 0.4149, 0.4053,
+    0.4815, 0.0790, 0.0207, 0.0525, 0.0970, 0.1466, 0.1996, 0.2526, 0.3011, 0.3413, 0.3710, 0.3895, 0.3974, 0.3962, 0.3876, 0.3733,
+    0.4864, 0.1233, 0.0310, 0.0701, 0.1197, 0.1688, 0.2177, 0.2649, 0.3074, 0.3421, 0.3666, 0.3801, 0.3830, 0.3767, 0.3631, 0.3442,
+    0.4901, 0.1817, 0.0582, 0.1037, 0.1603, 0.2084, 0.2517, 0.2912, 0.3255, 0.3522, 0.3694, 0.3761, 0.3727, 0.3606, 0.3417, 0.3181,
+    0.4933, 0.2563, 0.1122, 0.1743, 0.2327, 0.2746, 0.3080, 0.3360, 0.3585, 0.3740, 0.3810, 0.3786, 0.3672, 0.3481, 0.3233, 0.2948,
+    0.4962, 0.3509, 0.2500, 0.3189, 0.3616, 0.3824, 0.3960, 0.4056, 0.4110, 0.4108, 0.4038, 0.3892, 0.3673, 0.3396, 0.3078, 0.2742,
+    0.4993, 0.4742, 0.5735, 0.5787, 0.5709, 0.5458, 0.5261, 0.5081, 0.4890, 0.4670, 0.4407, 0.4095, 0.3739, 0.3352, 0.2951, 0.2557,
+    0.5000, 0.6512, 0.8832, 0.8726, 0.8011, 0.7496, 0.6973, 0.6475, 0.5980, 0.5473, 0.4949, 0.4410, 0.3866, 0.3334, 0.2832, 0.2372,
+    0.5000, 0.9937, 0.9933, 0.9913, 0.9709, 0.9323, 0.8760, 0.8056, 0.7230, 0.6328, 0.5411, 0.4529, 0.3724, 0.3017, 0.2419, 0.1926);
+
+
+// (c1, c2, w1, w2) at NdotV and alpha, interpolated bilinearly.
+vec4 mx_environment_dfg_rule(float NdotV, float alpha)
+{
+    vec2 p = clamp(vec2(sqrt(NdotV), sqrt(alpha)), 0.0, 1.0) * 15.0;
+    ivec2 i = min(ivec2(p), ivec2(14));
+    vec2 f = p - vec2(i);
+    int k = i.x * 16 + i.y;
+    vec4 low = mix(vec4(MX_DFG_C1[k], MX_DFG_C2[k], MX_DFG_W1[k], MX_DFG_W2[k]), vec4(MX_DFG_C1[k + 1], MX_DFG_C2[k + 1], MX_DFG_W1[k + 1], MX_DFG_W2[k + 1]), f.y);
+    vec4 high = mix(vec4(MX_DFG_C1[k + 16], MX_DFG_C2[k + 16], MX_DFG_W1[k + 16], MX_DFG_W2[k + 16]), vec4(MX_DFG_C1[k + 17], MX_DFG_C2[k + 17], MX_DFG_W1[k + 17], MX_DFG_W2[k + 17]), f.y);
+    return mix(low, high, f.x);
+}
+
+
+// Image-based lighting from a prefiltered environment, by the split sum (Karis 2013, "Real Shading
+// in Unreal Engine 4"): the radiance map convolved with the GGX lobe per roughness (computed by the
+// renderer, shadergen/render/prefilter.py, with N = V = R), times the BRDF's directional albedo
+// from our DFG table (mx_environment_dfg.glsl, tools/fit_dfg.py). One lookup instead of
+// u_envRadianceSamples; used when the shader is compiled with MX_ENV_PREFILTER defined, and then
+// u_envRadiance must hold the prefiltered chain.
+
+
+
+// Mip level of the prefiltered chain holding the GGX lobe of `alpha`: level 0 is the unfiltered
+// map, level l >= 1 the lobe of alpha = 2^(l + 4 - u_envRadianceMips) up to alpha 1 (texels about
+// as wide as the lobe), in between the chain's trilinear filtering blends neighbouring lobes.
+float mx_prefiltered_lod(float alpha)
+{
+    float roughest = max(float(u_envRadianceMips - 4), 1.0);
+    float firstAlpha = exp2(1.0 - roughest);
+    return alpha < firstAlpha ? alpha / firstAlpha : min(log2(alpha) + roughest, roughest);
+}
+
+
+// Light leaving a point with normal N towards V after one GGX bounce of roughness alpha, or, with
+// fd.refraction, after passing through a solid sphere of index fd.ior.x; `albedo` as
+// mx_environment_radiance() gives it. The lobe's directional albedo comes from the DFG table's
+// quadrature rule, with F (reflection, times Turquin's multiple-scattering factor 1 + F (1 - E) / E
+// as the sampled path applies it) or with 1 - F averaged over the lobe (refraction).
+vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData fd, out vec3 albedo)
+{
+    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
+    float avgAlpha = clamp(sqrt(alpha.x * alpha.y), 0.0, 1.0);
+    vec4 rule = mx_environment_dfg_rule(NdotV, avgAlpha);
+    vec3 reflected = rule.z * mx_fresnel_eval(rule.x, fd) + rule.w * mx_fresnel_eval(rule.y, fd);
+    float E = max(rule.z + rule.w, MX_EPS);  // the albedo with F = 1
+    vec3 L;
+    if (fd.refraction)
+    {
+        albedo = vec3(1.0) - reflected / E;
+        L = mx_refraction_solid_sphere(-V, N, fd.ior.x);
+    }
+    else
+    {
+        albedo = reflected * (vec3(1.0) + mx_fresnel_eval(NdotV, fd) * ((1.0 - E) / E));
+        L = reflect(-V, N);
+    }
+    return mx_envmap_fetch(u_envRadiance, L, mx_prefiltered_lod(avgAlpha)) * albedo * u_envLightIntensity;
+}
+
+
+// Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
+// & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
+// sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
+// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl).
+//
+// Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
+// u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
+// in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
+
+
+
+// Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
+// with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
+float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
+{
+    float coarsest = float(u_envRadianceMips - 1) - 1.5;
+    float stretch = sqrt(1.0 - dir.y * dir.y);
+    return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
 
 
@@ -649,6 +794,9 @@ vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
 // what a layer below must not receive again.
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
+#ifdef MX_ENV_PREFILTER
+    return mx_environment_prefiltered_radiance(N, V, alpha, fd, albedo);
+#else
     albedo = vec3(0.0);
     int sampleCount = u_envRadianceSamples;
     if (sampleCount <= 0)
@@ -684,6 +832,7 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     }
     albedo *= scale;
     return carried * (scale * u_envLightIntensity);
+#endif
 }
 
 
