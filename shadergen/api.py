@@ -86,6 +86,7 @@ class Prepared:
         ctx = EmitContext(target_for(self.target), self.scope)
         stages = emit_shader(ctx, self.graph)
         blocks = {name: st.listing() for name, st in ctx.stages.items()}
+        layout = ctx.target.layout(ctx)
         if self.document.labels:  # variables name their inputs as the source document does
             for variable in (v for block in blocks.values() for vs in block.values() for v in vs):
                 variable["path"] = self.document.label(variable["path"])
@@ -96,7 +97,7 @@ class Prepared:
             "stages": stages if source else {k: None for k in stages},
             "blocks": blocks,
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
-        }
+        } | ({"layout": layout} if layout is not None else {})
 
 
 class Generator:

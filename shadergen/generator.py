@@ -138,7 +138,7 @@ class EmitContext:
     def emit_source_file(self, path: str) -> None:
         for dep_path, text in expand_includes(path, set()):
             if self.pixel.once(("file", dep_path)):
-                self.pixel.functions.extend(text)
+                self.pixel.functions.extend(self.target.library_source(dep_path, text))
                 self.pixel.functions.line()
 
     def emit_graph_function(self, function: Function) -> None:

@@ -13,9 +13,9 @@ import re
 from ..element import Element
 from ..errors import ShaderGenError
 from ..library import read_source
+from ..targets.glsl_target import PLACEHOLDER
 
 REGISTRY: dict[str, type["NodeImpl"]] = {}
-PLACEHOLDER = re.compile(r"\{\{\s*(\w+)\s*\}\}")
 DERIVATIVES = re.compile(r"\b(dFdx|dFdy|fwidth|texture)\s*\(")
 INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$', re.M)
 
@@ -59,15 +59,12 @@ class InlineImpl(NodeImpl):
         return cls(read_source(_source_path(elem, elem.get("file"))))
 
     def emit_function_call(self, node, ctx) -> None:
-        def value(m):
-            name = m.group(1)
+        for name in PLACEHOLDER.findall(self.expression):
             if name not in node.inputs:
                 raise ShaderGenError("invalid_implementation", f"inline expression names unknown input '{name}'",
                                      node.path)
-            return ctx.syntax.negative_safe(ctx.value(node.inputs[name]))
-
-        out = next(iter(node.outputs.values()))
-        ctx.assign(out, PLACEHOLDER.sub(value, self.expression))
+        inputs = {name: (ctx.value(i), i.type) for name, i in node.inputs.items()}
+        ctx.assign(next(iter(node.outputs.values())), ctx.target.inline(self.expression, inputs))
 
 
 class SourceFunctionImpl(NodeImpl):

@@ -2,8 +2,9 @@
 (glsl_target.py describes them); the passes and the generator are shared (seed 2.2)."""
 from ..errors import ShaderGenError
 from .glsl_target import EsslTarget, GlslTarget
+from .wgsl.target import WgslTarget
 
-TARGETS: dict[str, type[GlslTarget]] = {"glsl": GlslTarget, "essl": EsslTarget}
+TARGETS: dict[str, type[GlslTarget]] = {"glsl": GlslTarget, "essl": EsslTarget, "wgsl": WgslTarget}
 
 
 def target_for(name: str):

@@ -8,10 +8,13 @@ calling convention (the shading-context argument, the surface's contexts, the li
 stage assembly (header, structs, variable blocks, functions, main). A WGSL or OSL target
 implements the same hooks.
 """
+import re
+
 from ..shader import PIXEL, Variable, Writer
 from .deadcode import used_functions
 from .glsl import LIGHT_DATA_MEMBERS, STRUCTS, ClosureConvention, EsslSyntax, GlslSyntax, Syntax
 
+PLACEHOLDER = re.compile(r"\{\{\s*(\w+)\s*\}\}")
 CONDITION_OPERATORS = {"greater": ">", "greatereq": ">=", "equal": "=="}
 
 
@@ -52,6 +55,19 @@ class GlslTarget:
 
     def below(self, value: str, bound: int, type_name: str) -> str:
         return f"{value} < {bound if type_name == 'integer' else f'{bound}.0'}"
+
+    # -- library code ------------------------------------------------------------------------------
+    def library_source(self, path: str, text: str) -> str:
+        """A library function file as this target writes it (the libraries are GLSL)."""
+        return text
+
+    def inline(self, expression: str, inputs: dict[str, tuple[str, str]]) -> str:
+        """A library's inline expression with its inputs' values, `inputs`: name -> (value, type)."""
+        return PLACEHOLDER.sub(lambda m: self.syntax.negative_safe(inputs[m.group(1)][0]), expression)
+
+    def layout(self, ctx) -> dict | None:
+        """Where a client puts each uniform, for targets whose uniforms live in buffers."""
+        return None
 
     # -- expressions the dynamic nodes write -------------------------------------------------------
     def normalize(self, e: str) -> str:

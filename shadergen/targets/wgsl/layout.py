@@ -1,0 +1,37 @@
+"""WGSL's uniform buffer layout (WGSL spec, "Memory Layout"): each member at the next multiple of
+its alignment; a vec3 aligns to 16 bytes but takes 12, so a scalar may follow it in the same 16;
+matrix columns are vec3/vec4 padded to 16; the structure's size rounds up to 16."""
+
+# MaterialX type -> (WGSL type in the buffer, alignment, size). Booleans are not host-shareable:
+# they travel as i32 (0 or 1); strings are enum indices.
+MEMBER = {
+    "float": ("f32", 4, 4), "integer": ("i32", 4, 4), "boolean": ("i32", 4, 4), "string": ("i32", 4, 4),
+    "geomname": ("i32", 4, 4), "vector2": ("vec2f", 8, 8), "vector3": ("vec3f", 16, 12),
+    "color3": ("vec3f", 16, 12), "vector4": ("vec4f", 16, 16), "color4": ("vec4f", 16, 16),
+    "matrix33": ("mat3x3f", 16, 48), "matrix44": ("mat4x4f", 16, 64),
+}
+from ...errors import ShaderGenError
+
+UNIFORM_BLOCKS = ("PrivateUniforms", "PublicUniforms")
+
+
+def uniform_layout(stage, group: int) -> dict:
+    """The stage's uniform buffer (binding 0 of `group`) and its textures, each a texture and a
+    sampler binding after it."""
+    members, textures, offset = [], [], 0
+    for block in UNIFORM_BLOCKS:
+        for v in stage.blocks[block]:
+            if v.type == "filename":
+                binding = 1 + 2 * len(textures)
+                textures.append({"name": v.name, "group": group, "texture_binding": binding,
+                                 "sampler_binding": binding + 1})
+                continue
+            if v.type not in MEMBER:
+                raise ShaderGenError("unsupported_node", f"a {v.type} uniform is not yet laid out for wgsl", v.name)
+            wgsl, align, size = MEMBER[v.type]
+            offset = -(-offset // align) * align
+            members.append({"name": v.name, "type": v.type, "wgsl": wgsl, "offset": offset, "size": size})
+            offset += size
+    return {"group": group, "binding": 0, "size": -(-offset // 16) * 16, "members": members, "textures": textures}
+
+

@@ -1,0 +1,230 @@
+"""The WGSL target: the same hooks as the GLSL target (glsl_target.py), spelled for WebGPU.
+
+Two modules, one per stage (the record keeps its vertex and pixel texts): `vertexMain` and
+`fragmentMain`. Each stage's uniforms live in one uniform buffer (group 0 the vertex stage's,
+group 1 the pixel stage's, binding 0), laid out by WGSL's alignment rules (layout.py); the code
+reads them by their GLSL names through the buffer (`pu.name`). Vertex data is one struct,
+`VertexData`, returned by the vertex stage and kept in a private variable `vd` in the pixel stage
+so functions may read it as GLSL's `vd.` block does.
+
+The node libraries are the GLSL ones, translated when first used (translate.py).
+"""
+import re
+
+from ...errors import ShaderGenError
+from ...shader import PIXEL, VERTEX, Writer
+from ..deadcode import used_functions
+from ..glsl import STRUCTS, TYPE_NAMES, ClosureConvention, Syntax, _float
+from ..glsl_target import PLACEHOLDER, GlslTarget
+from .builtins import WGSL_RESERVED, WGSL_TYPES
+from .layout import uniform_layout
+from .translate import Translator, Untranslatable
+
+_TRANSLATOR: Translator | None = None
+
+
+def translator() -> Translator:
+    """One translator per process: library files are translated once, on first use."""
+    global _TRANSLATOR
+    if _TRANSLATOR is None:
+        _TRANSLATOR = Translator(STRUCTS)
+    return _TRANSLATOR
+
+
+def wgsl_type(type_name: str) -> str:
+    glsl = TYPE_NAMES.get(type_name, type_name)
+    return WGSL_TYPES.get(glsl, glsl)
+
+
+class WgslSyntax(Syntax):
+    name = "wgsl"
+    uniform_initializers = False  # values come from the listing, through the uniform buffer
+    reserved = WGSL_RESERVED | {"vd", "pu", "vu", "vin", "vertexMain", "fragmentMain"}
+
+    def type_name(self, type_name: str) -> str:
+        return wgsl_type(type_name)
+
+    def literal(self, type_name: str, value, meta: dict | None = None) -> str:
+        if type_name in self.struct_types:
+            text, _ = translator().expression(super().literal(type_name, value, meta), {})
+            return text
+        text = super().literal(type_name, value, meta)
+        if type_name in ("matrix33", "matrix44") and isinstance(value, tuple):
+            return f"{wgsl_type(type_name)}({', '.join(_float(v) for v in value)})"
+        return text
+
+    def struct_definitions(self, used: set[str]) -> list[str]:
+        return translator().structs(used | ({"surfaceshader"} if "material" in used else set()))
+
+    def vertex_data_member(self, name: str) -> str:
+        return f"vd.{name}"
+
+
+class WgslTarget(GlslTarget):
+    name = "wgsl"
+    syntax_class = WgslSyntax
+    closures = ClosureConvention()
+
+    def __init__(self):
+        super().__init__()
+        self.pointer_parameters: dict[str, list[bool]] = {}  # graph function -> which parameters are outputs
+        self.outputs_in_scope: set[str] = set()
+
+    # -- statements ------------------------------------------------------------------------------
+    def declare(self, type_name: str, name: str, expression: str | None = None) -> str:
+        t = self.syntax.type_name(type_name)
+        return f"var {name}: {t};" if expression is None else f"var {name}: {t} = {expression};"
+
+    def assign(self, target: str, expression: str) -> str:
+        return f"{'*' if target in self.outputs_in_scope else ''}{target} = {expression};"
+
+    def call(self, function: str, args: list[str]) -> str:
+        outputs = self.pointer_parameters.get(function)
+        if outputs is None:
+            signature = translator().signature(function)
+            if signature is None:
+                raise ShaderGenError("unsupported_node", f"'{function}' has no WGSL translation", function)
+            function = signature.name
+            outputs = [q != "in" for q, _, _ in signature.params]
+        return f"{function}({', '.join('&' + a if out else a for a, out in zip(args, outputs))});"
+
+    def function_opener(self, name: str, params: list[tuple[str, str]], outputs: list[tuple[str, str]]) -> str:
+        self.pointer_parameters[name] = [False] * len(params) + [True] * len(outputs)
+        self.outputs_in_scope = {n for _, n in outputs}
+        parts = [f"{n}: {self.syntax.type_name(t)}" for t, n in params]
+        parts += [f"{n}: ptr<function, {self.syntax.type_name(t)}>" for t, n in outputs]
+        return f"fn {name}({', '.join(parts)})"
+
+    def branch_opener(self, index: int, condition: str | None) -> str:
+        if condition is None:
+            return "else"
+        return f"{'if' if index == 0 else 'else if'} ({condition})"
+
+    # -- expressions the dynamic nodes write -------------------------------------------------------
+    def transform(self, matrix: str, e: str, point: bool) -> str:
+        return f"({matrix} * vec4f({e}, {'1.0' if point else '0.0'})).xyz"
+
+    def inline(self, expression: str, inputs: dict[str, tuple[str, str]]) -> str:
+        """A library's inline expression (GLSL) with its inputs' values: translated with their types."""
+        names = {f"inline_{k}": v for k, v in inputs.items()}
+        template = PLACEHOLDER.sub(r"inline_\1", expression)
+        try:
+            text, _ = translator().expression(template, {k: TYPE_NAMES.get(t, t) for k, (_, t) in names.items()})
+        except Untranslatable as e:
+            raise ShaderGenError("unsupported_node", f"inline expression '{expression}': {e}", expression) from None
+        return re.sub(r"\binline_\w+\b", lambda m: f"({names[m.group()][0]})"
+                      if not re.fullmatch(r"[\w.]+", names[m.group()][0]) else names[m.group()][0], text)
+
+    def library_source(self, path: str, text: str) -> str:
+        try:
+            return translator().file(path, text)
+        except Untranslatable as e:
+            raise ShaderGenError("unsupported_node", f"'{path}' has no WGSL translation: {e}", path) from None
+
+    def output_color(self, type_name: str, v: str) -> str:
+        if type_name in ("float", "integer", "boolean"):
+            s = v if type_name == "float" else f"f32({v})"
+            return f"vec4f({s}, {s}, {s}, 1.0)"
+        if type_name == "vector2":
+            return f"vec4f({v}, 0.0, 1.0)"
+        if type_name in ("vector3", "color3"):
+            return f"vec4f({v}, 1.0)"
+        if type_name in ("vector4", "color4"):
+            return v
+        if type_name in ("surfaceshader", "material", "volumeshader"):
+            return f"vec4f({v}.color, 1.0)"
+        return "vec4f(0.0, 0.0, 0.0, 1.0)"
+
+    # -- closures: not yet spelled in WGSL ------------------------------------------------------------
+    def closure_arguments(self) -> list[str]:
+        raise ShaderGenError("unsupported_node", "closures are not yet generated for wgsl", "wgsl")
+
+    def emit_surface(self, ctx, *args, **kw) -> None:
+        raise ShaderGenError("unsupported_node", "surface shaders are not yet generated for wgsl", "wgsl")
+
+    def emit_light_dispatch(self, ctx, lights) -> None:
+        raise ShaderGenError("unsupported_node", "lights are not yet generated for wgsl", "wgsl")
+
+    # -- stage assembly ----------------------------------------------------------------------------
+    def used_functions(self, function_lines: list[str], roots: str) -> list[str]:
+        return used_functions(function_lines, roots)
+
+    def layout(self, ctx) -> dict:
+        """Byte offsets of every uniform in its stage's buffer, and the texture bindings."""
+        return {stage: uniform_layout(ctx.stages[stage], group) for group, stage in enumerate((VERTEX, PIXEL))}
+
+    def _uniform_struct(self, stage, group: int, instance: str, w: Writer) -> dict[str, str]:
+        """The stage's uniform buffer; returns how the code reads each uniform."""
+        layout = uniform_layout(stage, group)
+        reads = {}
+        if layout["members"]:
+            struct = f"{stage.name.capitalize()}Uniforms"
+            with w.block(f"struct {struct}"):
+                for m in layout["members"]:
+                    w.line(f"{m['name']}: {m['wgsl']},  // offset {m['offset']}")
+            w.line(f"@group({group}) @binding(0) var<uniform> {instance}: {struct};")
+            w.line()
+            for m in layout["members"]:
+                read = f"{instance}.{m['name']}"
+                reads[m["name"]] = f"({read} != 0)" if m["type"] == "boolean" else read
+        for t in layout["textures"]:
+            raise ShaderGenError("unsupported_node", f"texture '{t['name']}' is not yet bound for wgsl", t["name"])
+        return reads
+
+    def _vertex_data_struct(self, stage, w: Writer) -> None:
+        with w.block("struct VertexData"):
+            w.line("@builtin(position) position: vec4f,")
+            for i, v in enumerate(stage.blocks["VertexData"]):
+                w.line(f"@location({i}) {v.name}: {self.syntax.type_name(v.type)},")
+        w.line()
+
+    def assemble_pixel(self, ctx) -> str:
+        w = Writer()
+        structs = self.syntax.struct_definitions({t for t in ctx.used_types if t in STRUCTS})
+        for s in structs:
+            w.line(s)
+        if structs:
+            w.line()
+        reads = self._uniform_struct(ctx.pixel, 1, "pu", w)
+        self._vertex_data_struct(ctx.pixel, w)
+        w.line("var<private> vd: VertexData;")
+        w.line()
+        outputs = list(ctx.pixel.blocks["Outputs"])
+        if len(outputs) != 1:
+            raise ShaderGenError("unsupported_output", "wgsl shaders have exactly one output", "wgsl")
+        w.lines.extend(ctx.pixel.functions.lines)
+        w.line("@fragment")
+        with w.block("fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f"):
+            w.line("vd = vertexData;")
+            w.line(f"var {outputs[0].name}: vec4f;")
+            w.lines.extend("    " + ln if ln else "" for ln in ctx.pixel.main.lines)
+            w.line(f"return {outputs[0].name};")
+        return _read_through(w.text(), reads)
+
+    def assemble_vertex(self, ctx) -> str:
+        w = Writer()
+        reads = self._uniform_struct(ctx.vertex, 0, "vu", w)
+        inputs = list(ctx.vertex.blocks["AppData"])
+        with w.block("struct AppData"):
+            for i, v in enumerate(inputs):
+                w.line(f"@location({i}) {v.name}: {self.syntax.type_name(v.type)},")
+        w.line()
+        self._vertex_data_struct(ctx.vertex, w)
+        w.line("@vertex")
+        with w.block("fn vertexMain(vin: AppData) -> VertexData"):
+            w.line("var vd: VertexData;")
+            w.line("let hPositionWorld = u_worldMatrix * vec4f(i_position, 1.0);")
+            w.line("vd.position = u_viewProjectionMatrix * hPositionWorld;")
+            for line in ctx.vertex_main.values():
+                w.line(line)
+            w.line("return vd;")
+        return _read_through(w.text(), reads | {v.name: f"vin.{v.name}" for v in inputs})
+
+
+def _read_through(text: str, reads: dict[str, str]) -> str:
+    """Bare uniform and input names read through their buffer or struct (not declarations or members)."""
+    if not reads:
+        return text
+    pattern = re.compile(r"(?<![\w.])(" + "|".join(map(re.escape, sorted(reads, key=len, reverse=True))) + r")\b(?!\s*:)")
+    return pattern.sub(lambda m: reads[m.group(1)], text)
+
