@@ -116,8 +116,9 @@ class Parser:
             op = self.next()
             operand = self.unary()
             return operand if op == "+" else Expr("unary", op, [operand])
-        if self.peek() in ("++", "--"):
-            raise Untranslatable("prefix increment inside an expression")
+        if self.peek() in ("++", "--"):  # only as a statement (WGSL's i++), as the emitter checks
+            op = self.next()
+            return Expr("postfix", op, [self.unary()])
         return self.postfix(self.primary())
 
     def primary(self) -> Expr:
@@ -435,7 +436,13 @@ class FunctionEmitter:
             a, ta = self.expr(e.args[1])
             b, tb = self.expr(e.args[2])
             t = self.common([ta, tb])
-            return f"select({self.convert(b, tb, t)}, {self.convert(a, ta, t)}, {cond})", t
+            a, b = self.convert(a, ta, t), self.convert(b, tb, t)
+            if t.startswith("mat"):  # select takes vectors: choose column by column
+                if not all(re.fullmatch(r"[\w.]+", x) for x in (a, b)):
+                    raise Untranslatable("a choice between matrix expressions")
+                columns = ", ".join(f"select({b}[{i}], {a}[{i}], {cond})" for i in range(int(t[3])))
+                return f"{wgsl_type(t)}({columns})", t
+            return f"select({b}, {a}, {cond})", t
         if k == "call":
             return self.call(e)
         raise Untranslatable(f"{k} inside an expression")
@@ -456,6 +463,15 @@ class FunctionEmitter:
                 b, tb = self.convert(b, tb, vector_of(wider, size_of(tb))), vector_of(wider, size_of(tb))
         if op in ("==", "!=", "<", ">", "<=", ">="):
             return f"{a} {op} {b}", "bool"
+        if ta.startswith("mat") != tb.startswith("mat") and op in ("+", "-", "/"):
+            # WGSL has only matrix * scalar: a scalar added to a matrix is added to every element
+            m, s = (ta, b) if ta.startswith("mat") else (tb, a)
+            if op == "/" and tb == "float":
+                return f"{a} * (1.0 / {b})", ta
+            splat = f"{wgsl_type(m)}({', '.join([f'vec{m[3]}f({s})'] * int(m[3]))})"
+            if op == "/":
+                raise Untranslatable("a scalar divided by a matrix")
+            return (f"{a} {op} {splat}" if ta.startswith("mat") else f"{splat} {op} {b}"), m
         if ta.startswith("mat") and op == "*":
             t = ta if tb.startswith("mat") or tb == "float" else tb
         elif tb.startswith("mat") and op == "*":
@@ -509,6 +525,9 @@ class FunctionEmitter:
         if size_of(name) == 1 and not name.startswith("mat") and name not in self.lib.structs:
             text, t = values[0]
             return (text if t == name else f"{wgsl_type(name)}({text})"), name
+        if name.startswith("mat") and len(values) == 1 and size_of(values[0][1]) == 1 and not values[0][1].startswith("mat"):
+            n, s = int(name[3]), self.convert(values[0][0], values[0][1], "float")  # GLSL: the diagonal
+            return f"{wgsl_type(name)}({', '.join(s if i % (n + 1) == 0 else '0.0' for i in range(n * n))})", name
         if name.startswith("mat") and len(values) == 1 and values[0][1].startswith("mat") and values[0][1] != name:
             n = int(name[3])
             text = values[0][0]
