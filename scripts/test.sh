@@ -3,6 +3,8 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/system-packages.sh --containers || exit 1
+bash scripts/naga.sh || exit 1
+export PATH="$PATH:$HOME/.cargo/bin"
 [ -x .venv/bin/python ] || python3 -m venv .venv || exit 1
 .venv/bin/pip install -q --upgrade pip || exit 1
 .venv/bin/pip install -q -e ".[render,service,usd,dev]" || exit 1

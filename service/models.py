@@ -30,7 +30,7 @@ Keep = Annotated[Text, StringConstraints(min_length=1, max_length=1024)]
 class GenerateRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
-    target: Text = Field("glsl", max_length=64, description="glsl, essl, osl, ...")
+    target: Text = Field("glsl", max_length=64, description="glsl, essl or wgsl")
     element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
     interface: Interface = Field("complete", description=INTERFACE_DOC)
     keep: list[Keep] = Field(default_factory=list, max_length=256,
@@ -108,6 +108,9 @@ class ShaderRecord(BaseModel):
     blocks: dict[str, dict[str, list[Variable]]]
     timings_ms: dict[str, float] = Field(default_factory=dict)
     warnings: list[Any] = Field(default_factory=list)
+    layout: dict[str, Any] | None = Field(None, description=(
+        "wgsl only: per stage, the uniform buffer (group, binding 0, size) with each member's byte offset "
+        "by WGSL's alignment rules, and each texture's texture and sampler bindings"))
 
 
 class JobAccepted(BaseModel):
