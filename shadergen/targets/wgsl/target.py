@@ -111,7 +111,7 @@ class WgslTarget(GlslTarget):
         try:
             text, _ = translator().expression(template, {k: TYPE_NAMES.get(t, t) for k, (_, t) in names.items()})
         except Untranslatable as e:
-            raise ShaderGenError("unsupported_node", f"inline expression '{expression}': {e}", expression) from None
+            raise Untranslatable(e.message.removeprefix("no WGSL translation: "), expression) from None
         return re.sub(r"\binline_\w+\b", lambda m: f"({names[m.group()][0]})"
                       if not re.fullmatch(r"[\w.]+", names[m.group()][0]) else names[m.group()][0], text)
 
@@ -119,7 +119,7 @@ class WgslTarget(GlslTarget):
         try:
             return translator().file(path, text)
         except Untranslatable as e:
-            raise ShaderGenError("unsupported_node", f"'{path}' has no WGSL translation: {e}", path) from None
+            raise Untranslatable(e.message.removeprefix("no WGSL translation: "), path) from None
 
     def output_color(self, type_name: str, v: str) -> str:
         if type_name in ("float", "integer", "boolean"):

@@ -11,11 +11,15 @@ generator reports that as a generation error of the node.
 import re
 from dataclasses import dataclass, field
 
+from ...errors import ShaderGenError
 from .builtins import BUILTIN_RETURN, COMPONENTWISE, RENAMED, WGSL_TYPES, WGSL_RESERVED
 
 
-class Untranslatable(Exception):
-    pass
+class Untranslatable(ShaderGenError):
+    """GLSL the translator does not take: a generation error of the node that needs it."""
+
+    def __init__(self, message: str, where: str | None = None):
+        super().__init__("unsupported_node", f"no WGSL translation: {message}", where)
 
 
 TOKEN = re.compile(r"""
@@ -502,7 +506,8 @@ class FunctionEmitter:
 
     def call(self, e: Expr) -> tuple[str, str]:
         name = e.value
-        if name in GLSL_TYPES or name in self.lib.structs:
+        if self.lib.canon(name) in GLSL_TYPES or self.lib.canon(name) in self.lib.structs:
+            name = self.lib.canon(name)
             return self.construct(name, e.args)
         args = [self.expr(a) for a in e.args]
         sig = self.lib.resolve(name, [t for _, t in args])

@@ -1,0 +1,93 @@
+"""WGSL conformance and size: every renderable element of every document under the given folders,
+generated for wgsl (and glsl, for the size ratio), each WGSL module validated with naga.
+
+    .venv/bin/python bench/wgsl.py ../shared/corpus/resources/Materials/TestSuite/stdlib \
+        ../shared/corpus/resources/Materials/TestSuite/pbrlib [--interface specialized] [--failures N]
+
+Prints, per folder and in all: elements, generated %, validated % (of generated), and the median
+and worst ratio of WGSL fragment lines to our GLSL fragment lines for the same element.
+"""
+import argparse
+import collections
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from shadergen.api import generate_file
+
+
+def lines(text: str) -> int:
+    return sum(1 for ln in text.splitlines() if ln.strip())
+
+
+def naga_ok(naga: str, text: str, folder: str) -> tuple[bool, str]:
+    path = os.path.join(folder, "m.wgsl")
+    with open(path, "w") as f:
+        f.write(text)
+    p = subprocess.run([naga, path], capture_output=True, text=True, timeout=60)
+    return p.returncode == 0, (p.stderr or p.stdout).strip().split("\n")[0]
+
+
+def measure(folder: Path, naga: str, interface: str, reasons: collections.Counter) -> dict:
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for doc in sorted(folder.rglob("*.mtlx")):
+            glsl = {r["element"]: r for r in generate_file(str(doc), target="glsl", all=True, interface=interface)
+                    if "error" not in r}
+            for rec in generate_file(str(doc), target="wgsl", all=True, interface=interface):
+                row = {"generated": "error" not in rec, "valid": False, "ratio": None}
+                if not row["generated"]:
+                    reasons[rec["error"]["message"][:90]] += 1
+                else:
+                    results = [naga_ok(naga, rec["stages"][s], tmp) for s in ("vertex", "pixel")]
+                    row["valid"] = all(ok for ok, _ in results)
+                    for ok, message in results:
+                        if not ok:
+                            reasons[f"naga: {message[:80]} ({doc.name})"] += 1
+                    if rec["element"] in glsl:
+                        row["ratio"] = lines(rec["stages"]["pixel"]) / lines(glsl[rec["element"]]["stages"]["pixel"])
+                rows.append(row)
+    return summarize(rows)
+
+
+def summarize(rows: list[dict]) -> dict:
+    n = len(rows) or 1
+    gen = [r for r in rows if r["generated"]]
+    ratios = sorted(r["ratio"] for r in gen if r["ratio"] is not None)
+    return {"elements": len(rows), "generated": 100 * len(gen) / n,
+            "validated": 100 * sum(r["valid"] for r in gen) / (len(gen) or 1),
+            "median": statistics.median(ratios) if ratios else float("nan"),
+            "worst": ratios[-1] if ratios else float("nan"), "rows": rows}
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("folders", nargs="+", type=Path)
+    p.add_argument("--interface", default="complete")
+    p.add_argument("--failures", type=int, default=10, help="how many failure reasons to print")
+    a = p.parse_args()
+    naga = shutil.which("naga") or os.path.expanduser("~/.cargo/bin/naga")
+    if not os.path.exists(naga):
+        sys.exit("naga not found: bash scripts/naga.sh")
+    reasons: collections.Counter = collections.Counter()
+    print(f"{'folder':<40} {'elements':>8} {'generated':>10} {'validated':>10} {'lines wgsl/glsl median':>23} {'worst':>6}")
+    everything = []
+    for folder in a.folders:
+        s = measure(folder, naga, a.interface, reasons)
+        everything += s["rows"]
+        print(f"{folder.name:<40} {s['elements']:>8} {s['generated']:>9.1f}% {s['validated']:>9.1f}% "
+              f"{s['median']:>23.2f} {s['worst']:>6.2f}")
+    s = summarize(everything)
+    print(f"{'all':<40} {s['elements']:>8} {s['generated']:>9.1f}% {s['validated']:>9.1f}% "
+          f"{s['median']:>23.2f} {s['worst']:>6.2f}")
+    for reason, count in reasons.most_common(a.failures):
+        print(f"  {count:>4}  {reason}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
