@@ -10,6 +10,7 @@ so functions may read it as GLSL's `vd.` block does.
 The node libraries are the GLSL ones, translated when first used (translate.py).
 """
 import re
+from contextlib import contextmanager
 
 from ...errors import ShaderGenError
 from ...shader import PIXEL, VERTEX, Writer
@@ -159,7 +160,7 @@ class WgslTarget(GlslTarget):
         reads = {}
         if layout["members"]:
             struct = f"{stage.name.capitalize()}Uniforms"
-            with w.block(f"struct {struct}"):
+            with _braces(w, f"struct {struct}"):
                 for m in layout["members"]:
                     w.line(f"{m['name']}: {m['wgsl']},  // offset {m['offset']}")
             w.line(f"@group({group}) @binding(0) var<uniform> {instance}: {struct};")
@@ -172,7 +173,7 @@ class WgslTarget(GlslTarget):
         return reads
 
     def _vertex_data_struct(self, stage, w: Writer) -> None:
-        with w.block("struct VertexData"):
+        with _braces(w, "struct VertexData"):
             w.line("@builtin(position) position: vec4f,")
             for i, v in enumerate(stage.blocks["VertexData"]):
                 w.line(f"@location({i}) {v.name}: {self.syntax.type_name(v.type)},")
@@ -186,16 +187,19 @@ class WgslTarget(GlslTarget):
         if structs:
             w.line()
         reads = self._uniform_struct(ctx.pixel, 1, "pu", w)
-        self._vertex_data_struct(ctx.pixel, w)
-        w.line("var<private> vd: VertexData;")
-        w.line()
+        interpolated = len(ctx.pixel.blocks["VertexData"]) > 0
+        if interpolated:
+            self._vertex_data_struct(ctx.pixel, w)
+            w.line("var<private> vd: VertexData;")
+            w.line()
         outputs = list(ctx.pixel.blocks["Outputs"])
         if len(outputs) != 1:
             raise ShaderGenError("unsupported_output", "wgsl shaders have exactly one output", "wgsl")
         w.lines.extend(ctx.pixel.functions.lines)
         w.line("@fragment")
-        with w.block("fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f"):
-            w.line("vd = vertexData;")
+        with _braces(w, f"fn fragmentMain({'vertexData: VertexData' if interpolated else ''}) -> @location(0) vec4f"):
+            if interpolated:
+                w.line("vd = vertexData;")
             w.line(f"var {outputs[0].name}: vec4f;")
             w.lines.extend("    " + ln if ln else "" for ln in ctx.pixel.main.lines)
             w.line(f"return {outputs[0].name};")
@@ -205,13 +209,13 @@ class WgslTarget(GlslTarget):
         w = Writer()
         reads = self._uniform_struct(ctx.vertex, 0, "vu", w)
         inputs = list(ctx.vertex.blocks["AppData"])
-        with w.block("struct AppData"):
+        with _braces(w, "struct AppData"):
             for i, v in enumerate(inputs):
                 w.line(f"@location({i}) {v.name}: {self.syntax.type_name(v.type)},")
         w.line()
         self._vertex_data_struct(ctx.vertex, w)
         w.line("@vertex")
-        with w.block("fn vertexMain(vin: AppData) -> VertexData"):
+        with _braces(w, "fn vertexMain(vin: AppData) -> VertexData"):
             w.line("var vd: VertexData;")
             w.line("let hPositionWorld = u_worldMatrix * vec4f(i_position, 1.0);")
             w.line("vd.position = u_viewProjectionMatrix * hPositionWorld;")
@@ -219,6 +223,18 @@ class WgslTarget(GlslTarget):
                 w.line(line)
             w.line("return vd;")
         return _read_through(w.text(), reads | {v.name: f"vin.{v.name}" for v in inputs})
+
+
+@contextmanager
+def _braces(w: Writer, opener: str):
+    """WGSL's own style: the brace on the opener's line."""
+    w.line(opener + " {")
+    w.depth += 1
+    try:
+        yield
+    finally:
+        w.depth -= 1
+        w.line("}")
 
 
 def _read_through(text: str, reads: dict[str, str]) -> str:

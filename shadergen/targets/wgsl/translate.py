@@ -589,6 +589,18 @@ class FunctionEmitter:
         self.scopes.pop()
         self.depth -= 1
 
+    def branch(self, opener: str, body) -> None:
+        """A GLSL branch without braces stays one line: `if (c) { x = 1.0; }`."""
+        saved, self.lines = self.lines, []
+        self.braced(opener, body)
+        inner, self.lines = self.lines[1:], saved
+        if body[0] != "block" and len(inner) == 1:
+            self.line(f"{opener} {{ {inner[0].strip()} }}")
+        else:
+            self.line(opener + " {")
+            self.lines.extend(inner)
+            self.line("}")
+
     def statement(self, s) -> None:
         kind = s[0]
         if kind == "block":
@@ -599,28 +611,15 @@ class FunctionEmitter:
         elif kind == "expr":
             self.line(self.expression_statement(s[1]) + ";")
         elif kind == "if":
-            cond, _ = self.expr(s[1])
-            self.braced(f"if ({strip_parens(cond)})", s[2])
-            other = s[3]
-            while other is not None:
-                if other[0] == "if":
-                    cond, _ = self.expr(other[1])
-                    self.line(f"}} else if ({strip_parens(cond)}) {{")
-                    self.depth += 1
-                    self.scopes.append({})
-                    self.statements(other[2][1] if other[2][0] == "block" else [other[2]])
-                    self.scopes.pop()
-                    self.depth -= 1
-                    other = other[3]
-                else:
-                    self.line("} else {")
-                    self.depth += 1
-                    self.scopes.append({})
-                    self.statements(other[1] if other[0] == "block" else [other])
-                    self.scopes.pop()
-                    self.depth -= 1
-                    other = None
-            self.line("}")
+            branches, other = [], s
+            while other is not None and other[0] == "if":
+                cond, _ = self.expr(other[1])
+                branches.append((f"{'if' if not branches else 'else if'} ({strip_parens(cond)})", other[2]))
+                other = other[3]
+            if other is not None:
+                branches.append(("else", other))
+            for opener, body in branches:
+                self.branch(opener, body)
         elif kind == "for":
             self.scopes.append({})
             init = self.declaration_text(s[1]) if s[1] and s[1][0] == "decl" else (
@@ -775,7 +774,7 @@ class Translator:
                 texts.append(f"{safe_name(n)}: ptr<function, {wgsl_type(t)}>")
         emitter.statements(body)
         arrow = "" if ret == "void" else f" -> {wgsl_type(ret)}"
-        return [f"fn {wgsl_name}({', '.join(texts)}){arrow}", "{", *copies, *emitter.lines, "}"]
+        return [f"fn {wgsl_name}({', '.join(texts)}){arrow} {{", *copies, *emitter.lines, "}"]
 
     def signature(self, name: str) -> Signature | None:
         family = self.lib.functions.get(name, [])
