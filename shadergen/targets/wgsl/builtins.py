@@ -34,6 +34,9 @@ BUILTIN_RETURN = {
     "float": _scalar, "int": lambda t: "int", "uint": lambda t: "uint",
 }
 
+TEXTURE_CALLS = {"texture": "textureSample", "textureGrad": "textureSampleGrad", "textureLod": "textureSampleLevel",
+                 "textureSize": "textureDimensions", "texelFetch": "textureLoad"}
+
 RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx", "dFdy": "dpdy"}
 
 WGSL_RESERVED = set("""

@@ -86,6 +86,7 @@ class WgslTarget(GlslTarget):
             if signature is None:
                 raise ShaderGenError("unsupported_node", f"'{function}' has no WGSL translation", function)
             function = signature.name
+            args = [f"{a}, {a}_sampler" if t == "sampler2D" else a for a, (_, t, _) in zip(args, signature.params)]
             outputs = [q != "in" for q, _, _ in signature.params]
         return f"{function}({', '.join('&' + a if out else a for a, out in zip(args, outputs))});"
 
@@ -169,7 +170,10 @@ class WgslTarget(GlslTarget):
                 read = f"{instance}.{m['name']}"
                 reads[m["name"]] = f"({read} != 0)" if m["type"] == "boolean" else read
         for t in layout["textures"]:
-            raise ShaderGenError("unsupported_node", f"texture '{t['name']}' is not yet bound for wgsl", t["name"])
+            w.line(f"@group({group}) @binding({t['texture_binding']}) var {t['name']}: texture_2d<f32>;")
+            w.line(f"@group({group}) @binding({t['sampler_binding']}) var {t['name']}_sampler: sampler;")
+        if layout["textures"]:
+            w.line()
         return reads
 
     def _vertex_data_struct(self, stage, w: Writer) -> None:

@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass, field
 
 from ...errors import ShaderGenError
-from .builtins import BUILTIN_RETURN, COMPONENTWISE, RENAMED, WGSL_TYPES, WGSL_RESERVED
+from .builtins import BUILTIN_RETURN, COMPONENTWISE, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
 
 
 class Untranslatable(ShaderGenError):
@@ -29,6 +29,29 @@ TOKEN = re.compile(r"""
   | (?P<id>[A-Za-z_]\w*)
   | (?P<op><<=|>>=|\+\+|--|\+=|-=|\*=|/=|%=|&=|\|=|\^=|==|!=|<=|>=|&&|\|\||<<|>>|[-+*/%<>=!~&|^?:;,.(){}\[\]])
 """, re.X | re.S)
+
+
+def preprocess(text: str, defined: set[str]) -> str:
+    """Conditional sections: WGSL takes the GL_ES side (no textureQueryLod); #defines are kept."""
+    out, active = [], [True]
+    for line in text.split("\n"):
+        m = re.match(r"\s*#\s*(ifdef|ifndef|else|endif|define)\b\s*(\w*)", line)
+        if not m or m.group(1) == "define":
+            if all(active):
+                out.append(line)
+                if m:
+                    defined.add(m.group(2))
+            else:
+                out.append("")
+            continue
+        if m.group(1) in ("ifdef", "ifndef"):
+            active.append((m.group(2) in defined) == (m.group(1) == "ifdef"))
+        elif m.group(1) == "else":
+            active[-1] = not active[-1]
+        else:
+            active.pop()
+        out.append("")
+    return "\n".join(out)
 
 
 def tokenize(text: str) -> list[str]:
@@ -254,7 +277,7 @@ class Parser:
                     items.append(("alias", m.group(1), m.group(2).strip()))
                 elif m:
                     items.append(("define", m.group(1), m.group(2).strip()))
-                elif not re.match(r"#\s*(ifndef|ifdef|endif|define\s+\w+\s*$)", tok):
+                elif not re.match(r"#\s*define\s+\w+\s*$", tok):
                     raise Untranslatable(f"preprocessor line '{tok}'")
                 continue
             if tok == "struct":
@@ -514,7 +537,9 @@ class FunctionEmitter:
         if sig is not None:
             texts = []
             for (q, pt, _), arg, (text, t) in zip(sig.params, e.args, args):
-                if q == "in":
+                if pt == "sampler2D":
+                    texts.append(f"{text}, {text}_sampler")
+                elif q == "in":
                     texts.append(self.convert(text, t, pt))
                 elif arg.kind == "id" and arg.value in self.pointers:
                     texts.append(safe_name(arg.value))
@@ -561,6 +586,19 @@ class FunctionEmitter:
             op = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "greaterThanEqual": ">=",
                   "equal": "==", "notEqual": "!="}[name]
             return f"({texts[0]} {op} {texts[1]})", vector_of("bool", size_of(types[0]))
+        if name in TEXTURE_CALLS:
+            if args[0][1] != "sampler2D":
+                raise Untranslatable(f"{name} of a {args[0][1]}")
+            tex = texts[0]
+            if name == "textureSize":
+                return f"vec2i(textureDimensions({tex}, {texts[1]}))", "ivec2"
+            if name == "texelFetch":
+                return f"textureLoad({tex}, {texts[1]}, {texts[2]})", "vec4"
+            if name == "textureLod":
+                lod = self.convert(texts[2], types[2], "float")
+                return f"textureSampleLevel({tex}, {tex}_sampler, {texts[1]}, {lod})", "vec4"
+            rest = ", ".join(texts[1:])
+            return f"{TEXTURE_CALLS[name]}({tex}, {tex}_sampler, {rest})", "vec4"
         if name in COMPONENTWISE:
             t = self.common(types)
             if name == "mix" and scalar_of(types[2]) == "bool":
@@ -713,6 +751,7 @@ class Translator:
         """`prelude`: GLSL declarations every file may use (the closure and light structs)."""
         self.lib = Library()
         self.done: dict[str, str] = {}
+        self.defined = {"GL_ES"}
         self.prelude = {name: self._file(text) for name, text in prelude.items()}
 
     def structs(self, used: set[str]) -> list[str]:
@@ -724,7 +763,7 @@ class Translator:
         return self.done[key]
 
     def _file(self, text: str) -> str:
-        items = Parser(tokenize(text), set(self.lib.structs)).top_level()
+        items = Parser(tokenize(preprocess(text, self.defined)), set(self.lib.structs)).top_level()
         names = [it[2] for it in items if it[0] == "function"]
         out: list[str] = []
         for it in items:
@@ -772,6 +811,8 @@ class Translator:
                     texts.append(f"{safe_name(n)}: {wgsl_type(t)}")
             else:
                 texts.append(f"{safe_name(n)}: ptr<function, {wgsl_type(t)}>")
+            if t == "sampler2D":  # a GLSL sampler is a WGSL texture and its sampler
+                texts[-1] = f"{safe_name(n)}: texture_2d<f32>, {n}_sampler: sampler"
         emitter.statements(body)
         arrow = "" if ret == "void" else f" -> {wgsl_type(ret)}"
         return [f"fn {wgsl_name}({', '.join(texts)}){arrow} {{", *copies, *emitter.lines, "}"]
