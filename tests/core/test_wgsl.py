@@ -47,7 +47,7 @@ def test_every_generated_stdlib_nodedef_validates(gen, naga):
         for stage, source in rec["stages"].items():
             sources[f"{nd.name}.{stage}"] = source
     generated = len(nodedefs) - len(not_generated)
-    assert generated / len(nodedefs) >= 0.95, "\n".join(not_generated[:20])
+    assert generated / len(nodedefs) >= 0.98, "\n".join(not_generated[:20])
     errors = naga_errors(naga, sources)
     assert not errors, f"{len(errors)} modules rejected:\n" + "\n".join(f"{k}: {v}" for k, v in list(errors.items())[:10])
 
