@@ -75,7 +75,7 @@ class GlslTarget:
 
     def transform(self, matrix: str, e: str, point: bool) -> str:
         """A 3-vector through a 4x4 matrix, as a point (w 1) or a direction (w 0)."""
-        return f"({matrix} * vec4({e}, {'1.0' if point else '0.0'})).xyz"
+        return f"({matrix} * {self.syntax.type_name('vector4')}({e}, {'1.0' if point else '0.0'})).xyz"
 
     def cross(self, a: str, b: str) -> str:
         return f"cross({a}, {b})"
@@ -93,18 +93,19 @@ class GlslTarget:
 
     def output_color(self, type_name: str, v: str) -> str:
         """Every pixel output is an RGBA colour."""
+        vec4 = self.syntax.type_name("color4")
         if type_name in ("float", "integer", "boolean"):
-            s = v if type_name == "float" else f"float({v})"
-            return f"vec4({s}, {s}, {s}, 1.0)"
+            s = v if type_name == "float" else self.convert(v, "float")
+            return f"{vec4}({s}, {s}, {s}, 1.0)"
         if type_name == "vector2":
-            return f"vec4({v}, 0.0, 1.0)"
+            return f"{vec4}({v}, 0.0, 1.0)"
         if type_name in ("vector3", "color3"):
-            return f"vec4({v}, 1.0)"
+            return f"{vec4}({v}, 1.0)"
         if type_name in ("vector4", "color4"):
             return v
         if type_name in ("surfaceshader", "material", "volumeshader"):
-            return f"vec4({v}.color, 1.0)"
-        return "vec4(0.0, 0.0, 0.0, 1.0)"
+            return f"{vec4}({v}.color, 1.0)"
+        return f"{vec4}(0.0, 0.0, 0.0, 1.0)"
 
     # -- closure calling convention ----------------------------------------------------------------
     def closure_arguments(self) -> list[str]:

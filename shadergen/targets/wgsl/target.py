@@ -97,15 +97,7 @@ class WgslTarget(GlslTarget):
         parts += [f"{n}: ptr<function, {self.syntax.type_name(t)}>" for t, n in outputs]
         return f"fn {name}({', '.join(parts)})"
 
-    def branch_opener(self, index: int, condition: str | None) -> str:
-        if condition is None:
-            return "else"
-        return f"{'if' if index == 0 else 'else if'} ({condition})"
-
     # -- expressions the dynamic nodes write -------------------------------------------------------
-    def transform(self, matrix: str, e: str, point: bool) -> str:
-        return f"({matrix} * vec4f({e}, {'1.0' if point else '0.0'})).xyz"
-
     def inline(self, expression: str, inputs: dict[str, tuple[str, str]]) -> str:
         """A library's inline expression (GLSL) with its inputs' values: translated with their types."""
         names = {f"inline_{k}": v for k, v in inputs.items()}
@@ -122,20 +114,6 @@ class WgslTarget(GlslTarget):
             return translator().file(path, text)
         except Untranslatable as e:
             raise Untranslatable(e.message.removeprefix("no WGSL translation: "), path) from None
-
-    def output_color(self, type_name: str, v: str) -> str:
-        if type_name in ("float", "integer", "boolean"):
-            s = v if type_name == "float" else f"f32({v})"
-            return f"vec4f({s}, {s}, {s}, 1.0)"
-        if type_name == "vector2":
-            return f"vec4f({v}, 0.0, 1.0)"
-        if type_name in ("vector3", "color3"):
-            return f"vec4f({v}, 1.0)"
-        if type_name in ("vector4", "color4"):
-            return v
-        if type_name in ("surfaceshader", "material", "volumeshader"):
-            return f"vec4f({v}.color, 1.0)"
-        return "vec4f(0.0, 0.0, 0.0, 1.0)"
 
     # -- closures: not yet spelled in WGSL ------------------------------------------------------------
     def closure_arguments(self) -> list[str]:
