@@ -20,13 +20,21 @@ FURNACE_CASES = (
 EDGE_WEIGHTS = ("dielectric_w10", "conductor_w-1", "sheen_w10")
 
 
+RIG = Path(__file__).parent / "data" / "rig.mtlx"
+
+
 @pytest.fixture(scope="module")
-def furnace(renderer):
+def records():
     wanted = set(FURNACE_CASES) | set(EDGE_WEIGHTS)
     chosen = [c for c in stress.cases() if c.name in wanted]
     assert {c.name for c in chosen} == wanted
-    records = stress.our_records(chosen)
-    return {c: stress.render_records(renderer, {c.name: records[c.name]}, 32, 32, stress.white_furnace())[c.name]
+    return chosen, stress.our_records(chosen)
+
+
+@pytest.fixture(scope="module")
+def furnace(renderer, records):
+    chosen, by_name = records
+    return {c: stress.render_records(renderer, {c.name: by_name[c.name]}, 32, 32, stress.white_furnace())[c.name]
             for c in chosen}
 
 
@@ -46,3 +54,15 @@ def test_a_lossless_dielectric_keeps_most_of_the_light(furnace):
     """Reflection plus refraction of a clear interface: as close to 1 as the model allows."""
     stats = next(s for c, s in furnace.items() if c.name == "diel_r1_ior1.5_RT")
     assert stats["p999"] > 0.9
+
+
+def test_lights_at_the_edges_make_no_nan_inf_or_negative_pixels(renderer, records):
+    """The same materials under a light rig: the REFLECTION context of every closure."""
+    chosen, by_name = records
+    bad = {}
+    for case in chosen:
+        rgba = renderer.render(stress.without_initialisers(by_name[case.name]), size=32, env_samples=8, lights=str(RIG)).rgba
+        stats = stress.furnace_stats(rgba)
+        if stats["nan"] or stats["negative"]:
+            bad[case.name] = stats
+    assert not bad
