@@ -58,29 +58,31 @@ def dielectric_fresnel(eta):
     return F
 
 
-# (table row, column): alpha = row / 15, mu = column / 15
-@pytest.mark.parametrize("row,column", [(5, 3), (5, 12), (10, 8), (15, 2), (15, 15)])
+# (table row, column): alpha = (row / 15)^2, mu = (column / 15)^2
+@pytest.mark.parametrize("row,column", [(6, 4), (8, 12), (10, 8), (15, 3), (15, 15)])
 def test_ggx_schlick_table_matches_direct_integration(row, column):
-    alpha, mu = row / 15.0, column / 15.0
+    alpha, mu = (row / 15.0) ** 2, (column / 15.0) ** 2
     entry = table("mx_albedo_ggx.glsl", "MX_ALBEDO_GGX_SCHLICK").reshape(16, 16, 2)[row, column]
     A = ggx_albedo(mu, alpha, lambda c: 1.0 - (1.0 - c) ** 5)
     B = ggx_albedo(mu, alpha, lambda c: (1.0 - c) ** 5)
     assert entry == pytest.approx([A, B], abs=5e-3)
 
 
-# (slab, row, column): eta = 1 + 2 slab / 7 (or its inverse), alpha = row / 7, mu = column / 15
-@pytest.mark.parametrize("leaving,slab,row,column", [(False, 2, 3, 5), (False, 7, 7, 12), (True, 2, 4, 10), (True, 5, 7, 3)])
+# (slab, row, column): eta of normal reflectance F0 = slab / 28 (or its inverse), alpha = (row / 7)^2,
+# mu = (column / 15)^2
+@pytest.mark.parametrize("leaving,slab,row,column", [(False, 2, 3, 5), (False, 7, 7, 12), (True, 2, 4, 10), (True, 5, 7, 4)])
 def test_dielectric_table_matches_direct_integration(leaving, slab, row, column):
-    eta = 1.0 + 2.0 * slab / 7.0
+    root = np.sqrt(slab / 28.0)
+    eta = (1.0 + root) / (1.0 - root)
     eta = 1.0 / eta if leaving else eta
     name = "MX_ALBEDO_DIELECTRIC_" + ("LEAVING" if leaving else "ENTERING")
     entry = table("mx_albedo_dielectric.glsl", name).reshape(8, 8, 16)[slab, row, column]
-    assert entry == pytest.approx(ggx_albedo(column / 15.0, row / 7.0, dielectric_fresnel(eta)), abs=5e-3)
+    assert entry == pytest.approx(ggx_albedo((column / 15.0) ** 2, (row / 7.0) ** 2, dielectric_fresnel(eta)), abs=5e-3)
 
 
-@pytest.mark.parametrize("row,column", [(4, 4), (15, 1), (15, 15)])
+@pytest.mark.parametrize("row,column", [(4, 4), (15, 3), (15, 15)])
 def test_burley_table_matches_direct_integration(row, column):
-    r, mu = row / 15.0, column / 15.0
+    r, mu = row / 15.0, (column / 15.0) ** 2
     L, dw = hemisphere()
     V = view(mu)
     H = L + V

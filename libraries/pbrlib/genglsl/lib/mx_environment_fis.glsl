@@ -29,8 +29,9 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
 //   so reflection plus refraction of a clear dielectric stays within 1.
 // `albedo` returns what the same samples give in a white environment: the fraction of the light
 // the lobe reflects (or lets through), consistent with the radiance to the last sample, which is
-// what a layer below must not receive again.
-vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
+// what a layer below must not receive again. Without `fetch` only `albedo` is computed (no
+// texture reads), so that other contexts see the very albedo the environment term has.
+vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
 {
 #ifdef MX_ENV_PREFILTER
     return mx_environment_prefiltered_radiance(N, V, alpha, fd, albedo);
@@ -50,9 +51,12 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     {
         vec3 H = mx_ggx_sample_visible_normal(mx_fibonacci_point(i, sampleCount), Vt, alpha);
         vec3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
-        vec3 Lw = frame * Lt;
-        float lod = mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
-        vec3 Li = mx_envmap_fetch(u_envRadiance, Lw, lod);
+        vec3 Li = vec3(0.0);
+        if (fetch)
+        {
+            vec3 Lw = frame * Lt;
+            Li = mx_envmap_fetch(u_envRadiance, Lw, mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
+        }
         vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
         vec3 throughput = fd.refraction ? vec3(1.0) - F : F * weight;
@@ -71,4 +75,10 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     albedo *= scale;
     return carried * (scale * u_envLightIntensity);
 #endif
+}
+
+// The environment seen through the lobe (see mx_environment_samples).
+vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
+{
+    return mx_environment_samples(N, V, X, alpha, fd, true, albedo);
 }

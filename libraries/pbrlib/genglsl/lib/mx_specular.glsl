@@ -13,23 +13,27 @@ vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleSca
 
 // The lobe with Fresnel `fd` in the current closure context, multiple scattering included.
 // `albedo` returns the fraction of light the lobe reflects at this view, which a layer below does
-// not receive: in INDIRECT the sampled value that matches the radiance, elsewhere
-// `singleScatteringAlbedo` (the caller's table value) with the compensation at the view angle.
+// not receive: in INDIRECT and TRANSMISSION the sampled value that matches the environment term,
+// under lights `singleScatteringAlbedo` (the caller's table value) compensated at the view angle.
 //   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
 //                 BRDF's), F and the compensation taken at the half vector.
 //   INDIRECT      the environment by filtered importance sampling, compensated there.
-//   other         no light.
+//   TRANSMISSION  no light of its own; the albedo as in INDIRECT.
 // N must face V; alpha is the clamped roughness pair.
 vec3 mx_specular_lobe(ClosureData closureData, vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd,
                       vec3 singleScatteringAlbedo, out vec3 albedo)
 {
     if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
         return mx_environment_radiance(N, V, X, alpha, 0, fd, albedo);
+    if (closureData.closureType != CLOSURE_TYPE_REFLECTION)
+    {
+        // What is seen through a layer must lose exactly what its environment term reflects.
+        mx_environment_samples(N, V, X, alpha, fd, false, albedo);
+        return vec3(0.0);
+    }
 
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     albedo = mx_specular_albedo(NdotV, alpha, fd, singleScatteringAlbedo);
-    if (closureData.closureType != CLOSURE_TYPE_REFLECTION)
-        return vec3(0.0);
 
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;
