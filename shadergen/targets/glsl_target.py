@@ -44,6 +44,10 @@ class GlslTarget:
         parts += [f"out {self.syntax.type_name(t)} {n}" for t, n in outputs]
         return f"void {name}({', '.join(parts)})"
 
+    def count_loop(self, index: str, bound: str) -> str:
+        """`for` an integer from 0 up to `bound`."""
+        return f"for (int {index} = 0; {index} < {bound}; ++{index})"
+
     def branch_opener(self, index: int, condition: str | None) -> str:
         """The k-th branch of an if/else chain; no condition is the final else."""
         if condition is None:
@@ -118,20 +122,20 @@ class GlslTarget:
         `contexts`: (context, closure input), the context one of "reflection" (once per light),
         "indirect" (the environment), "emission", "transmission"."""
         w = ctx.body
-        w.line(self.declare("surfaceshader", result, "surfaceshader(vec3(0.0), vec3(0.0))"))
+        zero = self.convert("0.0", "color3")
+        w.line(self.declare("surfaceshader", result, self.syntax.literal("surfaceshader", None)))
         with w.scope():
-            w.line(f"vec3 N = normalize({normal});")
-            w.line(f"vec3 V = normalize(u_viewPosition - {position});")
-            w.line(f"vec3 P = {position};")
-            w.line("vec3 L = vec3(0.0);")
-            w.line("float occlusion = 1.0;")
-            w.line(f"float surfaceOpacity = {opacity};")
+            w.line(self.declare("vector3", "N", f"normalize({normal})"))
+            w.line(self.declare("vector3", "V", f"normalize(u_viewPosition - {position})"))
+            w.line(self.declare("vector3", "P", position))
+            w.line(self.declare("vector3", "L", zero))
+            w.line(self.declare("float", "occlusion", "1.0"))
+            w.line(self.declare("float", "surfaceOpacity", opacity))
             for context, inp in contexts:
                 if context == "reflection":
-                    with w.block("for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); "
-                                 "++activeLightIndex)"):
-                        w.line("lightshader lightShader;")
-                        w.line(f"sampleLightSource(u_lightData[activeLightIndex], {position}, lightShader);")
+                    with w.block(self.count_loop("activeLightIndex", "numActiveLightSources()")):
+                        w.line(self.declare("lightshader", "lightShader"))
+                        w.line(self.call("sampleLightSource", ["u_lightData[activeLightIndex]", position, "lightShader"]))
                         w.line("L = lightShader.direction;")
                         self._context(ctx, inp, context, f"{result}.color += lightShader.intensity * {{}}.response;")
                     continue
@@ -143,14 +147,16 @@ class GlslTarget:
                 with w.scope(comment):
                     self._context(ctx, inp, context, accumulate)
             w.line(f"{result}.color *= surfaceOpacity;")
-            w.line(f"{result}.transparency = mix(vec3(1.0), {result}.transparency, surfaceOpacity);")
+            one = self.convert("1.0", "color3")
+            w.line(f"{result}.transparency = mix({one}, {result}.transparency, surfaceOpacity);")
 
     CONTEXTS = {"reflection": "CLOSURE_TYPE_REFLECTION", "indirect": "CLOSURE_TYPE_INDIRECT",
                 "emission": "CLOSURE_TYPE_EMISSION", "transmission": "CLOSURE_TYPE_TRANSMISSION"}
 
     def _context(self, ctx, inp, context: str, accumulate: str) -> None:
         closure_type = self.CONTEXTS[context]
-        ctx.body.line(f"ClosureData closureData = makeClosureData({closure_type}, L, V, N, P, occlusion);")
+        ctx.body.line(self.declare("ClosureData", "closureData",
+                                   f"makeClosureData({closure_type}, L, V, N, P, occlusion)"))
         value = ctx.emit_closures(inp, context)
         ctx.body.line(accumulate.format(value))
 

@@ -105,3 +105,20 @@ def test_glsl_implicit_conversions_are_spelled_out():
 def test_what_it_cannot_take_is_reported():
     with pytest.raises(Untranslatable, match="several components"):
         translate("void f(out vec3 v) { v.xy = vec2(1.0); }")
+
+
+def test_a_lit_standard_surface_validates(gen, naga):
+    """Closures in every shading context, the light loop with its dispatch, the environment's
+    textures, LightData in the uniform buffer."""
+    text = doc('<standard_surface name="ss" type="surfaceshader"><input name="coat" type="float" value="0.5"/>'
+               '<input name="transmission" type="float" value="0.2"/></standard_surface>'
+               '<surfacematerial name="m" type="material"><input name="surfaceshader" type="surfaceshader" nodename="ss"/>'
+               '</surfacematerial>')
+    rec = gen.prepare(text, target="wgsl").emit()
+    pixel = rec["stages"]["pixel"]
+    assert "sampleLightSource(pu.u_lightData[activeLightIndex]" in pixel
+    assert not naga_errors(naga, rec["stages"])
+    members = {m["name"]: m for m in rec["layout"]["pixel"]["members"]}
+    assert members["u_lightData"]["wgsl"] == "array<LightData, MAX_LIGHT_SOURCES>"
+    assert members["u_lightData"]["offset"] % 16 == 0
+    assert {t["name"] for t in rec["layout"]["pixel"]["textures"]} >= {"u_envRadiance", "u_envIrradiance"}

@@ -9,6 +9,13 @@ MEMBER = {
     "geomname": ("i32", 4, 4), "vector2": ("vec2f", 8, 8), "vector3": ("vec3f", 16, 12),
     "color3": ("vec3f", 16, 12), "vector4": ("vec4f", 16, 16), "color4": ("vec4f", 16, 16),
     "matrix33": ("mat3x3f", 16, 48), "matrix44": ("mat4x4f", 16, 64),
+    # the light rig: LightData is i32, three vec3f at 16, 32, 48 (the f32 intensity fills the last
+    # one's 4 bytes at 60), three f32 at 64..72: 76 bytes, rounded to its 16-byte alignment
+    "LightData": ("array<LightData, MAX_LIGHT_SOURCES>", 16, 3 * 80),
+    # closures and shaders (unconnected inputs of those types): two vec3f, or a vec3f and an f32
+    "surfaceshader": ("surfaceshader", 16, 32), "material": ("surfaceshader", 16, 32),
+    "volumeshader": ("volumeshader", 16, 32), "BSDF": ("BSDF", 16, 32), "VDF": ("VDF", 16, 32),
+    "EDF": ("vec3f", 16, 12), "displacementshader": ("displacementshader", 16, 16),
 }
 from ...errors import ShaderGenError
 

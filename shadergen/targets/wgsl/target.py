@@ -13,9 +13,9 @@ import re
 from contextlib import contextmanager
 
 from ...errors import ShaderGenError
-from ...shader import PIXEL, VERTEX, Writer
+from ...shader import PIXEL, VERTEX, Variable, Writer
 from ..deadcode import used_functions
-from ..glsl import STRUCTS, TYPE_NAMES, ClosureConvention, Syntax, _float
+from ..glsl import LIGHT_DATA_MEMBERS, STRUCTS, TYPE_NAMES, ClosureConvention, Syntax, _float
 from ..glsl_target import PLACEHOLDER, GlslTarget
 from .builtins import WGSL_RESERVED, WGSL_TYPES
 from .layout import uniform_layout
@@ -28,7 +28,10 @@ def translator() -> Translator:
     """One translator per process: library files are translated once, on first use."""
     global _TRANSLATOR
     if _TRANSLATOR is None:
-        _TRANSLATOR = Translator(STRUCTS)
+        from ...nodes.surface import ENVIRONMENT_UNIFORMS  # the uniforms the PBR library reads
+        uniforms = {name: TYPE_NAMES[t] for name, t in ENVIRONMENT_UNIFORMS}
+        uniforms |= {"u_numActiveLightSources": "int", "u_lightData": "LightData[]"}
+        _TRANSLATOR = Translator(STRUCTS, uniforms)
     return _TRANSLATOR
 
 
@@ -115,15 +118,24 @@ class WgslTarget(GlslTarget):
         except Untranslatable as e:
             raise Untranslatable(e.message.removeprefix("no WGSL translation: "), path) from None
 
-    # -- closures: not yet spelled in WGSL ------------------------------------------------------------
-    def closure_arguments(self) -> list[str]:
-        raise ShaderGenError("unsupported_node", "closures are not yet generated for wgsl", "wgsl")
+    def count_loop(self, index: str, bound: str) -> str:
+        return f"for (var {index}: i32 = 0; {index} < {bound}; {index}++)"
 
-    def emit_surface(self, ctx, *args, **kw) -> None:
-        raise ShaderGenError("unsupported_node", "surface shaders are not yet generated for wgsl", "wgsl")
-
-    def emit_light_dispatch(self, ctx, lights) -> None:
-        raise ShaderGenError("unsupported_node", "lights are not yet generated for wgsl", "wgsl")
+    def emit_light_dispatch(self, ctx, lights: list[tuple[int, str]]) -> None:
+        ctx.used_types.update(("LightData", "lightshader"))
+        for name, type_name in LIGHT_DATA_MEMBERS:
+            ctx.add_variable(PIXEL, "LightData", Variable(name, type_name))
+        self.pointer_parameters["sampleLightSource"] = [False, False, True]
+        w = ctx.pixel.functions
+        with _braces(w, "fn numActiveLightSources() -> i32"):
+            w.line("return min(u_numActiveLightSources, MAX_LIGHT_SOURCES);")
+        w.line()
+        with _braces(w, "fn sampleLightSource(light: LightData, position: vec3f, result: ptr<function, lightshader>)"):
+            w.line("(*result).intensity = vec3f(0.0);")
+            w.line("(*result).direction = vec3f(0.0);")
+            for i, (type_id, function) in enumerate(lights):
+                w.line(f"{'if' if i == 0 else 'else if'} (light.type_ == {type_id}) {{ {function}(light, position, result); }}")
+        w.line()
 
     # -- stage assembly ----------------------------------------------------------------------------
     def used_functions(self, function_lines: list[str], roots: str) -> list[str]:

@@ -157,17 +157,28 @@ class Parser:
         if re.match(r"[\d.]", tok):
             return Expr("num", tok)
         if re.match(r"[A-Za-z_]", tok):
+            if self.is_type(tok) and self.peek() == "[":  # an array constructor: float[3](a, b, c)
+                self.next()
+                size = None if self.peek() == "]" else self.expression()
+                self.expect("]")
+                self.expect("(")
+                args = self.arguments()
+                return Expr("array", tok, [size or Expr("num", str(len(args))), *args])
             if self.peek() == "(":
                 self.next()
-                args = []
-                while self.peek() != ")":
-                    args.append(self.assignment())
-                    if self.peek() == ",":
-                        self.next()
-                self.expect(")")
-                return Expr("call", tok, args)
+                return Expr("call", tok, self.arguments())
             return Expr("id", tok)
         raise Untranslatable(f"unexpected '{tok}'")
+
+    def arguments(self) -> list[Expr]:
+        """A call's arguments, after its `(`, up to and including its `)`."""
+        args = []
+        while self.peek() != ")":
+            args.append(self.assignment())
+            if self.peek() == ",":
+                self.next()
+        self.expect(")")
+        return args
 
     def postfix(self, e: Expr) -> Expr:
         while True:
@@ -439,7 +450,7 @@ class FunctionEmitter:
         if k == "member":
             base, t = self.expr(e.args[0])
             if t in self.lib.structs:
-                return f"{base}.{e.value}", dict((n, mt) for mt, n in self.lib.structs[t])[e.value]
+                return f"{base}.{safe_name(e.value)}", dict((n, mt) for mt, n in self.lib.structs[t])[e.value]
             if e.value == "length":
                 raise Untranslatable("the .length() method")
             return f"{base}.{e.value}", vector_of(scalar_of(t), len(e.value))
@@ -472,6 +483,10 @@ class FunctionEmitter:
             return f"select({b}, {a}, {cond})", t
         if k == "call":
             return self.call(e)
+        if k == "array":
+            size, _ = self.expr(e.args[0])
+            items = [self.convert(*self.expr(a), self.lib.canon(e.value)) for a in e.args[1:]]
+            return f"array<{wgsl_type(e.value)}, {size}>({', '.join(items)})", self.lib.canon(e.value) + "[]"
         raise Untranslatable(f"{k} inside an expression")
 
     def binary(self, e: Expr) -> tuple[str, str]:
@@ -586,6 +601,11 @@ class FunctionEmitter:
             op = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "greaterThanEqual": ">=",
                   "equal": "==", "notEqual": "!="}[name]
             return f"({texts[0]} {op} {texts[1]})", vector_of("bool", size_of(types[0]))
+        if name in ("isnan", "isinf"):  # by the bits: WGSL may assume no NaN or infinity in arithmetic
+            n, (x,) = size_of(types[0]), texts
+            bits = f"bitcast<{'u32' if n == 1 else f'vec{n}u'}>({x})"
+            mask, inf = ("0x7fffffffu", "0x7f800000u") if n == 1 else (f"vec{n}u(0x7fffffffu)", f"vec{n}u(0x7f800000u)")
+            return f"(({bits} & {mask}) {'>' if name == 'isnan' else '=='} {inf})", vector_of("bool", n)
         if name in TEXTURE_CALLS:
             if args[0][1] != "sampler2D":
                 raise Untranslatable(f"{name} of a {args[0][1]}")
@@ -706,6 +726,9 @@ class FunctionEmitter:
             self.line(self.one_declaration(const, t, name, size, init) + ";")
 
     def expression_statement(self, e: Expr) -> str:
+        if e.kind == "assign" and e.value == "=" and e.args[1].kind == "assign":  # a = b = x: b first
+            self.line(self.expression_statement(e.args[1]) + ";")
+            e = Expr("assign", "=", [e.args[0], e.args[1].args[0]])
         if e.kind == "assign":
             target, tt = self.expr(e.args[0])
             if e.args[0].kind == "member" and len(e.args[0].value) > 1 and \
@@ -747,9 +770,11 @@ class Translator:
     """Translates library files in dependency order; remembers what each declared so later files
     (and the generator's calls) resolve overloads and pointer parameters."""
 
-    def __init__(self, prelude: dict[str, str]):
-        """`prelude`: GLSL declarations every file may use (the closure and light structs)."""
+    def __init__(self, prelude: dict[str, str], uniforms: dict[str, str] | None = None):
+        """`prelude`: GLSL declarations every file may use (the closure and light structs);
+        `uniforms`: name -> GLSL type of the uniforms library functions read directly."""
         self.lib = Library()
+        self.lib.globals.update(uniforms or {})
         self.done: dict[str, str] = {}
         self.defined = {"GL_ES"}
         self.prelude = {name: self._file(text) for name, text in prelude.items()}
@@ -782,9 +807,13 @@ class Translator:
                 _, const, t, decls = it[1]
                 emitter = FunctionEmitter(self.lib, [], "void")
                 for name, size, init in decls:
-                    if init is None or size is not None:
+                    if init is None:
                         raise Untranslatable("a module-scope variable")
                     value, vt = emitter.expr(init)
+                    if size is not None:  # a constant array: its type is its constructor's
+                        self.lib.globals[name] = vt
+                        out.append(f"const {safe_name(name)} = {value};")
+                        continue
                     self.lib.globals[name] = t
                     out.append(f"const {safe_name(name)}: {wgsl_type(t)} = {emitter.convert(value, vt, t)};")
             else:
