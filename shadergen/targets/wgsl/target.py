@@ -72,6 +72,7 @@ class WgslTarget(GlslTarget):
     def __init__(self):
         super().__init__()
         self.pointer_parameters: dict[str, list[bool]] = {}  # graph function -> which parameters are outputs
+        self.texture_parameters: dict[str, list[bool]] = {}  # graph function -> which are a texture and sampler
         self.outputs_in_scope: set[str] = set()
 
     # -- statements ------------------------------------------------------------------------------
@@ -84,7 +85,9 @@ class WgslTarget(GlslTarget):
 
     def call(self, function: str, args: list[str]) -> str:
         outputs = self.pointer_parameters.get(function)
-        if outputs is None:
+        if outputs is not None:
+            args = [f"{a}, {a}_sampler" if texture else a for a, texture in zip(args, self.texture_parameters.get(function, [False] * len(args)))]
+        else:
             signature = translator().signature(function)
             if signature is None:
                 raise ShaderGenError("unsupported_node", f"'{function}' has no WGSL translation", function)
@@ -95,8 +98,10 @@ class WgslTarget(GlslTarget):
 
     def function_opener(self, name: str, params: list[tuple[str, str]], outputs: list[tuple[str, str]]) -> str:
         self.pointer_parameters[name] = [False] * len(params) + [True] * len(outputs)
+        self.texture_parameters[name] = [t == "filename" for t, _ in params] + [False] * len(outputs)
         self.outputs_in_scope = {n for _, n in outputs}
-        parts = [f"{n}: {self.syntax.type_name(t)}" for t, n in params]
+        parts = [f"{n}: texture_2d<f32>, {n}_sampler: sampler" if t == "filename" else f"{n}: {self.syntax.type_name(t)}"
+                 for t, n in params]
         parts += [f"{n}: ptr<function, {self.syntax.type_name(t)}>" for t, n in outputs]
         return f"fn {name}({', '.join(parts)})"
 
