@@ -6,6 +6,10 @@ from typing import Annotated, Any, Literal
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, StringConstraints
 
 Interface = Literal["complete", "reduced", "specialized"]
+Values = Literal["listing", "source"]
+VALUES_DOC = ("listing: uniforms initialised to the nodedef's values, so materials that differ only in values share "
+              "one source (the document's values are in the listing); source: the document's values written into "
+              "the initializers too")
 Mesh = Literal["sphere", "plane"]
 EnvMethod = Literal["fis", "prefilter"]
 INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
@@ -36,6 +40,7 @@ class GenerateRequest(BaseModel):
     keep: list[Keep] = Field(default_factory=list, max_length=256,
                              description="with interface specialized: document inputs (node/input) that stay live "
                                          "uniforms and keep their lobes")
+    values: Values = Field("listing", description=VALUES_DOC)
     source: bool = Field(True, description="false: listings without stage source")
 
 
@@ -103,6 +108,8 @@ class ShaderRecord(BaseModel):
     target: str
     interface: Interface
     hash: str = Field(description="canonical graph hash: the cache key")
+    topology_hash: str = Field(description="the graph hash without the values the listing carries: what decides "
+                                           "the source")
     cached: bool
     stages: dict[str, str] = Field(default_factory=dict)
     blocks: dict[str, dict[str, list[Variable]]]

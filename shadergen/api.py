@@ -26,6 +26,7 @@ from .targets import target_for
 from .usd import is_usd_path, parse_usd, read_usd
 
 INTERFACES = ("complete", "reduced", "specialized")
+VALUES = ("listing", "source")  # where the document's values of the uniforms are written
 SHADER_CATEGORIES_SKIPPED = ("nodedef", "implementation", "nodegraph", "input", "output", "typedef", "geompropdef",
                              "unitdef", "unittypedef", "targetdef", "look", "collection", "geominfo", "propertyset",
                              "variantset", "backdrop", "token", "attributedef", "materialassign", "lookgroup")
@@ -76,6 +77,7 @@ class Prepared:
     target: str
     interface: str
     hash: str
+    topology_hash: str  # the hash without the values a value-free source leaves to the listing
     graph: object
     scope: Scope
     warnings: list[str] = field(default_factory=list)
@@ -83,7 +85,7 @@ class Prepared:
 
     def emit(self, source: bool = True) -> dict:
         t0 = time.perf_counter()
-        ctx = EmitContext(target_for(self.target), self.scope)
+        ctx = EmitContext(target_for(self.target), self.scope, self.graph.values_in_source)
         stages = emit_shader(ctx, self.graph)
         blocks = {name: st.listing() for name, st in ctx.stages.items()}
         layout = ctx.target.layout(ctx)
@@ -93,7 +95,8 @@ class Prepared:
         ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
         return {
             "document": self.document.path, "element": self.element, "target": self.target,
-            "interface": self.interface, "hash": self.hash, "cached": False,
+            "interface": self.interface, "hash": self.hash, "topology_hash": self.topology_hash,
+            "cached": False,
             "stages": stages if source else {k: None for k in stages},
             "blocks": blocks,
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
@@ -124,12 +127,17 @@ class Generator:
         return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
-                    interface: str = "complete", keep=(), base_dir: str | None = None,
+                    interface: str = "complete", keep=(), values: str = "listing", base_dir: str | None = None,
                     allow_includes: bool = True, document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
-        that stay live uniforms in the `specialized` interface."""
+        that stay live uniforms in the `specialized` interface. `values`: "listing" (uniforms initialised
+        to nodedef values, the document's values only in the listing) or "source" (written into the
+        initializers too)."""
         target_for(target)  # unknown targets fail before any work
+        if values not in VALUES:
+            raise ShaderGenError("unsupported_values", f"unknown values '{values}'; supported: " + ", ".join(VALUES),
+                                 "values")
         if interface not in INTERFACES:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
                                  + ", ".join(INTERFACES), interface)
@@ -146,7 +154,7 @@ class Generator:
             try:
                 if e.path in doc.failures:
                     raise doc.failures[e.path]
-                out.append(self._prepare(doc, scope, e, target, Options(interface, frozenset(keep))))
+                out.append(self._prepare(doc, scope, e, target, Options(interface, frozenset(keep), values)))
             except ELEMENT_FAILURES as exc:
                 out.append(element_error(exc, doc.label(e.path), doc))
         return out
@@ -224,11 +232,12 @@ class Generator:
         graph = prepare(builder, outputs, root, shading_language, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
-        h = graph_hash(graph, target=target, interface=options.interface, library_hash=self.library.content_hash,
-                       local_ids=local)
+        key = dict(target=target, interface=options.interface, library_hash=self.library.content_hash, local_ids=local)
+        h = graph_hash(graph, **key)
+        topology = graph_hash(graph, values=graph.values_in_source, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h = hashlib.sha256(json.dumps([h, doc.labels], sort_keys=True).encode()).hexdigest()
-        return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, graph, scope,
+        return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, topology, graph, scope,
                         doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
 
 

@@ -26,6 +26,10 @@ def add_arguments(p) -> None:
                         "specialized (values folded into the code and whatever cannot contribute removed)")
     p.add_argument("--keep", default="", metavar="NODE/INPUT,...",
                    help="with --interface specialized: document inputs that stay live uniforms (and keep their lobes)")
+    p.add_argument("--values", default="listing", choices=("listing", "source"),
+                   help="listing (default: uniforms initialised to the nodedef's values, so materials that differ "
+                        "only in values share one source; the document's values are in the listing) or source "
+                        "(the document's values written into the initializers too)")
     p.add_argument("--out", metavar="DIR", help="also write stage files and listings under DIR (see below)")
     p.add_argument("--no-source", action="store_true", help="records without stage source (listings only)")
 
@@ -77,7 +81,7 @@ def run(args) -> int:
     out = OutputFiles(args.out) if args.out else None
     for doc in args.documents:
         options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface,
-                       keep=keep_list(args.keep))
+                       keep=keep_list(args.keep), values=args.values)
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:

@@ -42,7 +42,8 @@ class Namer:
 class EmitContext:
     """Shared state of one generation; node implementations write through it."""
 
-    def __init__(self, target, scope: Scope):
+    def __init__(self, target, scope: Scope, values_in_source: bool = False):
+        self.values_in_source = values_in_source  # uniform initializers hold the document's values
         self.target = target  # the Target: its syntax and the hooks every line is written through
         self.syntax = target.syntax
         self.scope = scope
@@ -76,17 +77,25 @@ class EmitContext:
 
     def publish(self, port: Input | Socket) -> str:
         """A public input (or the socket several inputs of an expanded body share) as a uniform."""
-        listing_type, value = port.type, port.value
-        if port.type == "string":
-            if port.meta.get("enum"):
-                listing_type, value = "integer", self.syntax.enum_index(port.value, port.meta)
-            elif value == "":
-                value = None
+        listing_type = "integer" if port.type == "string" and port.meta.get("enum") else port.type
+        value = self.listing_value(port, port.value)
+        # Value-free source (complete, reduced): initialised to the nodedef's value, so materials that
+        # differ only in values share one source; the values reach the program from the listing.
+        initializer = value if self.values_in_source else self.listing_value(port, port.default)
         name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}")
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
-            ui=port.meta.get("ui")))
+            ui=port.meta.get("ui"), initializer=initializer))
         return name
+
+    def listing_value(self, port: Input | Socket, value):
+        """A value as the uniform holds it: enum strings are their index, an empty string is none."""
+        if port.type == "string":
+            if port.meta.get("enum"):
+                return self.syntax.enum_index(value, port.meta)
+            if value == "":
+                return None
+        return value
 
     def output_name(self, out: Output) -> str:
         if id(out) not in self.vars:

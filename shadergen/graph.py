@@ -45,6 +45,7 @@ class Socket:
     consumers: list["Input"] = field(default_factory=list)
     origin: "Input | None" = None
     public: bool = False  # a PublicUniform of the shader
+    default: object = None  # the nodedef's value: a value-free shader's initializer
 
     @property
     def owner(self) -> "Node":
@@ -71,6 +72,7 @@ class Input:
     authored: bool = False  # set in the document (not a nodedef default)
     public: bool = False  # a PublicUniform of the shader (decided by the interface pass)
     parameter: str | None = None  # the body interface input it was bound to, inside an expanded nodegraph
+    default: object = None  # the nodedef's value: a value-free shader's initializer
 
     @property
     def owner(self) -> "Node":
@@ -145,6 +147,7 @@ class Graph:
     interface: list = field(default_factory=list)  # the public uniforms (Input | Socket), in listing order
     passes: dict[str, int] = field(default_factory=dict)  # edits each pass made, in pass order
     interface_mode: str = "complete"
+    values_in_source: bool = False  # uniform initializers hold the document's values, not the nodedef's
 
 
 def input_meta(decl: Element) -> dict:
@@ -303,8 +306,8 @@ class GraphBuilder:
             if decl.category == "token":
                 continue
             t = decl.get("type")
-            inp = Input(decl.name, t, node, T.parse_value(t, decl.get("value"), decl.path), None,
-                        meta=input_meta(decl))
+            value = T.parse_value(t, decl.get("value"), decl.path)
+            inp = Input(decl.name, t, node, value, None, meta=input_meta(decl), default=value)
             if path is not None and decl.parent.category == "nodedef":
                 inp.path = f"{path}/{decl.name}"
             node.inputs[decl.name] = inp

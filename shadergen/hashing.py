@@ -17,19 +17,26 @@ def _element_digest(e: Element) -> list:
     return [e.category, sorted(e.attrs.items()), [_element_digest(c) for c in e.children]]
 
 
-def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int]) -> str:
+def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int],
+               values: bool = True) -> str:
     """`library_hash`: the library's output key (fingerprint.py), which covers the generator's
-    code too. `local_ids`: ids of the implementation elements the document itself declares."""
+    code too. `local_ids`: ids of the implementation elements the document itself declares.
+    Without `values`, the values of the public uniforms are left out: the topology hash, which
+    decides a value-free source (the values live only in the listing)."""
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
-    interface = [[p.owner.name, p.name, p.type, _jsonable(p.value), p.path, _meta(p.meta)] for p in graph.interface]
+
+    def value(port):
+        return _jsonable(port.value) if values or not port.public else None
+
+    uniforms = [[p.owner.name, p.name, p.type, value(p), p.path, _meta(p.meta)] for p in graph.interface]
     nodes = []
     for n in graph.nodes:
         inputs = []
         for inp in n.inputs.values():
             conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
             uniform = public.get(id(inp.socket if inp.socket is not None else inp))
-            inputs.append([inp.name, inp.type, _jsonable(inp.value), inp.path, conn, uniform, inp.authored,
+            inputs.append([inp.name, inp.type, value(inp), inp.path, conn, uniform, inp.authored,
                            _meta(inp.meta)])
         impl = n.implementation
         impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
@@ -38,9 +45,9 @@ def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, 
         nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
     outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
     payload = json.dumps(
-        {"target": target, "interface": interface, "library": library_hash,
+        {"target": target, "interface": interface, "library": library_hash, "values_in_source": graph.values_in_source,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
-         "nodes": nodes, "outputs": outputs, "interface": interface},
+         "nodes": nodes, "outputs": outputs, "uniforms": uniforms},
         sort_keys=True, separators=(",", ":"), default=str)
     return hashlib.sha256(payload.encode()).hexdigest()
 

@@ -21,6 +21,7 @@ class Variable:
     unit: str | None = None
     colorspace: str | None = None
     ui: dict | None = None
+    initializer: object = None  # what the source initialises the uniform to (the listing carries `value`)
 
     def to_json(self) -> dict:
         d = {"name": self.name, "type": self.type, "value": value_to_json(self.value), "path": self.path,

@@ -8,13 +8,13 @@ from pydantic import ValidationError
 from ..deps import GenerationDep
 from ..errors import ServiceError, from_validation_error
 from ..generation import GenerateParams
-from ..models import GenerateRequest, Interface, ShaderRecord
+from ..models import VALUES_DOC, GenerateRequest, Interface, ShaderRecord, Values
 from .common import ERRORS, USD_TYPES, json_bytes, media_type_of
 
 router = APIRouter(prefix="/v1", tags=["generate"])
 
 XML_TYPES = ("application/xml", "text/xml")
-QUERY = "target, element (a material's prim path, for USD), interface and source come from the query"
+QUERY = "target, element (a material's prim path, for USD), interface, values and source come from the query"
 BODY = {"requestBody": {"required": True, "content": {
     "application/json": {"schema": GenerateRequest.model_json_schema()},
     "application/xml": {"schema": {"type": "string", "minLength": 1, "description": f"the MaterialX document; {QUERY}"}},
@@ -34,20 +34,22 @@ async def generate(
     element: Annotated[str | None, Query(max_length=1024, description="with an XML or USD body")] = None,
     interface: Annotated[Interface, Query(description="with an XML or USD body")] = "complete",
     source: Annotated[bool, Query(description="with an XML or USD body")] = True,
+    values: Annotated[Values, Query(description=f"with an XML or USD body; {VALUES_DOC}")] = "listing",
 ) -> Response:
     media_type = media_type_of(request)
     body = await request.body()
     if media_type in XML_TYPES:
-        document, params = body, GenerateParams(target, element, interface, source)
+        document, params = body, GenerateParams(target, element, interface, source, values=values)
     elif media_type in USD_TYPES:
-        document, params = body, GenerateParams(target, element, interface, source, USD_TYPES[media_type])
+        document, params = body, GenerateParams(target, element, interface, source, USD_TYPES[media_type],
+                                                values=values)
     elif media_type == "application/json":
         try:
             req = GenerateRequest.model_validate_json(body)
         except ValidationError as exc:
             raise from_validation_error(exc) from None
         document, params = req.document.encode(), GenerateParams(req.target, req.element, req.interface, req.source,
-                                                                 keep=tuple(req.keep))
+                                                                 keep=tuple(req.keep), values=req.values)
     else:
         raise ServiceError("unsupported_media_type", "send application/json, application/xml, model/vnd.usda or "
                            f"model/vnd.usdz+zip, not {media_type}")

@@ -20,12 +20,18 @@ from .order import assign_scopes, topological_order
 class Options:
     interface: str = "complete"  # complete | reduced | specialized
     keep: frozenset[str] = frozenset()  # document inputs that stay live in `specialized`
+    values: str = "listing"  # listing: uniforms initialised to nodedef values; source: to the document's
+
+    @property
+    def values_in_source(self) -> bool:
+        return self.values == "source" or self.interface == "specialized"  # specialized folds values anyway
 
 
 def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None, target,
             options: Options = Options()) -> Graph:
     """`target`: the Target the shader is for (the closure pass reads its closure convention)."""
-    graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface)
+    graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface,
+                  values_in_source=options.values_in_source)
 
     def run(name: str, edit) -> None:
         graph.passes[name] = edit()

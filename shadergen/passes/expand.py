@@ -66,7 +66,8 @@ def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
     """Builds one use's body and binds its interface to the node's inputs; returns its nodes."""
     check_recursion(instance)
     node, elem = instance.node, instance.graph_elem
-    instance.sockets = {inp.name: Socket(inp.name, inp.type, inp.value, inp.path, dict(inp.meta), origin=inp)
+    instance.sockets = {inp.name: Socket(inp.name, inp.type, inp.value, inp.path, dict(inp.meta), origin=inp,
+                                         default=inp.default)
                         for inp in node.inputs.values()}
     builder = GraphBuilder(outer.scope, outer.target, elem.parent if elem.parent is not None else elem,
                            instance.sockets, instance)

@@ -1,7 +1,8 @@
 """Renderer: draws any shader record of the contract on a mesh in the fixed thumbnail scene.
 
 A Renderer is meant to live as long as its worker process: the GL context (one per process),
-compiled programs (by source digest), meshes, environments and file textures stay between
+compiled programs (by source digest: one per topology, since complete and reduced sources are
+value-free and the values are bound from the listing), meshes, environments and file textures stay between
 renders, so a repeat material costs one draw. Use it from the thread that first renders with it.
 """
 import os
@@ -54,6 +55,7 @@ class RenderResult:
     rgba: np.ndarray  # float32 (size, size, 4), linear, premultiplied, top row first
     timings_ms: dict[str, float] = field(default_factory=dict)  # compile_link, first_frame, frame, total
     warnings: list[str] = field(default_factory=list)
+    program_reused: bool = False  # the program was compiled for an earlier record of the same source
 
 
 @dataclass
@@ -85,6 +87,7 @@ class Renderer:
         self.lp_threads = lp_threads
         self.max_programs = max_programs
         self._programs: OrderedDict[str, Program] = OrderedDict()
+        self.program_counts = {"compiled": 0, "reused": 0}  # how often a render compiled or reused its program
         self._meshes: dict[str, Mesh] = {}
         self._environments: OrderedDict[str, _EnvironmentTextures] = OrderedDict()
         self._textures = TextureCache(texture_budget_bytes)
@@ -113,7 +116,7 @@ class Renderer:
         import moderngl
 
         warnings: list[str] = []
-        program, compile_link_ms = self._program(ctx, vertex, pixel, element)
+        program, compile_link_ms, reused = self._program(ctx, vertex, pixel, element)
         vao = program.vertex_array(ctx, *self._mesh(mesh))
         environment, radiance, irradiance = self._environment(ctx, env, env_method)
         if document_dir is None and isinstance(record.get("document"), str):
@@ -149,22 +152,23 @@ class Renderer:
         timings = {"compile_link": compile_link_ms, "first_frame": frame_ms[0],
                    "frame": statistics.median(frame_ms[1:]) if len(frame_ms) > 1 else frame_ms[0],
                    "total": (time.perf_counter() - start) * 1e3}
-        return RenderResult(rgba, timings, warnings)
+        return RenderResult(rgba, timings, warnings, program_reused=reused)
 
     # -- cached resources -------------------------------------------------------------------
 
-    def _program(self, ctx, vertex: str, pixel: str, element) -> tuple[Program, float]:
+    def _program(self, ctx, vertex: str, pixel: str, element) -> tuple[Program, float, bool]:
         key = source_digest(vertex, pixel)
         program = self._programs.get(key)
-        compile_link_ms = 0.0
+        compile_link_ms, reused = 0.0, program is not None
         if program is None:
             program = Program(ctx, vertex, pixel, element)
             compile_link_ms = program.compile_link_ms
             self._programs[key] = program
             while len(self._programs) > self.max_programs:
                 self._programs.popitem(last=False)[1].release()
+        self.program_counts["reused" if reused else "compiled"] += 1
         self._programs.move_to_end(key)
-        return program, compile_link_ms
+        return program, compile_link_ms, reused
 
     def _mesh(self, spec: str) -> tuple[str, Mesh]:
         key = spec if spec in ("sphere", "plane") else f"{os.path.abspath(spec)}@{_mtime(spec)}"

@@ -227,7 +227,7 @@ class GlslTarget:
                 w.line(f"// Uniform block: {block}")
                 for v in variables:
                     meta = {"enum": ""}  # listing values of enums are already indices
-                    w.line(self.syntax.uniform_declaration(v.type, v.name, v.value, meta))
+                    w.line(self.syntax.uniform_declaration(v.type, v.name, v.initializer, meta))
                 w.line()
 
     def _vertex_data(self, stage, w: Writer, direction: str) -> None:

@@ -23,13 +23,13 @@ uniform LightData u_lightData[MAX_LIGHT_SOURCES];
 // Uniform block: PublicUniforms
 uniform float glass_lobe_weight = 1.0;
 uniform vec3 glass_lobe_tint = vec3(1.0, 1.0, 1.0);
-uniform float glass_lobe_ior = 1.45;
+uniform float glass_lobe_ior = 1.5;
 uniform vec2 glass_lobe_roughness = vec2(0.05, 0.05);
 uniform bool glass_lobe_retroreflective = false;
 uniform float glass_lobe_thinfilm_thickness = 0.0;
 uniform float glass_lobe_thinfilm_ior = 1.5;
 uniform int glass_lobe_distribution = 0;
-uniform int glass_lobe_scatter_mode = 2;
+uniform int glass_lobe_scatter_mode = 0;
 uniform float glass_surface_opacity = 1.0;
 uniform bool glass_surface_thin_walled = false;
 uniform surfaceshader Glass_backsurfaceshader;

@@ -1,13 +1,13 @@
 #version 400
 
 // Uniform block: PublicUniforms
-uniform vec3 marble_bg_cm_in = vec3(0.9, 0.88, 0.85);
-uniform float scaled_in2 = 4.0;
+uniform vec3 marble_bg_cm_in = vec3(0.0, 0.0, 0.0);
+uniform float scaled_in2 = 1.0;
 uniform float veins_amplitude = 1.0;
-uniform int veins_octaves = 4;
+uniform int veins_octaves = 3;
 uniform float veins_lacunarity = 2.0;
 uniform float veins_diminish = 0.5;
-uniform vec3 marble_fg = vec3(0.25, 0.22, 0.2);
+uniform vec3 marble_fg = vec3(0.0, 0.0, 0.0);
 uniform int geomprop_UV0_index = 0;
 uniform vec3 checker_color1 = vec3(1.0, 1.0, 1.0);
 uniform vec3 checker_color2 = vec3(0.0, 0.0, 0.0);

@@ -280,3 +280,12 @@ def test_cache_file_destroyed_under_a_running_server_is_rebuilt(slow_server):
     again = generate(client, text)
     assert again.status_code == 200 and again.json()["cached"] is False  # the entry went with the file
     assert generate(client, text).json()["cached"] is True
+
+
+def test_a_changed_value_keeps_the_topology_and_source_unless_values_go_into_the_source(client):
+    base = generate(client, "ramp.mtlx").json()
+    changed = generate(client, "ramp_changed.mtlx").json()
+    assert changed["topology_hash"] == base["topology_hash"] and changed["stages"] == base["stages"]
+    in_source = [generate(client, name, values="source").json() for name in ("ramp.mtlx", "ramp_changed.mtlx")]
+    assert in_source[0]["hash"] != base["hash"] and in_source[0]["stages"] != in_source[1]["stages"]
+    assert_error(generate(client, "ramp.mtlx", values="inline"), 422, "invalid_request")

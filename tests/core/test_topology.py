@@ -1,0 +1,78 @@
+"""Value-free source (complete, reduced): materials that differ only in values share one source and
+one topology hash; the values live in the listing, and `values: "source"` writes them into the code."""
+import pytest
+
+from shadergen.api import Generator
+from shadergen.errors import ShaderGenError
+
+GEN = Generator()
+
+
+def material(base_color="0.1, 0.25, 0.7", roughness="0.35", coat_connection=False) -> str:
+    coat = ('<input name="coat" type="float" nodename="coat_amount" />' if coat_connection
+            else '<input name="coat" type="float" value="0.8" />')
+    return f"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <constant name="coat_amount" type="float"><input name="value" type="float" value="0.8" /></constant>
+  <standard_surface name="SR" type="surfaceshader">
+    <input name="base_color" type="color3" value="{base_color}" />
+    <input name="specular_roughness" type="float" value="{roughness}" />
+    {coat}
+  </standard_surface>
+  <surfacematerial name="M" type="material">
+    <input name="surfaceshader" type="surfaceshader" nodename="SR" />
+  </surfacematerial>
+</materialx>"""
+
+
+def listing_value(record: dict, path: str):
+    return next(v["value"] for v in record["blocks"]["pixel"]["PublicUniforms"] if v["path"] == path)
+
+
+def test_value_only_differences_share_source_and_topology_hash():
+    a = GEN.prepare(material()).emit()
+    b = GEN.prepare(material(base_color="0.9, 0.5, 0.1", roughness="0.6")).emit()
+    assert a["stages"] == b["stages"]
+    assert a["topology_hash"] == b["topology_hash"]
+    assert a["hash"] != b["hash"]
+    assert listing_value(a, "SR/specular_roughness") == 0.35
+    assert listing_value(b, "SR/specular_roughness") == 0.6
+
+
+def test_reduced_topology_hash_follows_what_decides_the_source():
+    """In `reduced` the drawn element's inputs are uniforms (value-free); the values of the nodes
+    behind it are constants of the code, so they are part of its topology."""
+    drawn = dict(element="SR", interface="reduced")
+    a = GEN.prepare(material(), **drawn).emit()
+    b = GEN.prepare(material(roughness="0.6"), **drawn).emit()
+    assert a["stages"] == b["stages"] and a["topology_hash"] == b["topology_hash"] and a["hash"] != b["hash"]
+    constants = GEN.prepare(material(), interface="reduced").emit(), GEN.prepare(material(roughness="0.6"),
+                                                                                interface="reduced").emit()
+    assert constants[0]["stages"] != constants[1]["stages"]
+    assert constants[0]["topology_hash"] != constants[1]["topology_hash"]
+
+
+def test_value_free_initializers_are_the_nodedef_defaults():
+    pixel = GEN.prepare(material(roughness="0.6")).emit()["stages"]["pixel"]
+    assert "uniform float SR_specular_roughness = 0.2;" in pixel  # standard_surface's default, not 0.6
+
+
+def test_a_connection_changes_the_topology_hash():
+    a = GEN.prepare(material()).emit()
+    b = GEN.prepare(material(coat_connection=True)).emit()
+    assert a["topology_hash"] != b["topology_hash"]
+
+
+def test_values_in_source_are_written_into_initializers():
+    a = GEN.prepare(material(roughness="0.6"), values="source").emit()
+    b = GEN.prepare(material(roughness="0.7"), values="source").emit()
+    assert "uniform float SR_specular_roughness = 0.6;" in a["stages"]["pixel"]
+    assert a["stages"] != b["stages"] and a["topology_hash"] != b["topology_hash"]
+    listing = GEN.prepare(material(roughness="0.6")).emit()
+    assert a["hash"] != listing["hash"]  # the same document with a different source is another record
+
+
+def test_unknown_values_option_is_an_error():
+    with pytest.raises(ShaderGenError) as err:
+        GEN.prepare(material(), values="inline")
+    assert err.value.code == "unsupported_values"
