@@ -155,7 +155,10 @@ def test_enum_strings_become_integer_uniforms(gen):
                      '<output name="o" type="color3" nodename="i"/>')
     v = public(rec)["i/uaddressmode"]
     assert (v["type"], v["value"]) == ("integer", 3)
-    assert "uniform int i_uaddressmode = 3;" in pixel(rec)
+    assert "uniform int i_uaddressmode = 2;" in pixel(rec)  # the source starts from the nodedef's periodic
+    in_source = first(gen, '<image name="i" type="color3"><input name="uaddressmode" type="string" value="mirror"/>'
+                           '</image><output name="o" type="color3" nodename="i"/>', values="source")
+    assert "uniform int i_uaddressmode = 3;" in pixel(in_source)
 
 
 def test_reserved_words_are_renamed(gen):
