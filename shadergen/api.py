@@ -17,12 +17,13 @@ from pathlib import Path
 from .document import Document, parse_document, read_document
 from .element import Element
 from .errors import ShaderGenError
-from .generator import EmitContext, emit_shader
+from .generator import EmitContext, emit_shader, listing_value
 from .graph import GraphBuilder, Output
 from .passes import Options, prepare
 from .hashing import graph_hash
 from .library import Library, Scope, default_library
 from .targets import target_for
+from .types import value_to_json
 from .usd import is_usd_path, parse_usd, read_usd
 
 INTERFACES = ("complete", "reduced", "specialized")
@@ -101,6 +102,25 @@ class Prepared:
             "blocks": blocks,
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
         } | ({"layout": layout} if layout is not None else {})
+
+
+    def rebind(self, record: dict) -> dict | None:
+        """This element's record made from `record`, an earlier one of the same topology hash,
+        without emitting: the source is the same and only the listing's values are this
+        document's. None when the shortcut does not apply (values in the source, labels)."""
+        if self.graph.values_in_source or self.document.labels or record.get("topology_hash") != self.topology_hash:
+            return None
+        t0 = time.perf_counter()
+        syntax = target_for(self.target).syntax
+        public = [dict(v) for v in record["blocks"]["pixel"]["PublicUniforms"]]
+        if len(public) != len(self.graph.interface):
+            return None
+        for variable, port in zip(public, self.graph.interface):  # the listing is in interface order
+            variable["value"] = value_to_json(listing_value(port, port.value, syntax))
+        ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
+        blocks = dict(record["blocks"], pixel=dict(record["blocks"]["pixel"], PublicUniforms=public))
+        return dict(record, document=self.document.path, element=self.element, hash=self.hash, cached=False,
+                    blocks=blocks, timings_ms={"generate": round(ms, 3)}, warnings=self.warnings)
 
 
 class Generator:

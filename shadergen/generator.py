@@ -78,24 +78,15 @@ class EmitContext:
     def publish(self, port: Input | Socket) -> str:
         """A public input (or the socket several inputs of an expanded body share) as a uniform."""
         listing_type = "integer" if port.type == "string" and port.meta.get("enum") else port.type
-        value = self.listing_value(port, port.value)
+        value = listing_value(port, port.value, self.syntax)
         # Value-free source (complete, reduced): initialised to the nodedef's value, so materials that
         # differ only in values share one source; the values reach the program from the listing.
-        initializer = value if self.values_in_source else self.listing_value(port, port.default)
+        initializer = value if self.values_in_source else listing_value(port, port.default, self.syntax)
         name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}")
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
             ui=port.meta.get("ui"), initializer=initializer))
         return name
-
-    def listing_value(self, port: Input | Socket, value):
-        """A value as the uniform holds it: enum strings are their index, an empty string is none."""
-        if port.type == "string":
-            if port.meta.get("enum"):
-                return self.syntax.enum_index(value, port.meta)
-            if value == "":
-                return None
-        return value
 
     def output_name(self, out: Output) -> str:
         if id(out) not in self.vars:
@@ -240,6 +231,16 @@ class EmitContext:
         names = [n for n in BRANCH_INPUTS["switch"] if n in node.inputs]
         # `which` below k selects input k; from the number of inputs on, none is selected
         return [(n, self.target.below(w, k, which.type)) for k, n in enumerate(names, start=1)] + [(None, None)]
+
+
+def listing_value(port: Input | Socket, value, syntax):
+    """A value as the uniform holds it: enum strings are their index, an empty string is none."""
+    if port.type == "string":
+        if port.meta.get("enum"):
+            return syntax.enum_index(value, port.meta)
+        if value == "":
+            return None
+    return value
 
 
 def is_closure_node(node: Node) -> bool:

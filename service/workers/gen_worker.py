@@ -4,7 +4,11 @@
 It reads and fills the shared cache itself: the expensive step (emitting code) happens only when
 the graph hash, known after `prepare`, is not in the cache, and the record goes into the store
 from here, off the API's event loop. Records are stored with `"cached": true`, which is what
-they are whenever they are read back."""
+they are whenever they are read back.
+
+Source is shared by topology: `top:<topology hash>` names the record of a document of that
+topology, and a document that differs from it only in values gets that record's source with its
+own listing values (Prepared.rebind), without emitting: an editor dragging a slider."""
 import json
 import sys
 import threading
@@ -14,7 +18,7 @@ from shadergen.api import Generator
 from shadergen.errors import ShaderGenError
 
 from ..cache import open_store
-from ..cache.entries import is_record
+from ..cache.entries import is_graph_hash, is_record
 from ..config import get_settings
 from .child import serve
 
@@ -43,15 +47,16 @@ class GenerateHandler:
         try:
             prepared = self.generator.prepare(
                 document, target=message["target"], element=message["element"], interface=message["interface"],
-                keep=message.get("keep", ()), values=message.get("values", "listing"), base_dir=None, allow_includes=False,
-                document_format=document_format,
+                keep=message.get("keep", ()), values=message.get("values", "listing"), base_dir=None,
+                allow_includes=False, document_format=document_format,
             )
             key = "rec:" + prepared.hash
             stored = self.store.get(key)
             if not is_record(stored, prepared.hash):  # absent, or garbage to overwrite
-                record = prepared.emit(source=True)
+                record = self._same_topology(prepared) or prepared.emit(source=True)
                 record["document"] = None  # uploads have no path
                 self.store.put(key, _dumps({**record, "cached": True}))
+                self.store.put("top:" + prepared.topology_hash, prepared.hash.encode())
                 body, cached = _dumps({**record, "cached": False}), False
             else:
                 body, cached = stored, True
@@ -65,6 +70,19 @@ class GenerateHandler:
             # identical requests later skip even `prepare` (see service/generation.py)
             self.store.put("req:" + message["digest"], prepared.hash.encode())
         return {"hash": prepared.hash, "cached": cached, "seconds": time.perf_counter() - started}, body
+
+    def _same_topology(self, prepared) -> dict | None:
+        """The record of an earlier document of the same topology, rebound to this one's values."""
+        full_hash = self.store.get("top:" + prepared.topology_hash)
+        if not is_graph_hash(full_hash):
+            return None
+        stored = self.store.get("rec:" + full_hash.decode())
+        if not is_record(stored, full_hash.decode()):
+            return None
+        try:
+            return prepared.rebind(json.loads(stored))
+        except (ValueError, KeyError, TypeError, AttributeError):  # an entry that only looks like a record: a miss
+            return None
 
 
 # The generator recurses along graph edges, so a long chain of nodes (a few thousand fit in the

@@ -52,6 +52,16 @@ def test_reduced_topology_hash_follows_what_decides_the_source():
     assert constants[0]["topology_hash"] != constants[1]["topology_hash"]
 
 
+def test_a_record_of_the_same_topology_rebinds_to_what_emission_gives():
+    first = GEN.prepare(material()).emit()
+    edited = GEN.prepare(material(base_color="0.9, 0.5, 0.1", roughness="0.6"))
+    rebound, emitted = edited.rebind(first), edited.emit()
+    assert rebound is not None
+    assert {**rebound, "timings_ms": None} == {**emitted, "timings_ms": None}
+    other_topology = GEN.prepare(material(coat_connection=True))
+    assert other_topology.rebind(first) is None
+
+
 def test_value_free_initializers_are_the_nodedef_defaults():
     pixel = GEN.prepare(material(roughness="0.6")).emit()["stages"]["pixel"]
     assert "uniform float SR_specular_roughness = 0.2;" in pixel  # standard_surface's default, not 0.6

@@ -286,6 +286,8 @@ def test_a_changed_value_keeps_the_topology_and_source_unless_values_go_into_the
     base = generate(client, "ramp.mtlx").json()
     changed = generate(client, "ramp_changed.mtlx").json()
     assert changed["topology_hash"] == base["topology_hash"] and changed["stages"] == base["stages"]
+    values = [{v["path"]: v["value"] for v in r["blocks"]["pixel"]["PublicUniforms"]} for r in (base, changed)]
+    assert values[0] != values[1] and 0.25 in values[1].values()  # the changed document's own value
     in_source = [generate(client, name, values="source").json() for name in ("ramp.mtlx", "ramp_changed.mtlx")]
     assert in_source[0]["hash"] != base["hash"] and in_source[0]["stages"] != in_source[1]["stages"]
     assert_error(generate(client, "ramp.mtlx", values="inline"), 422, "invalid_request")
