@@ -26,9 +26,15 @@ import MaterialX as mx, MaterialX.PyMaterialXGenShader as gs, MaterialX.PyMateri
 lib = mx.createDocument(); search = mx.getDefaultDataSearchPath()
 mx.loadLibraries(mx.getDefaultDataLibraryFolders(), search, lib)
 gen = gg.GlslShaderGenerator.create()
-out = []
+out, skipped = [], []
 for path in sys.argv[1:]:
-    doc = mx.createDocument(); mx.readFromXmlFile(doc, path); doc.setDataLibrary(lib)
+    doc = mx.createDocument()
+    try:
+        mx.readFromXmlFile(doc, path)
+    except Exception as exc:  # e.g. an include the corpus does not ship
+        skipped.append([path, str(exc).splitlines()[0]])
+        continue
+    doc.setDataLibrary(lib)
     for e in gs.findRenderableElements(doc):
         ctx = gs.GenContext(gen); ctx.registerSourceCodeSearchPath(search)
         t0 = time.perf_counter()
@@ -37,7 +43,7 @@ for path in sys.argv[1:]:
         except Exception:
             continue
         out.append([path, e.getNamePath(), (time.perf_counter() - t0) * 1e3])
-print(json.dumps(out))
+print(json.dumps({"times": out, "skipped": skipped}))
 """
 REF_COLD = r"""
 import sys, os
@@ -91,7 +97,11 @@ def main():
     a = ap.parse_args()
     docs = sorted(os.path.join(d, f) for d, _, fs in os.walk(a.corpus) for f in fs
                   if f.endswith(".mtlx") and a.filter in os.path.join(d, f))
-    ref = json.loads(subprocess.run([ORACLE_PY, "-c", REF_WARM, *docs], capture_output=True, text=True).stdout)
+    reference = json.loads(subprocess.run([ORACLE_PY, "-c", REF_WARM, *docs], capture_output=True, text=True).stdout)
+    ref, skipped = reference["times"], {path for path, _ in reference["skipped"]}
+    for path, why in reference["skipped"]:
+        print(f"skipped (the reference cannot load it): {os.path.relpath(path, a.corpus)}: {why}")
+    docs = [d for d in docs if d not in skipped]
     ours = ours_warm(docs)
     ref_by = {(p, e): ms for p, e, ms in ref}
     pairs = [(ms, ref_by[(p, e)]) for p, e, ms in ours if (p, e) in ref_by]

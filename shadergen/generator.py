@@ -11,7 +11,7 @@ import re
 from .errors import ShaderGenError
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
-from .nodes.base import expand_includes
+from .nodes.base import source_with_includes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
 
@@ -136,7 +136,7 @@ class EmitContext:
 
     # -- functions -------------------------------------------------------------------------------
     def emit_source_file(self, path: str) -> None:
-        for dep_path, text in expand_includes(path, set()):
+        for dep_path, text in source_with_includes(path):
             if self.pixel.once(("file", dep_path)):
                 self.pixel.functions.extend(self.target.library_source(dep_path, text))
                 self.pixel.functions.line()

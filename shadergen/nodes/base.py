@@ -9,6 +9,7 @@ nodes that are called once per context; it is None for ordinary data nodes.
 """
 import os
 import re
+from functools import lru_cache
 
 from ..element import Element
 from ..errors import ShaderGenError
@@ -71,7 +72,7 @@ class SourceFunctionImpl(NodeImpl):
     def __init__(self, elem: Element):
         self.path = _source_path(elem, elem.get("file"))
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
-        self.uses_derivatives = any(DERIVATIVES.search(text) for _, text in expand_includes(self.path, set()))
+        self.uses_derivatives = takes_derivatives(self.path)
 
     @property
     def source(self) -> str:
@@ -92,6 +93,19 @@ def _source_path(elem: Element, file: str) -> str:
     if not os.path.exists(path):
         raise ShaderGenError("missing_source", f"implementation source '{file}' not found", elem.name)
     return path
+
+
+# Library sources are read once per process (read_source), so what follows from them is memoised
+# by path too: every request of a warm process reuses it.
+@lru_cache(maxsize=4096)
+def source_with_includes(path: str) -> tuple[tuple[str, str], ...]:
+    """(path, text without #include lines) of a source file and its includes, dependencies first."""
+    return tuple(expand_includes(path, set()))
+
+
+@lru_cache(maxsize=4096)
+def takes_derivatives(path: str) -> bool:
+    return any(DERIVATIVES.search(text) for _, text in source_with_includes(path))
 
 
 def expand_includes(path: str, seen: set[str]) -> list[tuple[str, str]]:
