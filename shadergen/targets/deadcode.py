@@ -6,6 +6,7 @@ Top-level items are split by brace depth: a function, a struct, a `#define`, a g
 the comment lines just above it. Items whose name cannot be read are kept.
 """
 import re
+from functools import lru_cache
 
 IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*\b")
 NAMES = (re.compile(r"^\s*#\s*define\s+(\w+)"), re.compile(r"^\s*struct\s+(\w+)"),
@@ -55,7 +56,7 @@ def reachable(items: list[tuple[str | None, list[str]]], roots: str) -> list[lis
         if name is not None:
             by_name.setdefault(name, []).append(k)
     keep = {k for k, (name, _) in enumerate(items) if name is None}
-    todo = set(IDENTIFIER.findall(roots)) | {w for k in keep for w in IDENTIFIER.findall("\n".join(items[k][1]))}
+    todo = set(IDENTIFIER.findall(roots)) | {w for k in keep for w in _words("\n".join(items[k][1]))}
     seen: set[str] = set()
     while todo:
         word = todo.pop()
@@ -65,8 +66,14 @@ def reachable(items: list[tuple[str | None, list[str]]], roots: str) -> list[lis
         for k in by_name.get(word, ()):
             if k not in keep:
                 keep.add(k)
-                todo.update(IDENTIFIER.findall("\n".join(items[k][1])))
+                todo.update(_words("\n".join(items[k][1])))
     return [items[k][1] for k in sorted(keep)]
+
+
+@lru_cache(maxsize=8192)
+def _words(item: str) -> frozenset[str]:
+    """The identifiers of an item: library functions recur in every request, so this is memoised."""
+    return frozenset(IDENTIFIER.findall(item))
 
 
 def used_functions(function_lines: list[str], roots: str) -> list[str]:
