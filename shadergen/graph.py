@@ -196,6 +196,11 @@ class GraphBuilder:
 
     # -- nodedef resolution ----------------------------------------------------------------
     def resolve_nodedef(self, elem: Element) -> Element:
+        authored = tuple((i.name, i.get("type")) for i in elem.children_of("input", "parameter"))
+        key = ("nodedef", elem.category, elem.get("nodedef"), elem.get("type"), elem.get("version"), authored)
+        return self.scope.library_fact(key, lambda: self._resolve_nodedef(elem))
+
+    def _resolve_nodedef(self, elem: Element) -> Element:
         name = elem.get("nodedef")
         if name:
             nd = self.scope.nodedef(name)

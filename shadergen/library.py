@@ -74,6 +74,12 @@ class Library(Index):
         self.content_hash = content_hash
         for r in roots:
             self.add(r)
+        # What follows from the library alone (resolved nodedefs, inherited inputs, chosen
+        # implementations), kept for the life of the process for every document that defines
+        # nothing of its own; bounded, since the keys of nodedef resolution come from documents.
+        self.facts: dict = {}
+
+    MAX_FACTS = 65536
 
     @classmethod
     def load(cls, root: Path | None = None) -> "Library":
@@ -144,6 +150,21 @@ class Scope:
         if document_root is not None:
             self.local.add(document_root)
         self.layers = (self.local, library)
+        local = self.local
+        self.library_only = not (local.nodedefs or local.implementations or local.nodegraphs or local.geompropdefs
+                                 or local.typedefs or local.units or local.targets)
+
+    def library_fact(self, key, compute):
+        """compute(), memoised in the library when the document defines nothing that could change it."""
+        if not self.library_only:
+            return compute()
+        facts = self.library.facts
+        if key not in facts:
+            value = compute()
+            if len(facts) >= self.library.MAX_FACTS:
+                return value
+            facts[key] = value
+        return facts[key]
 
     def _first(self, table: str, name: str) -> Element | None:
         """The document's definition of that name, else the library's."""
@@ -195,6 +216,10 @@ class Scope:
         """The implementation of a nodedef for a target (or a target it inherits from); a nodegraph
         implementation (a nodegraph naming the nodedef, or an <implementation nodegraph="...">)
         serves every target. Follows nodedef inheritance when the nodedef has none."""
+        return self.library_fact(("implementation", nodedef.name, target),
+                                 lambda: self._implementation(nodedef, target))
+
+    def _implementation(self, nodedef: Element, target: str) -> Element | None:
         chain = self.library.target_chain(target)
         for nd in self.inheritance(nodedef):
             for t in chain:
@@ -225,6 +250,9 @@ class Scope:
 
     def nodedef_inputs(self, nodedef: Element) -> list[Element]:
         """Inputs of a nodedef including inherited ones (the child's override the parent's)."""
+        return self.library_fact(("inputs", nodedef.name), lambda: self._nodedef_inputs(nodedef))
+
+    def _nodedef_inputs(self, nodedef: Element) -> list[Element]:
         inputs: list[Element] = []
         for nd in reversed(self.inheritance(nodedef)):
             own = nd.children_of("input", "parameter", "token")
