@@ -103,7 +103,6 @@ class Prepared:
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
         } | ({"layout": layout} if layout is not None else {})
 
-
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,
         without emitting: the source is the same and only the listing's values are this
@@ -256,7 +255,8 @@ class Generator:
         h = graph_hash(graph, **key)
         topology = graph_hash(graph, values=graph.values_in_source, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
-            h = hashlib.sha256(json.dumps([h, doc.labels], sort_keys=True).encode()).hexdigest()
+            h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
+                           for k in (h, topology))
         return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, topology, graph, scope,
                         doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
 
