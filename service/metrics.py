@@ -19,6 +19,8 @@ CACHE_ERRORS = Counter("shadergen_cache_errors_total", "cache operations that fa
 QUEUE_DEPTH = Gauge("shadergen_queue_depth", "jobs waiting for a worker", ["queue"], multiprocess_mode="mostrecent")
 GENERATE_SECONDS = Histogram("shadergen_generate_seconds", "generation in a worker process (cache misses)",
                              buckets=LATENCY_BUCKETS)
+PROGRAMS = Counter("shadergen_programs_total", "render programs a worker compiled, or reused for a record of "
+                   "the same source (value-free sources: one program per topology)", ["result"])
 RENDER_SECONDS = Histogram("shadergen_render_seconds", "thumbnail render in a render worker", buckets=LATENCY_BUCKETS)
 
 CONTENT_TYPE = CONTENT_TYPE_LATEST

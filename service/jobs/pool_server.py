@@ -14,7 +14,7 @@ import sys
 import time
 
 from ..config import get_settings
-from ..metrics import RENDER_SECONDS
+from ..metrics import PROGRAMS, RENDER_SECONDS
 from ..workers import protocol
 from ..workers.pool import Job, JobTimeout, PoolError, ProcessPool, QueueFull, WorkerCrashed
 
@@ -102,11 +102,18 @@ class PoolServer:
             writer.close()
 
 
+def observe_render(job, seconds: float, reply) -> None:
+    RENDER_SECONDS.observe(seconds)
+    head = reply[0] if isinstance(reply, tuple) else {}
+    if "program_reused" in head:
+        PROGRAMS.labels("reused" if head["program_reused"] else "compiled").inc()
+
+
 async def serve(socket_path: str, restarted: bool) -> None:
     settings = get_settings()
     pool = ProcessPool("service.workers.render_worker", size=settings.render_workers,
                        queue_size=settings.render_queue_size, timeout_s=settings.render_timeout_s,
-                       on_result=lambda job, seconds: RENDER_SECONDS.observe(seconds))
+                       on_result=observe_render)
     await pool.start(wait=False)
     server = PoolServer(pool, restarted)
     unix = await asyncio.start_unix_server(server.serve_connection, path=socket_path)

@@ -131,7 +131,7 @@ class ProcessPool:
         self.hello: dict = {}
         self.children: list[ChildProcess | None] = [None] * size
         self._tasks: list[asyncio.Task] = []
-        self._on_result = on_result  # called with (job, seconds) when a job finishes well
+        self._on_result = on_result  # called with (job, seconds, reply) when a job finishes well
         self._ready = asyncio.Event()
 
     async def start(self, wait: bool = True) -> None:
@@ -242,7 +242,7 @@ class ProcessPool:
                         break
                     continue
                 if self._on_result is not None:
-                    self._on_result(job, time.perf_counter() - started)
+                    self._on_result(job, time.perf_counter() - started, reply)
                 self._finish(job, reply)
                 break
             running.clear()

@@ -55,7 +55,8 @@ def _render(renderer, record: dict, request: dict, document_dir: str | None) -> 
     except RenderError as exc:
         code = getattr(exc, "code", None) or "render_failed"
         return {"error": {"code": code, "message": str(exc), "where": getattr(exc, "where", None)}}, b""
-    return {"timings_ms": result.timings_ms, "warnings": list(result.warnings)}, encode_png(result.rgba)
+    return ({"timings_ms": result.timings_ms, "warnings": list(result.warnings),
+             "program_reused": result.program_reused}, encode_png(result.rgba))
 
 
 def main() -> None:

@@ -107,3 +107,20 @@ def test_full_queue_answers_503_with_retry_after(one_worker):
         assert wait_for_job(client, accepted.json()["id"])["state"] == "done"
     time.sleep(0.1)
     assert client.post("/v1/thumbnails", json={"document": document("ramp.mtlx"), "size": 32}).status_code == 200
+
+
+def programs(client, result: str) -> float:
+    line = next((ln for ln in client.get("/metrics").text.splitlines()
+                 if ln.startswith(f'shadergen_programs_total{{result="{result}"}}')), None)
+    return float(line.split()[-1]) if line else 0.0
+
+
+def test_a_value_edit_in_complete_reuses_the_compiled_program(client):
+    """ramp_changed.mtlx differs from ramp.mtlx in one value: in `complete` both have one source."""
+    first = thumbnail(client, "ramp.mtlx", size=40, interface="complete")
+    assert first.status_code == 200, first.text
+    reused = programs(client, "reused")
+    edited = thumbnail(client, "ramp_changed.mtlx", size=40, interface="complete")
+    assert edited.status_code == 200, edited.text
+    assert programs(client, "reused") == reused + 1
+    assert edited.content != first.content  # the edited value is bound: a different image
