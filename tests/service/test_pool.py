@@ -181,7 +181,7 @@ def test_a_slot_that_fails_is_started_again_and_its_job_failed():
         try:
             original = pool._on_result
 
-            def broken(job, seconds):  # a bug in the pool's own code, while a job runs
+            def broken(job, seconds, reply):  # a bug in the pool's own code, while a job runs
                 pool._on_result = original
                 raise RuntimeError("bug")
 
