@@ -116,11 +116,14 @@ def programs(client, result: str) -> float:
 
 
 def test_a_value_edit_in_complete_reuses_the_compiled_program(client):
-    """ramp_changed.mtlx differs from ramp.mtlx in one value: in `complete` both have one source."""
-    first = thumbnail(client, "ramp.mtlx", size=40, interface="complete")
+    """Two documents no other test sends, differing in values only: in `complete` they have one source."""
+    def post(text):
+        return client.post("/v1/thumbnails", json={"document": text, "size": 40, "interface": "complete"})
+
+    first = post(document("ramp.mtlx").replace('value="0.5"', 'value="0.375"'))
     assert first.status_code == 200, first.text
     reused = programs(client, "reused")
-    edited = thumbnail(client, "ramp_changed.mtlx", size=40, interface="complete")
+    edited = post(document("ramp.mtlx").replace('value="0.5"', 'value="0.875"'))
     assert edited.status_code == 200, edited.text
     assert programs(client, "reused") == reused + 1
     assert edited.content != first.content  # the edited value is bound: a different image
