@@ -111,7 +111,8 @@ class ShaderRecord(BaseModel):
     topology_hash: str = Field(description="the graph hash without the values the listing carries: what decides "
                                            "the source")
     cached: bool
-    stages: dict[str, str] = Field(default_factory=dict)
+    stages: dict[str, str | None] = Field(default_factory=dict, description="source by stage; null for every "
+                                          "stage of a request with source false")
     blocks: dict[str, dict[str, list[Variable]]]
     timings_ms: dict[str, float] = Field(default_factory=dict)
     warnings: list[Any] = Field(default_factory=list)
