@@ -1,7 +1,6 @@
 """Thumbnails: a record from the generation service (and its cache), then a render job on the
 configured back end. PNGs are cached too, under a digest of the graph hash and the render options
 (and of the package, for a usdz upload, whose textures come from inside it)."""
-import asyncio
 import base64
 import hashlib
 import json
@@ -62,7 +61,7 @@ class ThumbnailService:
                 png = (await self.jobs.render(request)).png
             except JobError as exc:
                 raise ServiceError.from_job(exc, self.retry_after_s) from None
-            await asyncio.to_thread(self.store.put, key, png)
+            await self.store.aput(key, png)
         return png
 
     async def submit(self, order: ThumbnailOrder) -> str:

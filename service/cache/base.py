@@ -1,5 +1,6 @@
 """What every cache back end offers. Keys are namespaced by the caller (`rec:<graph hash>`,
 `req:<request digest>`, `png:<digest>`); values are bytes."""
+import asyncio
 import json
 from abc import ABC, abstractmethod
 
@@ -15,8 +16,12 @@ class Store(ABC):
     def delete(self, key: str) -> None: ...
 
     async def aget(self, key: str) -> bytes | None:
-        """Read from the event loop. Back ends whose reads can wait on the network override this."""
+        """Read from the event loop. Back ends whose reads can wait (disk, network) override this."""
         return self.get(key)
+
+    async def aput(self, key: str, value: bytes) -> None:
+        """Write from the event loop: in a thread, since a write may wait for a lock or the network."""
+        await asyncio.to_thread(self.put, key, value)
 
     def get_json(self, key: str):
         raw = self.get(key)

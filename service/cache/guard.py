@@ -62,6 +62,12 @@ class GuardedStore(Store):
         except Exception as exc:
             self._failed("put", exc)
 
+    async def aput(self, key: str, value: bytes) -> None:
+        try:
+            await self.inner.aput(key, value)
+        except Exception as exc:
+            self._failed("put", exc)
+
     def delete(self, key: str) -> None:
         try:
             self.inner.delete(key)

@@ -1,16 +1,20 @@
 """The embedded cache: one SQLite file in WAL mode shared by every process on the machine.
 
 WAL lets readers run while one process writes; writers serialise on SQLite's own lock with a
-busy timeout. The total size is kept in a meta row by triggers, so bounding the store never scans
+busy timeout. From an event loop (an API worker) nothing may wait: see `aget` for reads, and
+writes go to a thread (`Store.aput`). The total size is kept in a meta row by triggers, so bounding the store never scans
 the table, and eviction removes the least recently used entries. A file that is corrupt, not a
 database, or deleted under us is rebuilt empty: a cache may always be lost, never be fatal."""
+import asyncio
 import fcntl
 import logging
 import os
 import sqlite3
 import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+from types import SimpleNamespace
 
 from .base import Store
 
@@ -54,6 +58,9 @@ class SQLiteStore(Store):
         self._local = threading.local()
         self._generation = 0  # bumped on rebuild so every thread reopens
         self._lock = threading.Lock()
+        # for reads from an event loop: a connection that never waits, and the thread that does what may wait
+        self._loop_reads = SimpleNamespace(conn=None, inode=None, generation=-1)
+        self._waiting_reads: ThreadPoolExecutor | None = None
         try:
             self._connect()  # creates the file now, before the service's processes share it
         except sqlite3.Error as exc:  # later operations try again (and fail as misses meanwhile)
@@ -150,21 +157,22 @@ class SQLiteStore(Store):
 
     # -- the Store interface -----------------------------------------------------------------
     def get(self, key: str) -> bytes | None:
-        def op(conn):
-            row = conn.execute("SELECT value, accessed FROM entries WHERE key = ?", (key,)).fetchone()
-            if row is None:
-                return None
-            now = time.time()
-            if now - row[1] > TOUCH_INTERVAL_S:
-                self._touch(conn, key, now)
-            return bytes(row[0])
+        return self._run(lambda conn: self._read(conn, key))
 
-        return self._run(op)
+    def _read(self, conn: sqlite3.Connection, key: str) -> bytes | None:
+        row = conn.execute("SELECT value, accessed FROM entries WHERE key = ?", (key,)).fetchone()
+        if row is None:
+            return None
+        now = time.time()
+        if now - row[1] > TOUCH_INTERVAL_S:
+            self._touch(conn, key, now)
+        return bytes(row[0])
 
     @staticmethod
     def _touch(conn: sqlite3.Connection, key: str, now: float) -> None:
-        """Record a read for the LRU order, unless a writer holds the lock: a read (on the API's
-        event loop) must never wait up to the busy timeout for the sake of recency."""
+        """Record a read for the LRU order, unless a writer holds the lock: a read must never wait
+        up to the busy timeout for the sake of recency."""
+        busy_timeout_ms = conn.execute("PRAGMA busy_timeout").fetchone()[0]
         conn.execute("PRAGMA busy_timeout = 0")
         try:
             conn.execute("UPDATE entries SET accessed = ? WHERE key = ?", (now, key))
@@ -172,7 +180,46 @@ class SQLiteStore(Store):
             if exc.sqlite_errorcode not in (sqlite3.SQLITE_BUSY, sqlite3.SQLITE_LOCKED):
                 raise
         finally:
-            conn.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
+            conn.execute(f"PRAGMA busy_timeout = {busy_timeout_ms}")
+
+    async def aget(self, key: str) -> bytes | None:
+        """A read from an event loop, which must never wait. On an open connection in WAL mode a
+        read takes no lock a writer holds, so the loop reads itself, on a connection with a busy
+        timeout of 0: sending every read to a thread would cost more than the read (on a busy loop
+        the GIL goes back and forth for each of SQLite's calls; cached generate lost about half its
+        throughput that way). Whatever may wait is done in the store's own thread: opening or
+        reopening the file, rebuilding a broken one (which heals it as for any caller), a read
+        that found a lock. The thread then opens the loop a fresh connection, handed over here, so
+        only the loop's thread ever uses or closes it."""
+        reads = self._loop_reads
+        if reads.conn is not None and reads.generation == self._generation and not self._replaced(reads):
+            try:
+                return self._read(reads.conn, key)
+            except sqlite3.Error:  # busy, locked or broken: the thread finds out which, waits or heals
+                pass
+        if self._waiting_reads is None:
+            self._waiting_reads = ThreadPoolExecutor(1, thread_name_prefix="sqlite-cache-read")
+        value, fresh = await asyncio.get_running_loop().run_in_executor(self._waiting_reads, self._read_waiting, key)
+        self._hand_over(fresh)
+        return value
+
+    def _read_waiting(self, key: str) -> tuple[bytes | None, SimpleNamespace | None]:
+        """In the store's thread: the read, then a connection for the loop (None if the file
+        cannot be opened now: the next read comes here again)."""
+        value = self.get(key)
+        generation = self._generation
+        try:
+            conn = self._open()
+        except sqlite3.Error:
+            return value, None
+        conn.execute("PRAGMA busy_timeout = 0")
+        conn.execute("PRAGMA wal_autocheckpoint = 0")  # a touch commits: the checkpoint is the writers' to do
+        return value, SimpleNamespace(conn=conn, inode=self._inode(), generation=generation)
+
+    def _hand_over(self, fresh: SimpleNamespace | None) -> None:
+        if self._loop_reads.conn is not None:
+            self._loop_reads.conn.close()
+        self._loop_reads = fresh or SimpleNamespace(conn=None, inode=None, generation=-1)
 
     def put(self, key: str, value: bytes) -> None:
         if len(value) > self.max_bytes:
@@ -227,3 +274,11 @@ class SQLiteStore(Store):
         if conn is not None:
             conn.close()
             self._local.conn = None
+
+    async def aclose(self) -> None:
+        """Close what reads from the event loop opened: the loop's connection, the thread's."""
+        self._hand_over(None)
+        if self._waiting_reads is not None:
+            await asyncio.get_running_loop().run_in_executor(self._waiting_reads, self.close)
+            self._waiting_reads.shutdown()
+            self._waiting_reads = None

@@ -1,8 +1,10 @@
 """The cache stores on real back ends: SQLite files (bounded, LRU, shared by processes, rebuilt
 when broken) and a real redis-server."""
 import asyncio
+import fcntl
 import multiprocessing
 import sqlite3
+import threading
 import time
 
 import pytest
@@ -189,3 +191,84 @@ def test_a_read_does_not_wait_for_the_write_lock_to_record_recency(tmp_path, mon
         writer.close()
     store.put("k2", b"w")  # writes still wait for the lock as before, and go through
     assert store.get("k2") == b"w"
+
+
+def test_reads_from_an_event_loop_leave_it_running_and_still_heal_the_file(tmp_path):
+    """A read that must wait (here on another process rebuilding the broken file) waits in the
+    store's thread: the API worker's loop goes on serving meanwhile, and the file is healed."""
+    path = tmp_path / "c.sqlite3"
+    store = SQLiteStore(path)
+    store.put("k", b"v")
+    store.close()
+    path.write_bytes(b"this is not a database, just garbage " * 200)
+    for suffix in ("-wal", "-shm"):
+        (tmp_path / f"c.sqlite3{suffix}").unlink(missing_ok=True)
+    lock = open(path.with_name(path.name + ".rebuild-lock"), "w")
+    fcntl.flock(lock, fcntl.LOCK_EX)  # as a process in the middle of a rebuild holds it
+    # released after a while in any case, so a read that blocks the loop fails the test, not hangs it
+    safety = threading.Timer(10, lock.close)
+    safety.start()
+
+    async def read_while_ticking():
+        ticks = 0
+
+        async def tick():
+            nonlocal ticks
+            while True:
+                await asyncio.sleep(0.01)
+                ticks += 1
+                if ticks == 20:
+                    lock.close()  # the other process is done
+        ticker = asyncio.create_task(tick())
+        value = await store.aget("k")
+        ticker.cancel()
+        return value, ticks
+
+    try:
+        value, ticks = asyncio.run(read_while_ticking())
+    finally:
+        safety.cancel()
+        lock.close()
+    assert value is None and ticks >= 20  # the loop ran all along; the broken file was a miss
+    store.put("k", b"w")
+    assert asyncio.run(store.aget("k")) == b"w"
+
+
+def test_a_file_replaced_under_the_loops_connection_is_healed_off_the_loop(tmp_path, monkeypatch):
+    monkeypatch.setattr(sqlite_module, "INODE_CHECK_S", 0.0)  # noticed at the next read
+    path = tmp_path / "c.sqlite3"
+    store = SQLiteStore(path)
+    store.put("k", b"v")
+    lock = open(path.with_name(path.name + ".rebuild-lock"), "w")
+    safety = threading.Timer(10, lock.close)
+
+    async def read_replace_read():
+        assert await store.aget("k") == b"v"
+        assert await store.aget("k") == b"v"  # on the loop's own connection now
+        for suffix in ("", "-wal", "-shm"):
+            (tmp_path / f"c.sqlite3{suffix}").unlink(missing_ok=True)
+        path.write_bytes(b"this is not a database, just garbage " * 200)
+        fcntl.flock(lock, fcntl.LOCK_EX)  # and another process is rebuilding it
+        safety.start()
+        ticks = 0
+
+        async def tick():
+            nonlocal ticks
+            while True:
+                await asyncio.sleep(0.01)
+                ticks += 1
+                if ticks == 20:
+                    lock.close()
+        ticker = asyncio.create_task(tick())
+        value = await store.aget("k")
+        ticker.cancel()
+        return value, ticks
+
+    try:
+        value, ticks = asyncio.run(read_replace_read())
+    finally:
+        safety.cancel()
+        lock.close()
+    assert value is None and ticks >= 20
+    store.put("k", b"w")
+    assert asyncio.run(store.aget("k")) == b"w"
