@@ -34,6 +34,12 @@ class Settings(BaseModel):
     body_timeout_s: float = 30.0
     head_timeout_s: float = 10.0
     head_max_bytes: int = 32 * 1024
+    # a client address may fail this many requests in a row, then this many a second (per API
+    # worker), before its requests wait up to client_hold_s for a turn or get 429 (fairness.py);
+    # a burst of 0 turns the ledger off
+    client_failure_burst: int = 64
+    client_failure_rate: float = 8.0
+    client_hold_s: float = 1.0
     # colon-separated directories that textures named by documents may come from
     texture_roots: list[str] = Field(default_factory=list)
     retry_after_s: int = 2

@@ -21,6 +21,7 @@ STATUS_BY_CODE = {
     "request_timeout": 408,
     "too_large": 413,
     "unsupported_media_type": 415,
+    "too_many_failures": 429,
     "queue_full": 503,
     "unavailable": 503,
     "internal_error": 500,

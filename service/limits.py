@@ -19,7 +19,7 @@ class ClientDisconnected(Exception):
     pass
 
 
-def _declares_body(headers) -> tuple[bool, bytes | None]:
+def declares_body(headers) -> tuple[bool, bytes | None]:
     """(whether a body follows, the declared Content-Length)."""
     length, chunked = None, False
     for name, value in headers:
@@ -55,7 +55,7 @@ class BodyLimitMiddleware:
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             return await self.app(scope, receive, send)
-        has_body, length = _declares_body(scope["headers"])
+        has_body, length = declares_body(scope["headers"])
         if not has_body:
             return await self.app(scope, receive, send)
         try:

@@ -13,6 +13,8 @@ LATENCY_BUCKETS = (0.001, 0.0025, 0.005, 0.01, 0.02, 0.05, 0.1, 0.25, 0.5, 1.0, 
 
 REQUESTS = Counter("shadergen_requests_total", "HTTP requests answered", ["method", "route", "status"])
 LATENCY = Histogram("shadergen_request_seconds", "HTTP request latency", ["method", "route"], buckets=LATENCY_BUCKETS)
+RATIONED = Counter("shadergen_rationed_total", "requests of clients out of failure allowance (fairness.py): held until "
+                   "a turn came, or refused with 429", ["outcome"])
 CACHE = Counter("shadergen_cache_total", "cache lookups", ["kind", "result"])
 CACHE_ERRORS = Counter("shadergen_cache_errors_total", "cache operations that failed and were answered "
                        "without the cache", ["op"])

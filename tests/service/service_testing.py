@@ -88,6 +88,9 @@ class Server:
             **os.environ,
             "SHADERGEN_CACHE": f"sqlite:///{self.cache_path}",
             "SHADERGEN_TEXTURE_ROOTS": str(DOCS),
+            # every test client is one address that sends bad input on purpose, by the hundred: the
+            # failure ledger (service/fairness.py) is off unless a test turns it on
+            "SHADERGEN_CLIENT_FAILURE_BURST": "0",
             **(env or {}),
         }
         self.proc = subprocess.Popen(
