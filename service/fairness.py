@@ -18,9 +18,9 @@ back: only failures are rationed.
 Only the API's work is rationed (paths under /v1/): health probes, metrics scrapes and the
 editor's static files always answer. What counts as a failure is a 4xx the request caused, except 404 (asking for a shader or job that
 is not there is a normal question) and 429 (the ledger's own refusals must not deepen the debt, or
-a client could never get out of it). The address is the client as uvicorn reports it; behind a
-reverse proxy, uvicorn's --proxy-headers (with --forwarded-allow-ips naming the proxy) makes it the
-real client rather than the proxy. Each API worker keeps its own ledger, so nothing is shared on
+a client could never get out of it). The address is the client as uvicorn reports it: behind a
+reverse proxy, the one its X-Forwarded-For names when uvicorn trusts the proxy (on 127.0.0.1 by
+default, elsewhere named in FORWARDED_ALLOW_IPS). Each API worker keeps its own ledger, so nothing is shared on
 the hot path; a client's allowance is per worker."""
 import asyncio
 import math
