@@ -28,6 +28,7 @@ import time
 from collections import OrderedDict
 from dataclasses import dataclass
 
+from .asgi import StatusRecorder
 from .errors import ServiceError, error_response
 from .limits import declares_body
 from .metrics import RATIONED
@@ -109,18 +110,11 @@ class FairnessMiddleware:
                 RATIONED.labels("refused").inc()
                 return await self._refuse(client, wait_s, scope, receive, send)
             RATIONED.labels("served").inc()
-        status = 500
-
-        async def send_status(message):
-            nonlocal status
-            if message["type"] == "http.response.start":
-                status = message["status"]
-            await send(message)
-
+        recorder = StatusRecorder(send)
         try:
-            await self.app(scope, receive, send_status)
+            await self.app(scope, receive, recorder)
         finally:
-            self.ledger.settle(client, held_token, is_failure(status))
+            self.ledger.settle(client, held_token, is_failure(recorder.status))
 
     async def _refuse(self, client: str, wait_s: float, scope, receive, send) -> None:
         retry_after = max(1, math.ceil(wait_s))

@@ -9,6 +9,8 @@ from prometheus_client import CONTENT_TYPE_LATEST, CollectorRegistry, Counter, G
 from prometheus_client import REGISTRY
 from prometheus_client.multiprocess import MultiProcessCollector
 
+from .asgi import StatusRecorder
+
 LATENCY_BUCKETS = (0.001, 0.0025, 0.005, 0.01, 0.02, 0.05, 0.1, 0.25, 0.5, 1.0, 2.5, 5.0, 10.0, 30.0, 60.0)
 
 REQUESTS = Counter("shadergen_requests_total", "HTTP requests answered", ["method", "route", "status"])
@@ -60,19 +62,11 @@ class MetricsMiddleware:
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             return await self.app(scope, receive, send)
-        status = 500
         started = time.perf_counter()
-
-        async def send_status(message):
-            nonlocal status
-            if message["type"] == "http.response.start":
-                status = message["status"]
-            await send(message)
-
+        recorder = StatusRecorder(send)
         try:
-            await self.app(scope, receive, send_status)
+            await self.app(scope, receive, recorder)
         finally:
-            if scope.get(DISCONNECTED):
-                status = CLIENT_CLOSED
+            status = CLIENT_CLOSED if scope.get(DISCONNECTED) else recorder.status
             route = scope.get(ROUTE_KEY) or getattr(scope.get("route"), "path", "unmatched")
             self._observe(scope["method"], route, status, time.perf_counter() - started)

@@ -193,6 +193,28 @@ def test_a_read_does_not_wait_for_the_write_lock_to_record_recency(tmp_path, mon
     assert store.get("k2") == b"w"
 
 
+TICKS = 20
+
+
+async def read_while_ticking(store, key: str, then) -> tuple[bytes | None, int]:
+    """Read `key` while the loop counts ticks of 10 ms; `then` is called at the 20th (it lets the
+    read go on). Returns the value and the ticks counted before the read ended."""
+    ticks = 0
+
+    async def tick():
+        nonlocal ticks
+        while True:
+            await asyncio.sleep(0.01)
+            ticks += 1
+            if ticks == TICKS:
+                then()
+    ticker = asyncio.create_task(tick())
+    try:
+        return await store.aget(key), ticks
+    finally:
+        ticker.cancel()
+
+
 def test_reads_from_an_event_loop_leave_it_running_and_still_heal_the_file(tmp_path):
     """A read that must wait (here on another process rebuilding the broken file) waits in the
     store's thread: the API worker's loop goes on serving meanwhile, and the file is healed."""
@@ -208,28 +230,12 @@ def test_reads_from_an_event_loop_leave_it_running_and_still_heal_the_file(tmp_p
     # released after a while in any case, so a read that blocks the loop fails the test, not hangs it
     safety = threading.Timer(10, lock.close)
     safety.start()
-
-    async def read_while_ticking():
-        ticks = 0
-
-        async def tick():
-            nonlocal ticks
-            while True:
-                await asyncio.sleep(0.01)
-                ticks += 1
-                if ticks == 20:
-                    lock.close()  # the other process is done
-        ticker = asyncio.create_task(tick())
-        value = await store.aget("k")
-        ticker.cancel()
-        return value, ticks
-
     try:
-        value, ticks = asyncio.run(read_while_ticking())
+        value, ticks = asyncio.run(read_while_ticking(store, "k", then=lock.close))  # then the other process is done
     finally:
         safety.cancel()
         lock.close()
-    assert value is None and ticks >= 20  # the loop ran all along; the broken file was a miss
+    assert value is None and ticks >= TICKS  # the loop ran all along; the broken file was a miss
     store.put("k", b"w")
     assert asyncio.run(store.aget("k")) == b"w"
 
@@ -250,25 +256,13 @@ def test_a_file_replaced_under_the_loops_connection_is_healed_off_the_loop(tmp_p
         path.write_bytes(b"this is not a database, just garbage " * 200)
         fcntl.flock(lock, fcntl.LOCK_EX)  # and another process is rebuilding it
         safety.start()
-        ticks = 0
-
-        async def tick():
-            nonlocal ticks
-            while True:
-                await asyncio.sleep(0.01)
-                ticks += 1
-                if ticks == 20:
-                    lock.close()
-        ticker = asyncio.create_task(tick())
-        value = await store.aget("k")
-        ticker.cancel()
-        return value, ticks
+        return await read_while_ticking(store, "k", then=lock.close)
 
     try:
         value, ticks = asyncio.run(read_replace_read())
     finally:
         safety.cancel()
         lock.close()
-    assert value is None and ticks >= 20
+    assert value is None and ticks >= TICKS
     store.put("k", b"w")
     assert asyncio.run(store.aget("k")) == b"w"
