@@ -78,18 +78,6 @@ class GenerationService:
             record = await self._generate(document, params, digest)
         return record if params.source else without_source(record)
 
-    async def cached(self, raw_document: bytes, params: GenerateParams) -> bytes | None:
-        """The record if a byte-identical request was answered before, else None (also for a
-        document the full path would refuse: it is the one that words the error)."""
-        try:
-            document = checked(raw_document, params)
-        except ServiceError:
-            return None
-        record = await self._cached(request_digest(self.library_hash, params, document))
-        if record is None:
-            return None
-        return record if params.source else without_source(record)
-
     async def _cached(self, digest: str) -> bytes | None:
         """A sound record for the request, else None: a failed lookup or a value that is not
         what its key promises is a miss, which the generator answers and overwrites."""

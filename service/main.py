@@ -9,7 +9,7 @@ import shadergen
 from .config import get_settings
 from .errors import install_error_handlers
 from .fairness import RATIONED_PREFIX, FailureLedger, FairnessMiddleware
-from .fastpath import CachedGenerateMiddleware
+from .fastpath import GenerateFastPath
 from .limits import BodyLimitMiddleware
 from .metrics import MetricsMiddleware
 from .models import ErrorResponse
@@ -35,7 +35,7 @@ def create_app() -> FastAPI:
     install_error_handlers(app)
     # the last added runs first: metrics see everything, a client out of turns is held before its
     # body is read, the body limit applies to the fast path
-    app.add_middleware(CachedGenerateMiddleware)
+    app.add_middleware(GenerateFastPath)
     settings = get_settings()
     app.add_middleware(BodyLimitMiddleware, max_bytes=settings.max_body_bytes, read_timeout_s=settings.body_timeout_s)
     if settings.client_failure_burst > 0:

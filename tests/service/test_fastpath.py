@@ -1,4 +1,4 @@
-"""The cached-request fast path accepts only what the route's models accept unchanged; anything
+"""The generate fast path accepts only what the route's models accept unchanged; anything
 else (None) goes on to the route, which words the error."""
 import json
 
@@ -34,6 +34,9 @@ def test_plain_json_and_xml_requests_are_read_like_the_route():
     (JSON, b"", b"[1, 2]"),
     (JSON, b"", b"{not json"),
     (JSON, b"", json.dumps({"document": 5}).encode()),
+    (JSON, b"", json.dumps({"document": ""}).encode()),  # the model's min_length words the refusal
+    (JSON, b"", body().decode().encode("utf-16")),  # the model reads UTF-8 only
+
     (b"application/xml", b"source=1", b"<x/>"),
     (b"application/xml", b"target=a&target=b", b"<x/>"),
     (b"application/xml", b"unknown=1", b"<x/>"),
