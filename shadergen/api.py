@@ -20,7 +20,7 @@ from .errors import ShaderGenError
 from .generator import EmitContext, emit_shader, listing_value
 from .graph import GraphBuilder, Output
 from .passes import Options, prepare
-from .hashing import graph_hash
+from .hashing import graph_hashes
 from .library import Library, Scope, default_library
 from .targets import target_for
 from .types import value_to_json
@@ -252,8 +252,7 @@ class Generator:
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         key = dict(target=target, interface=options.interface, library_hash=self.library.content_hash, local_ids=local)
-        h = graph_hash(graph, **key)
-        topology = graph_hash(graph, values=graph.values_in_source, **key)
+        h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
                            for k in (h, topology))

@@ -11,7 +11,6 @@ import re
 from .errors import ShaderGenError
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
-from .nodes.base import source_with_includes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
 
@@ -135,8 +134,9 @@ class EmitContext:
         return member
 
     # -- functions -------------------------------------------------------------------------------
-    def emit_source_file(self, path: str) -> None:
-        for dep_path, text in source_with_includes(path):
+    def emit_source_files(self, files: tuple[tuple[str, str], ...]) -> None:
+        """A library source file with its includes ((path, text), dependencies first), each once."""
+        for dep_path, text in files:
             if self.pixel.once(("file", dep_path)):
                 self.pixel.functions.extend(self.target.library_source(dep_path, text))
                 self.pixel.functions.line()
@@ -277,8 +277,7 @@ def drop_unused(ctx: EmitContext, variables: bool) -> None:
     `variables` (specialized), uniforms nothing reads and vertex data the pixel stage does not read
     are dropped too, from the code and from the listings."""
     main = "\n".join(ctx.pixel.main.lines)
-    ctx.pixel.functions.lines = ctx.target.used_functions(ctx.pixel.functions.lines, main)
-    used = identifiers(main + "\n".join(ctx.pixel.functions.lines))
+    ctx.pixel.functions.lines, used = ctx.target.used_functions(ctx.pixel.functions.lines, main)
     if variables:
         blocks = ctx.pixel.blocks
         for block in ("PrivateUniforms", "PublicUniforms"):

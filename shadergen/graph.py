@@ -307,16 +307,20 @@ class GraphBuilder:
             node.outputs[out.name] = Output(out.name, out.get("type"), node)
         if not node.outputs:
             node.outputs["out"] = Output("out", nodedef.get("type"), node)
-        for decl in self.scope.nodedef_inputs(nodedef) + impl.children_of("input"):
-            if decl.category == "token":
-                continue
-            t = decl.get("type")
-            value = T.parse_value(t, decl.get("value"), decl.path)
-            inp = Input(decl.name, t, node, value, None, meta=input_meta(decl), default=value)
-            if path is not None and decl.parent.category == "nodedef":
-                inp.path = f"{path}/{decl.name}"
-            node.inputs[decl.name] = inp
+        for name, t, value, meta, on_nodedef in self.ports(nodedef, impl):
+            inp = Input(name, t, node, value, None, meta=dict(meta), default=value)
+            if path is not None and on_nodedef:
+                inp.path = f"{path}/{name}"
+            node.inputs[name] = inp
         return node
+
+    def ports(self, nodedef: Element, impl: Element) -> list[tuple]:
+        """(name, type, value, meta, declared on the nodedef) of each input a node of this
+        definition has: its nodedef's (inherited ones included) and those its implementation adds."""
+        return self.scope.library_fact(("ports", id(nodedef), id(impl)), lambda: [
+            (decl.name, decl.get("type"), T.parse_value(decl.get("type"), decl.get("value"), decl.path),
+             input_meta(decl), decl.parent.category == "nodedef")
+            for decl in self.scope.nodedef_inputs(nodedef) + impl.children_of("input") if decl.category != "token"])
 
     # -- colour-space and unit transforms (seed 3.3, 3.4) --------------------------------------
     def transform_node(self, name: str, nodedef_name: str, where: str) -> Node | None:

@@ -17,43 +17,44 @@ def _element_digest(e: Element) -> list:
     return [e.category, sorted(e.attrs.items()), [_element_digest(c) for c in e.children]]
 
 
-def graph_hash(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int],
-               values: bool = True) -> str:
-    """`library_hash`: the library's output key (fingerprint.py), which covers the generator's
-    code too. `local_ids`: ids of the implementation elements the document itself declares.
-    Without `values`, the values of the public uniforms are left out: the topology hash, which
-    decides a value-free source (the values live only in the listing)."""
+def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int]) -> tuple[str, str]:
+    """(hash, topology hash). `library_hash`: the library's output key (fingerprint.py), which
+    covers the generator's code too. `local_ids`: ids of the implementation elements the document
+    itself declares. The topology hash leaves out the values of the public uniforms (what a
+    value-free source leaves to the listing); the hash adds them. When the values are written into
+    the source, the two are the same."""
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
 
     def value(port):
-        return _jsonable(port.value) if values or not port.public else None
+        return None if port.public else _jsonable(port.value)
 
-    uniforms = [[p.owner.name, p.name, p.type, value(p), p.path, _meta(p.meta)] for p in graph.interface]
+    uniforms = [[p.owner.name, p.name, p.type, p.path, p.meta] for p in graph.interface]
     nodes = []
     for n in graph.nodes:
         inputs = []
         for inp in n.inputs.values():
             conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
             uniform = public.get(id(inp.socket if inp.socket is not None else inp))
-            inputs.append([inp.name, inp.type, value(inp), inp.path, conn, uniform, inp.authored,
-                           _meta(inp.meta)])
+            inputs.append([inp.name, inp.type, value(inp), inp.path, conn, uniform, inp.authored, inp.meta])
         impl = n.implementation
         impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
         nodedef_key = _element_digest(n.nodedef) if id(impl) in local_ids else n.nodedef.name
         scope = [[index[id(cond)], branch] for cond, branch in n.scope]
         nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
     outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
-    payload = json.dumps(
+    structure = _canonical(
         {"target": target, "interface": interface, "library": library_hash, "values_in_source": graph.values_in_source,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
-         "nodes": nodes, "outputs": outputs, "uniforms": uniforms},
-        sort_keys=True, separators=(",", ":"), default=str)
-    return hashlib.sha256(payload.encode()).hexdigest()
+         "nodes": nodes, "outputs": outputs, "uniforms": uniforms})
+    values = _canonical([_jsonable(p.value) for p in graph.interface])
+    full = hashlib.sha256(structure + b"\0" + values).hexdigest()
+    return full, full if graph.values_in_source else hashlib.sha256(structure).hexdigest()
 
 
-def _meta(meta: dict) -> dict:
-    return {k: meta[k] for k in sorted(meta)}  # ui too: the listing carries it
+def _canonical(data) -> bytes:
+    """JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally."""
+    return json.dumps(data, sort_keys=True, separators=(",", ":"), default=str).encode()
 
 
 def _jsonable(v):

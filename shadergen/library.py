@@ -74,12 +74,33 @@ class Library(Index):
         self.content_hash = content_hash
         for r in roots:
             self.add(r)
-        # What follows from the library alone (resolved nodedefs, inherited inputs, chosen
-        # implementations), kept for the life of the process for every document that defines
-        # nothing of its own; bounded, since the keys of nodedef resolution come from documents.
+        self._root_ids = {id(r) for r in roots}  # the roots live as long as the elements under them
+        # names a nodegraph implementation is found by (Scope.implementing_graph)
+        self.graph_names = set(self.nodegraphs) | {i.get("nodegraph") for impls in self.implementations.values()
+                                                   for i in impls if i.get("nodegraph")}
+        # What follows from the library alone (resolved nodedefs, inherited inputs, chosen and
+        # parsed implementations, expanded nodegraph bodies), kept for the life of this Library:
+        # a library edit loads a new Library (a new content_hash), so it never sees these.
+        # Bounded, since the keys of nodedef resolution come from documents.
         self.facts: dict = {}
 
     MAX_FACTS = 65536
+
+    def fact(self, key, compute):
+        """compute(), memoised for the life of this library (`key` must name only library things)."""
+        facts = self.facts
+        if key not in facts:
+            value = compute()
+            if len(facts) >= self.MAX_FACTS:
+                return value
+            facts[key] = value
+        return facts[key]
+
+    def owns(self, elem: Element) -> bool:
+        """Whether `elem` is one of this library's elements (not a document's)."""
+        while elem.parent is not None:
+            elem = elem.parent
+        return id(elem) in self._root_ids
 
     @classmethod
     def load(cls, root: Path | None = None) -> "Library":
@@ -135,7 +156,6 @@ def default_library() -> Library:
     return Library.load()
 
 
-@lru_cache(maxsize=4096)
 def read_source(path: str) -> str:
     with open(path, encoding="utf-8") as f:
         return f.read()
@@ -151,20 +171,14 @@ class Scope:
             self.local.add(document_root)
         self.layers = (self.local, library)
         local = self.local
-        self.library_only = not (local.nodedefs or local.implementations or local.nodegraphs or local.geompropdefs
-                                 or local.typedefs or local.units or local.targets)
+        # The library's facts hold for a document that defines nothing of its own; its plain
+        # nodegraphs matter only if an <implementation nodegraph="..."> could find one by name.
+        self.library_only = not (local.nodedefs or local.implementations or local.geompropdefs or local.typedefs
+                                 or local.units or local.targets or library.graph_names & local.nodegraphs.keys())
 
     def library_fact(self, key, compute):
         """compute(), memoised in the library when the document defines nothing that could change it."""
-        if not self.library_only:
-            return compute()
-        facts = self.library.facts
-        if key not in facts:
-            value = compute()
-            if len(facts) >= self.library.MAX_FACTS:
-                return value
-            facts[key] = value
-        return facts[key]
+        return self.library.fact(key, compute) if self.library_only else compute()
 
     def _first(self, table: str, name: str) -> Element | None:
         """The document's definition of that name, else the library's."""

@@ -27,7 +27,7 @@ class Variable:
         d = {"name": self.name, "type": self.type, "value": value_to_json(self.value), "path": self.path,
              "semantic": self.semantic, "unit": self.unit, "colorspace": self.colorspace}
         if self.ui:
-            d["ui"] = self.ui
+            d["ui"] = dict(self.ui)  # its own: the ui a nodedef input gives is shared by every node of it
         return d
 
 

@@ -9,16 +9,16 @@ nodes that are called once per context; it is None for ordinary data nodes.
 """
 import os
 import re
-from functools import lru_cache
 
 from ..element import Element
 from ..errors import ShaderGenError
-from ..library import read_source
+from ..library import Library, read_source
 from ..targets.glsl_target import PLACEHOLDER
 
 REGISTRY: dict[str, type["NodeImpl"]] = {}
 DERIVATIVES = re.compile(r"\b(dFdx|dFdy|fwidth|texture)\s*\(")
 INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$', re.M)
+TARGET_SUFFIX = re.compile(r"_gen\w+$")
 
 
 def register(*names: str):
@@ -69,18 +69,18 @@ class InlineImpl(NodeImpl):
 
 
 class SourceFunctionImpl(NodeImpl):
+    """A function in a library source file. Its files are read and expanded when it is made:
+    made once per library (nodes.implementation_for), they are read once per library."""
+
     def __init__(self, elem: Element):
         self.path = _source_path(elem, elem.get("file"))
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
-        self.uses_derivatives = takes_derivatives(self.path)
-
-    @property
-    def source(self) -> str:
-        """The text of its own source file (not its includes)."""
-        return read_source(self.path)
+        self.files = tuple(expand_includes(self.path, set()))  # (path, text) of it and its includes, dependencies first
+        self.source = self.files[-1][1]  # the text of its own file, without its #include lines
+        self.uses_derivatives = any(DERIVATIVES.search(text) for _, text in self.files)
 
     def emit_function_definition(self, node, ctx) -> None:
-        ctx.emit_source_file(self.path)
+        ctx.emit_source_files(self.files)
 
     def emit_function_call(self, node, ctx) -> None:
         ctx.call(self.function, node)
@@ -93,19 +93,6 @@ def _source_path(elem: Element, file: str) -> str:
     if not os.path.exists(path):
         raise ShaderGenError("missing_source", f"implementation source '{file}' not found", elem.name)
     return path
-
-
-# Library sources are read once per process (read_source), so what follows from them is memoised
-# by path too: every request of a warm process reuses it.
-@lru_cache(maxsize=4096)
-def source_with_includes(path: str) -> tuple[tuple[str, str], ...]:
-    """(path, text without #include lines) of a source file and its includes, dependencies first."""
-    return tuple(expand_includes(path, set()))
-
-
-@lru_cache(maxsize=4096)
-def takes_derivatives(path: str) -> bool:
-    return any(DERIVATIVES.search(text) for _, text in source_with_includes(path))
 
 
 def expand_includes(path: str, seen: set[str]) -> list[tuple[str, str]]:
@@ -136,3 +123,33 @@ class GraphFunctionImpl(NodeImpl):
 
     def emit_function_call(self, node, ctx) -> None:
         ctx.call(ctx.function_names[id(self.function)], node)
+
+
+def implementation_for(elem: Element, library: Library | None = None) -> NodeImpl:
+    """The NodeImpl of an implementation element. The kinds that read files are made once per
+    `library` for its own elements (their files read and expanded once); the others are cheap to
+    make, and dynamic ones may keep state for the shader they write, so they are made each time."""
+    file = elem.get("file")
+    if file and elem.get("sourcecode") is None and library is not None and library.owns(elem):
+        return library.fact(("implementation", id(elem)), lambda: _from_file(elem, file))
+    return _make(elem)
+
+
+def _make(elem: Element) -> NodeImpl:
+    if elem.get("sourcecode") is not None:
+        return InlineImpl(elem.get("sourcecode"))
+    file = elem.get("file")
+    if file:
+        return _from_file(elem, file)
+    # dynamic classes are registered target-neutrally: IM_position_vector3 serves IM_position_vector3_genglsl
+    cls = REGISTRY.get(elem.name) or REGISTRY.get(TARGET_SUFFIX.sub("", elem.name))
+    if cls is None:
+        raise ShaderGenError("unknown_implementation",
+                             f"implementation '{elem.name}' has no source and no registered class", elem.name)
+    impl = cls()
+    impl.element = elem  # where its library files are (dynamic implementations may include some)
+    return impl
+
+
+def _from_file(elem: Element, file: str) -> NodeImpl:
+    return InlineImpl.from_file(elem) if file.endswith(".inline") else SourceFunctionImpl(elem)

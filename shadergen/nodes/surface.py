@@ -7,7 +7,7 @@ nodes feeding the closures are computed once, before. A context whose closure in
 unconnected is not written at all.
 """
 from ..shader import PIXEL, Variable
-from .base import NodeImpl, SourceFunctionImpl, register
+from .base import NodeImpl, implementation_for, register
 from .geometric import Normal, Position
 
 LIGHT_TYPES = (("point_light", 1), ("directional_light", 2), ("spot_light", 3))  # LightData.type ids
@@ -25,8 +25,8 @@ def light_functions(ctx) -> list[tuple[int, str]]:
         nodedef = ctx.scope.nodedef(f"ND_{node}")
         impl_elem = ctx.scope.implementation(nodedef, ctx.target.library) if nodedef is not None else None
         if impl_elem is not None and impl_elem.get("file"):
-            impl = SourceFunctionImpl(impl_elem)
-            ctx.emit_source_file(impl.path)
+            impl = implementation_for(impl_elem, ctx.scope.library)
+            ctx.emit_source_files(impl.files)
             found.append((type_id, impl.function))
     return found
 

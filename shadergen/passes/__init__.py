@@ -12,7 +12,7 @@ from .elide import elide_passthrough_nodes
 from .expand import expand_nodegraphs
 from .fold import fold_constants
 from .functions import share_functions
-from .interface import bind_interface, implementation, publish_textures
+from .interface import bind_interface, choose_implementations, publish_textures
 from .order import assign_scopes, topological_order
 
 
@@ -38,11 +38,11 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
 
     run("elide", lambda: elide_passthrough_nodes(graph.outputs))
     graph.nodes = topological_order(graph.outputs)
+    choose_implementations(graph.nodes, builder.scope.library)
     run("interface", lambda: bind_interface(graph, options.interface, options.keep))
     run("expand", lambda: expand_nodegraphs(graph, builder))
     run("fold", lambda: fold_constants(graph))
-    for node in graph.nodes:
-        implementation(node)
+    choose_implementations(graph.nodes, builder.scope.library)
     run("prune_closures", lambda: prune_closures(graph, target.closures))
     run("textures", lambda: publish_textures(graph))
     run("functions", lambda: share_functions(graph, uniform_flow))

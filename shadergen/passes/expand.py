@@ -6,8 +6,11 @@ replaces). The body's interface inputs take the node's bindings: a connection, a
 constant from here on), or a public uniform, which becomes a Socket the body's inputs share.
 Whether identical bodies are written once as a function is decided after the other passes.
 """
+from dataclasses import dataclass
+
+from ..element import Element
 from ..errors import ShaderGenError
-from ..graph import Graph, GraphBuilder, Input, Instance, Output, Socket
+from ..graph import Graph, GraphBuilder, Input, Instance, Node, Output, Socket
 from .elide import elide_passthrough_nodes
 from .order import topological_order
 
@@ -62,6 +65,15 @@ def check_recursion(instance: Instance) -> None:
                                  + " -> ".join(e.name for e in chain[i:]), instance.graph_elem.path)
 
 
+@dataclass(eq=False)
+class Body:
+    """A nodegraph's body built once, bound to no use: its nodes (in topological order) read
+    the sockets of a template interface, its node names lack the prefix of a use."""
+    nodes: list[Node]
+    outputs: dict[str, Output]
+    warnings: list[str]
+
+
 def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
     """Builds one use's body and binds its interface to the node's inputs; returns its nodes."""
     check_recursion(instance)
@@ -69,20 +81,47 @@ def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
     instance.sockets = {inp.name: Socket(inp.name, inp.type, inp.value, inp.path, dict(inp.meta), origin=inp,
                                          default=inp.default)
                         for inp in node.inputs.values()}
-    builder = GraphBuilder(outer.scope, outer.target, elem.parent if elem.parent is not None else elem,
-                           instance.sockets, instance)
+    # A body depends only on its definition and the target: built once per library (unless the
+    # document defines something that could change how it resolves), copied for each use.
+    template = outer.scope.library_fact(("body", id(elem), outer.target), lambda: build_body(elem, outer, node))
+    body = copy_body(template, instance)
+    graph.warnings.extend(template.warnings)
+    for socket in instance.sockets.values():
+        bind_socket(socket, graph)
+    return body
+
+
+def build_body(elem: Element, outer: GraphBuilder, node: Node) -> Body:
+    interface = {inp.name: Socket(inp.name, inp.type) for inp in node.inputs.values()}
+    builder = GraphBuilder(outer.scope, outer.target, elem.parent if elem.parent is not None else elem, interface)
+    outputs = {}
     for out_elem in elem.children_of("output"):
         src = builder.source_of(out_elem)
         if not isinstance(src, Output):
             raise ShaderGenError("invalid_implementation", f"nodegraph output '{out_elem.name}' is not connected",
                                  out_elem.path)
-        instance.outputs[out_elem.name] = src
-    elide_passthrough_nodes(instance.outputs)
-    body = topological_order(instance.outputs)  # before binding: the body ends at its sockets
-    graph.warnings.extend(builder.warnings)
-    for socket in instance.sockets.values():
-        bind_socket(socket, graph)
-    return body
+        outputs[out_elem.name] = src
+    elide_passthrough_nodes(outputs)
+    return Body(topological_order(outputs), outputs, builder.warnings)  # the body ends at its sockets
+
+
+def copy_body(template: Body, instance: Instance) -> list[Node]:
+    """The template's nodes for one use: named after the node it replaces, reading its sockets."""
+    prefix = f"{instance.node.name}_"
+    copies: dict[int, Node] = {}
+    for t in template.nodes:
+        n = copies[id(t)] = Node(prefix + t.name, t.category, t.type, t.nodedef, t.implementation, t.path,
+                                 instance=instance)
+        n.outputs = {name: Output(o.name, o.type, n) for name, o in t.outputs.items()}
+        for name, ti in t.inputs.items():
+            inp = n.inputs[name] = Input(ti.name, ti.type, n, ti.value, ti.path, meta=dict(ti.meta),
+                                         authored=ti.authored, default=ti.default)
+            if ti.connection is not None:
+                inp.connection = copies[id(ti.connection.node)].outputs[ti.connection.name]
+            if ti.socket is not None:
+                inp.bind_socket(instance.sockets[ti.socket.name])
+    instance.outputs = {name: copies[id(o.node)].outputs[o.name] for name, o in template.outputs.items()}
+    return [copies[id(t)] for t in template.nodes]
 
 
 def bind_socket(socket: Socket, graph: Graph) -> None:

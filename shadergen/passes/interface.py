@@ -9,17 +9,18 @@
 Everything else is a constant from here on, which is what lets folding see through it.
 """
 from ..graph import Graph, Input, Node
+from ..library import Library
 from ..nodes import implementation_for
 from ..types import TYPES
 
 NOT_PUBLISHED = {"BSDF", "EDF", "VDF", "lightshader", "none"}
 
 
-def implementation(node: Node):
-    """The NodeImpl of a node, chosen once."""
-    if node.impl is None:
-        node.impl = implementation_for(node.implementation)
-    return node.impl
+def choose_implementations(nodes: list[Node], library: Library) -> None:
+    """The NodeImpl of every node not yet given one (a nodegraph's node is expanded instead)."""
+    for node in nodes:
+        if node.impl is None and node.implementation.category != "nodegraph":
+            node.impl = implementation_for(node.implementation, library)
 
 
 def document_path(inp: Input) -> str:
@@ -32,7 +33,7 @@ def is_public(inp: Input, node: Node, graph: Graph, mode: str, keep: frozenset[s
         return False
     if TYPES[inp.type].is_closure and node is not graph.root and not inp.meta.get("interface"):
         return False  # an unconnected shader input inside the graph has nothing to edit
-    editable = node.implementation.category == "nodegraph" or implementation(node).is_editable(inp.name)
+    editable = node.implementation.category == "nodegraph" or node.impl.is_editable(inp.name)
     if not editable and inp.type != "filename":
         return False
     if inp.type == "filename" or inp.meta.get("interface"):

@@ -49,14 +49,15 @@ def _name(first_line: str) -> str | None:
     return None
 
 
-def reachable(items: list[tuple[str | None, list[str]]], roots: str) -> list[list[str]]:
-    """The items the roots use, transitively, in their original order."""
+def reachable(items: tuple[tuple[str | None, tuple[str, ...]], ...], roots: str) -> tuple[list[int], set[str]]:
+    """The indices of the items the roots use, transitively, in their original order, and every
+    identifier the roots and those items use."""
     by_name: dict[str, list[int]] = {}
     for k, (name, _) in enumerate(items):
         if name is not None:
             by_name.setdefault(name, []).append(k)
     keep = {k for k, (name, _) in enumerate(items) if name is None}
-    todo = set(IDENTIFIER.findall(roots)) | {w for k in keep for w in _words("\n".join(items[k][1]))}
+    todo = set(IDENTIFIER.findall(roots)) | {w for k in keep for w in _words(items[k][1])}
     seen: set[str] = set()
     while todo:
         word = todo.pop()
@@ -66,24 +67,34 @@ def reachable(items: list[tuple[str | None, list[str]]], roots: str) -> list[lis
         for k in by_name.get(word, ()):
             if k not in keep:
                 keep.add(k)
-                todo.update(_words("\n".join(items[k][1])))
-    return [items[k][1] for k in sorted(keep)]
+                todo.update(_words(items[k][1]))
+    return sorted(keep), seen
 
 
 @lru_cache(maxsize=8192)
-def _words(item: str) -> frozenset[str]:
+def _words(item: tuple[str, ...]) -> frozenset[str]:
     """The identifiers of an item: library functions recur in every request, so this is memoised."""
-    return frozenset(IDENTIFIER.findall(item))
+    return frozenset(IDENTIFIER.findall("\n".join(item)))
 
 
-def used_functions(function_lines: list[str], roots: str) -> list[str]:
-    """The function section's lines, reduced to what `roots` (main and declarations) use."""
+@lru_cache(maxsize=64)
+def _split(function_lines: tuple[str, ...]) -> tuple[tuple[str | None, tuple[str, ...]], ...]:
+    """split_items, memoised: shaders of one topology have the same function section, request after request."""
+    return tuple((name, tuple(lines)) for name, lines in split_items(list(function_lines)))
+
+
+def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], set[str]]:
+    """The function section's lines, reduced to what `roots` (main and declarations) use, and the
+    identifiers used by the roots and those lines."""
+    items = _split(tuple(function_lines))
+    keep, used = reachable(items, roots)
     out: list[str] = []
-    for lines in reachable(split_items(function_lines), roots):
+    for k in keep:
+        lines = items[k][1]
         out.extend(lines)
         if lines and lines[-1].strip():
             out.append("")
-    return out
+    return out, used
 
 
 def identifiers(text: str) -> set[str]:

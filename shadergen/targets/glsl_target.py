@@ -179,7 +179,7 @@ class GlslTarget:
         w.line()
 
     # -- stage assembly --------------------------------------------------------------------------
-    def used_functions(self, function_lines: list[str], roots: str) -> list[str]:
+    def used_functions(self, function_lines: list[str], roots: str) -> tuple[list[str], set[str]]:
         return used_functions(function_lines, roots)
 
     def assemble_pixel(self, ctx) -> str:

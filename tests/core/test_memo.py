@@ -1,0 +1,58 @@
+"""What follows from the library alone (resolved nodedefs, parsed implementations, expanded
+nodegraph bodies) is memoised in the Library across requests: a warm generator must write exactly
+what a fresh one writes, and a library edit (a new Library, a new key) must never see the old facts."""
+import shutil
+from pathlib import Path
+
+import pytest
+
+from shadergen.api import Generator
+from shadergen.library import DEFAULT_LIBRARY_ROOT, Library
+
+from .conftest import doc
+
+ROOT = Path(__file__).resolve().parents[2]
+MARBLE = ROOT / "examples" / "marble_checker.mtlx"
+GOLDEN = ROOT / "tests" / "golden"
+LOCAL_DEFINITION = doc(
+    '<nodedef name="ND_tint" node="tint"><input name="in" type="float" value="1"/><output name="out" type="float"/></nodedef>'
+    '<implementation name="IM_tint" nodedef="ND_tint" target="genglsl" sourcecode="{{in}} * 2.0" />'
+    '<tint name="t" type="float"/><multiply name="m" type="float"><input name="in1" type="float" nodename="t"/></multiply>'
+    '<output name="o" type="float" nodename="m"/>')
+DOCUMENTS = [MARBLE, GOLDEN / "glass.mtlx", GOLDEN / "standard_surface_coated.mtlx", LOCAL_DEFINITION]
+
+
+def comparable(record: dict) -> dict:
+    return {k: v for k, v in record.items() if k != "timings_ms"}
+
+
+def records(gen: Generator, document, **options) -> list[dict]:
+    return [comparable(r) for r in gen.records(document, all=True, **options)]
+
+
+@pytest.mark.parametrize("interface", ["complete", "reduced", "specialized"])
+@pytest.mark.parametrize("target", ["glsl", "wgsl"])
+def test_memoised_and_fresh_generation_write_the_same_records(interface, target):
+    warm = Generator(Library.load())
+    for document in DOCUMENTS:  # everything of every document memoised before the comparison
+        records(warm, document, interface=interface, target=target)
+    for document in DOCUMENTS:
+        fresh = Generator(Library.load())  # a new Library: nothing memoised
+        assert records(warm, document, interface=interface, target=target) == \
+            records(fresh, document, interface=interface, target=target), document
+    assert any(key[0] == "body" for key in warm.library.facts)  # the bodies were reused, not rebuilt
+
+
+def test_a_library_edit_is_never_served_from_the_old_librarys_memo(tmp_path, monkeypatch):
+    monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path / "cache"))
+    library = Path(shutil.copytree(DEFAULT_LIBRARY_ROOT, tmp_path / "libraries"))
+    before = Generator(Library.load(library))
+    first = before.prepare(MARBLE).emit()
+    source = library / "stdlib" / "genglsl" / "mx_noise_fractal.glsl"  # read, expanded and memoised above
+    marker = "// edited after the first generation"
+    source.write_text(source.read_text().replace("{", "{\n    " + marker))
+    after = Generator(Library.load(library))
+    assert after.library_hash != before.library_hash
+    edited = after.prepare(MARBLE).emit()
+    assert marker in edited["stages"]["pixel"] and marker not in first["stages"]["pixel"]
+    assert edited["hash"] != first["hash"]
