@@ -182,13 +182,15 @@ def percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
 
 
-def start_server(workers: int, render_workers: int) -> tuple[subprocess.Popen, str, Path]:
+def start_server(workers: int, render_workers: int, env: dict[str, str] | None = None
+                 ) -> tuple[subprocess.Popen, str, Path]:
+    """A server on a free port with a fresh cache; `env`: further settings (SHADERGEN_*)."""
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     tmp = Path(tempfile.mkdtemp(prefix="shadergen-bench-"))
     env = {**os.environ, "SHADERGEN_CACHE": f"sqlite:///{tmp / 'cache.sqlite3'}",
-           "SHADERGEN_TEXTURE_ROOTS": str(DOCS)}
+           "SHADERGEN_TEXTURE_ROOTS": str(DOCS), **(env or {})}
     log = open(tmp / "serve.log", "wb")
     proc = subprocess.Popen([sys.executable, "-m", "shadergen.cli", "serve", "--host", "127.0.0.1",
                              "--port", str(port), "--workers", str(workers), "--render-workers", str(render_workers)],

@@ -40,6 +40,10 @@ class Settings(BaseModel):
     client_failure_burst: int = 64
     client_failure_rate: float = 8.0
     client_hold_s: float = 1.0
+    # Documents that differ only in values share one source (the `top:` store: an edit is answered
+    # without emitting) and one compiled program per render worker. False: every new document is
+    # emitted and every thumbnail compiles its program: the baseline bench/editing.py measures against.
+    topology_sharing: bool = True
     # colon-separated directories that textures named by documents may come from
     texture_roots: list[str] = Field(default_factory=list)
     retry_after_s: int = 2

@@ -51,13 +51,14 @@ def register_tasks(app: Celery, settings, processes: int) -> None:
             return {"error": {"code": "worker_crashed",
                               "message": "render worker died on this job twice; giving up", "where": None}}
         task.update_state(state="STARTED", meta={"pid": os.getpid(), "attempt": attempt})
+        from ..workers.render_worker import programs_kept, render
+
         if renderer is None:
             from shadergen.render import Renderer
             from shadergen.render.worker import lp_threads_for
 
             renderer = Renderer(texture_roots=settings.texture_roots, search_paths=settings.texture_roots,
-                                lp_threads=lp_threads_for(processes))
-        from ..workers.render_worker import render
+                                max_programs=programs_kept(settings), lp_threads=lp_threads_for(processes))
 
         reply, png = render(renderer, request)
         if "error" in reply:

@@ -32,6 +32,7 @@ class GenerateHandler:
         settings = get_settings()
         self.store = open_store(settings.cache, settings.cache_max_bytes)
         self.generator = Generator()
+        self.topology_sharing = settings.topology_sharing
 
     def __call__(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
         if message["op"] == "nodedefs":
@@ -53,10 +54,11 @@ class GenerateHandler:
             key = "rec:" + prepared.hash
             stored = self.store.get(key)
             if not is_record(stored, prepared.hash):  # absent, or garbage to overwrite
-                record = self._same_topology(prepared) or prepared.emit(source=True)
+                record = (self.topology_sharing and self._same_topology(prepared)) or prepared.emit(source=True)
                 record["document"] = None  # uploads have no path
                 self.store.put(key, _dumps({**record, "cached": True}))
-                self.store.put("top:" + prepared.topology_hash, prepared.hash.encode())
+                if self.topology_sharing:
+                    self.store.put("top:" + prepared.topology_hash, prepared.hash.encode())
                 body, cached = _dumps({**record, "cached": False}), False
             else:
                 body, cached = stored, True

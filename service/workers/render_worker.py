@@ -18,11 +18,16 @@ class RenderHandler:
         settings = get_settings()
         roots = settings.texture_roots
         # the pool's processes share the machine's cores instead of each taking all of them
-        self.renderer = Renderer(texture_roots=roots, search_paths=roots,
+        self.renderer = Renderer(texture_roots=roots, search_paths=roots, max_programs=programs_kept(settings),
                                  lp_threads=lp_threads_for(settings.render_workers))
 
     def __call__(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
         return render(self.renderer, message)
+
+
+def programs_kept(settings) -> int:
+    """Compiled programs a render worker keeps for reuse: none without topology sharing."""
+    return Renderer.MAX_PROGRAMS if settings.topology_sharing else 0
 
 
 PACKAGE = "upload.usdz"  # a usdz upload's name in its job's folder

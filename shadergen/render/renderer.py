@@ -77,10 +77,14 @@ class Renderer:
     Unless `confined` is False (the command line, reading a user's own files), nothing outside the
     document's folder, the search paths and the roots is ever read.
     `lp_threads` caps llvmpipe's threads (LP_NUM_THREADS) when this renderer creates the
-    process's context, so that several worker processes share the cores."""
+    process's context, so that several worker processes share the cores. `max_programs`: compiled
+    programs kept for records of the same source (one per topology in complete and reduced); 0
+    compiles every render's program afresh."""
+
+    MAX_PROGRAMS = 64
 
     def __init__(self, texture_roots=(), search_paths=(), *, confined: bool = True, lp_threads: int | None = None,
-                 max_programs: int = 64, texture_budget_bytes: int = 512 << 20):
+                 max_programs: int = MAX_PROGRAMS, texture_budget_bytes: int = 512 << 20):
         self.texture_roots = [os.path.abspath(p) for p in texture_roots]
         self.search_paths = [os.path.abspath(p) for p in search_paths]
         self.confined = confined
@@ -158,14 +162,14 @@ class Renderer:
 
     def _program(self, ctx, vertex: str, pixel: str, element) -> tuple[Program, float, bool]:
         key = source_digest(vertex, pixel)
-        program = self._programs.get(key)
+        program = self._programs.get(key) if self.max_programs else None
         compile_link_ms, reused = 0.0, program is not None
         if program is None:
+            while len(self._programs) >= max(1, self.max_programs):  # room first: the new one is drawn next
+                self._programs.popitem(last=False)[1].release()
             program = Program(ctx, vertex, pixel, element)
             compile_link_ms = program.compile_link_ms
             self._programs[key] = program
-            while len(self._programs) > self.max_programs:
-                self._programs.popitem(last=False)[1].release()
         self.program_counts["reused" if reused else "compiled"] += 1
         self._programs.move_to_end(key)
         return program, compile_link_ms, reused

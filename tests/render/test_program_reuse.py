@@ -1,6 +1,7 @@
 """One compiled program per topology: a record that differs only in values reuses the program of
 the first, and the new values are bound from the listing (the pixels follow the value)."""
 from shadergen.api import Generator
+from shadergen.render import Renderer
 
 GEN = Generator()
 
@@ -33,3 +34,13 @@ def test_a_value_change_reuses_the_program_and_binds_the_new_value(renderer):
     assert mean_red(second) > 2 * mean_red(first)
     again = renderer.render(dark, size=32)  # the reused program forgets the bright value
     assert again.program_reused and abs(mean_red(again) - mean_red(first)) < 1e-4
+
+
+def test_without_program_reuse_every_render_compiles_and_draws_the_same():
+    """max_programs=0 (the service's SHADERGEN_TOPOLOGY_SHARING=false): the baseline of bench/editing.py."""
+    record = GEN.prepare(red_material(0.5)).emit()
+    compiling = Renderer(max_programs=0)
+    first, second = (compiling.render(record, size=32) for _ in range(2))
+    assert not first.program_reused and not second.program_reused
+    assert compiling.program_counts == {"compiled": 2, "reused": 0}
+    assert abs(mean_red(second) - mean_red(first)) < 1e-6
