@@ -111,10 +111,8 @@ class Node:
         inp = self.inputs.get(name)
         return default if inp is None or inp.value is None else inp.value
 
-    def upstream(self):
-        for inp in self.inputs.values():
-            if inp.connection is not None:
-                yield inp.connection.node
+    def upstream(self) -> list["Node"]:
+        return [inp.connection.node for inp in self.inputs.values() if inp.connection is not None]
 
 
 @dataclass(eq=False)
@@ -348,10 +346,10 @@ class GraphBuilder:
 
     def convert_units(self, inp: Input) -> None:
         unit, unittype = inp.meta.get("unit"), inp.meta.get("unittype")
-        decl_unit = next((d.get("unit") for d in self.scope.nodedef_inputs(inp.node.nodedef) if d.name == inp.name),
-                         None)  # the unit the implementation expects
         if not unit or not unittype or inp.type not in ("float", "vector2", "vector3", "vector4"):
             return
+        decl_unit = next((d.get("unit") for d in self.scope.nodedef_inputs(inp.node.nodedef) if d.name == inp.name),
+                         None)  # the unit the implementation expects
         target = TARGET_UNITS.get(unittype) or decl_unit
         src_scale, dst_scale = self.scope.unit_scale(unittype, unit), self.scope.unit_scale(unittype, target or "")
         if src_scale is None or dst_scale is None:

@@ -5,6 +5,7 @@ written and offers a `block()` context manager, so an exception can never leave 
 """
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 from .types import value_to_json
 
@@ -62,8 +63,8 @@ class Writer:
         self.lines.append(self.unit * self.depth + text if text else "")
 
     def extend(self, text: str) -> None:
-        for ln in text.rstrip("\n").split("\n"):
-            self.lines.append(self.unit * self.depth + ln if ln.strip() else "")
+        indent = self.unit * self.depth
+        self.lines.extend(indent + ln if ln else "" for ln in text_lines(text))
 
     @contextmanager
     def scope(self, comment: str | None = None):
@@ -87,6 +88,13 @@ class Writer:
 
     def text(self) -> str:
         return "\n".join(self.lines) + "\n"
+
+
+@lru_cache(maxsize=1024)
+def text_lines(text: str) -> tuple[str, ...]:
+    """A text's lines, blank ones empty: library files are written into every shader that calls
+    them, and the same lines (the same str objects) keep later steps' hashing cheap."""
+    return tuple(ln if ln.strip() else "" for ln in text.rstrip("\n").split("\n"))
 
 
 BLOCKS = {

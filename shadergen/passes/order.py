@@ -9,9 +9,9 @@ def topological_order(outputs: dict[str, Output]) -> list[Node]:
     order: list[Node] = []
     state: dict[int, int] = {}  # 1 visiting, 2 done
     for out in outputs.values():
-        stack = [(out.node, iter(list(out.node.upstream())))]
         if state.get(id(out.node)) == 2:
             continue
+        stack = [(out.node, iter(out.node.upstream()))]
         state[id(out.node)] = 1
         while stack:
             node, it = stack[-1]
@@ -27,7 +27,7 @@ def topological_order(outputs: dict[str, Output]) -> list[Node]:
                 raise ShaderGenError("cycle", "cycle in the graph: " + " -> ".join(names), nxt.path)
             if s is None:
                 state[id(nxt)] = 1
-                stack.append((nxt, iter(list(nxt.upstream()))))
+                stack.append((nxt, iter(nxt.upstream())))
     return order
 
 

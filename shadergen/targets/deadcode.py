@@ -49,26 +49,38 @@ def _name(first_line: str) -> str | None:
     return None
 
 
-def reachable(items: tuple[tuple[str | None, tuple[str, ...]], ...], roots: str) -> tuple[list[int], set[str]]:
-    """The indices of the items the roots use, transitively, in their original order, and every
-    identifier the roots and those items use."""
-    by_name: dict[str, list[int]] = {}
-    for k, (name, _) in enumerate(items):
-        if name is not None:
-            by_name.setdefault(name, []).append(k)
-    keep = {k for k, (name, _) in enumerate(items) if name is None}
-    todo = set(IDENTIFIER.findall(roots)) | {w for k in keep for w in _words(items[k][1])}
-    seen: set[str] = set()
-    while todo:
-        word = todo.pop()
-        if word in seen:
-            continue
-        seen.add(word)
-        for k in by_name.get(word, ()):
-            if k not in keep:
-                keep.add(k)
-                todo.update(_words(items[k][1]))
-    return sorted(keep), seen
+class Section:
+    """A function section split into items, with which items each item uses: computed once per
+    section (shaders of one topology have the same one, request after request)."""
+
+    def __init__(self, function_lines: tuple[str, ...]):
+        split = split_items(list(function_lines))
+        self.items = [tuple(lines) for _, lines in split]
+        names = [name for name, _ in split]
+        self.words = [_words(lines) for lines in self.items]
+        self.by_name: dict[str, list[int]] = {}
+        for k, name in enumerate(names):
+            if name is not None:
+                self.by_name.setdefault(name, []).append(k)
+        self.always = [k for k, name in enumerate(names) if name is None]  # kept: their names cannot be read
+        self.uses = [self.defining(words) for words in self.words]
+
+    def defining(self, words) -> set[int]:
+        return {k for w in words for k in self.by_name.get(w, ())}
+
+    def reachable(self, roots: str) -> tuple[list[int], set[str]]:
+        """The indices of the items the roots use, transitively, in their original order, and every
+        identifier the roots and those items use."""
+        root_words = set(IDENTIFIER.findall(roots))
+        keep = set(self.always) | self.defining(root_words)
+        todo = list(keep)
+        while todo:
+            for k in self.uses[todo.pop()]:
+                if k not in keep:
+                    keep.add(k)
+                    todo.append(k)
+        used = root_words.union(*(self.words[k] for k in keep))
+        return sorted(keep), used
 
 
 @lru_cache(maxsize=8192)
@@ -78,19 +90,18 @@ def _words(item: tuple[str, ...]) -> frozenset[str]:
 
 
 @lru_cache(maxsize=64)
-def _split(function_lines: tuple[str, ...]) -> tuple[tuple[str | None, tuple[str, ...]], ...]:
-    """split_items, memoised: shaders of one topology have the same function section, request after request."""
-    return tuple((name, tuple(lines)) for name, lines in split_items(list(function_lines)))
+def _section(function_lines: tuple[str, ...]) -> Section:
+    return Section(function_lines)
 
 
 def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], set[str]]:
     """The function section's lines, reduced to what `roots` (main and declarations) use, and the
     identifiers used by the roots and those lines."""
-    items = _split(tuple(function_lines))
-    keep, used = reachable(items, roots)
+    section = _section(tuple(function_lines))
+    keep, used = section.reachable(roots)
     out: list[str] = []
     for k in keep:
-        lines = items[k][1]
+        lines = section.items[k]
         out.extend(lines)
         if lines and lines[-1].strip():
             out.append("")
