@@ -1,12 +1,18 @@
 #!/usr/bin/env python3
-"""Generation time, ours against the MaterialX reference generator, measured in one run.
+"""Generation time, ours against the MaterialX reference generator, measured in one run, interleaved.
 
-Warm: per element, in-process (ours: Generator.prepare + emit with the libraries loaded; the
-reference: a fresh GenContext per element, libraries loaded, via the oracle venv).
-Cold: a whole process from start to the shader written, for one document.
+Warm: per element, in a long-lived process of each (ours: Generator.prepare + emit, libraries
+loaded and earlier requests served; the reference: a fresh GenContext per element, libraries
+loaded, via the oracle venv). The two processes are sent the same documents one at a time,
+alternating which goes first, --repeat rounds over the whole set; an element's time is its best
+round (the first round warms both). Documents the reference cannot load (an include the corpus
+does not ship) are skipped for both, and named.
+Cold: a whole process from start to the shader written, for one document, ours and the
+reference alternating, best of three.
 Prints a table of medians and ratios (ours / reference).
 
-  .venv/bin/python bench/generate.py ../shared/corpus --filter TestSuite/stdlib [--cold-docs 10]
+  .venv/bin/python bench/generate.py ../shared/corpus --filter TestSuite/stdlib [--cold-docs 10] [--repeat 3]
+  .venv/bin/python bench/generate.py ../shared/corpus --filter Examples
 """
 import argparse
 import json
@@ -16,25 +22,26 @@ import subprocess
 import sys
 import tempfile
 import time
-from pathlib import Path
 
 ORACLE_PY = os.path.join(os.environ.get("ORACLE_VENV", os.path.expanduser("~/.cache/mx-oracle/venv")), "bin", "python")
-HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# Each warm worker reads a document path per line and answers one JSON line:
+# {"times": [[element name path, ms], ...]} or {"skipped": why}.
 REF_WARM = r"""
-import json, sys, time, os
+import json, sys, time
 import MaterialX as mx, MaterialX.PyMaterialXGenShader as gs, MaterialX.PyMaterialXGenGlsl as gg
 lib = mx.createDocument(); search = mx.getDefaultDataSearchPath()
 mx.loadLibraries(mx.getDefaultDataLibraryFolders(), search, lib)
 gen = gg.GlslShaderGenerator.create()
-out, skipped = [], []
-for path in sys.argv[1:]:
+for line in sys.stdin:
     doc = mx.createDocument()
     try:
-        mx.readFromXmlFile(doc, path)
+        mx.readFromXmlFile(doc, line.strip())
     except Exception as exc:  # e.g. an include the corpus does not ship
-        skipped.append([path, str(exc).splitlines()[0]])
+        print(json.dumps({"skipped": str(exc).splitlines()[0]}), flush=True)
         continue
     doc.setDataLibrary(lib)
+    times = []
     for e in gs.findRenderableElements(doc):
         ctx = gs.GenContext(gen); ctx.registerSourceCodeSearchPath(search)
         t0 = time.perf_counter()
@@ -42,8 +49,28 @@ for path in sys.argv[1:]:
             gen.generate(e.getName(), e, ctx)
         except Exception:
             continue
-        out.append([path, e.getNamePath(), (time.perf_counter() - t0) * 1e3])
-print(json.dumps({"times": out, "skipped": skipped}))
+        times.append([e.getNamePath(), (time.perf_counter() - t0) * 1e3])
+    print(json.dumps({"times": times}), flush=True)
+"""
+OURS_WARM = r"""
+import json, sys, time
+from pathlib import Path
+from shadergen.api import Generator
+from shadergen.errors import ShaderGenError
+gen = Generator()
+for line in sys.stdin:
+    doc = gen.load(Path(line.strip()))  # parsed once, untimed, as the reference's document is
+    times = []
+    for p in gen.prepare_all(doc):
+        if isinstance(p, Exception):
+            continue
+        t0 = time.perf_counter()
+        try:
+            gen.prepare(doc, element=p.element).emit()
+        except ShaderGenError:
+            continue
+        times.append([p.element, (time.perf_counter() - t0) * 1e3])
+    print(json.dumps({"times": times}), flush=True)
 """
 REF_COLD = r"""
 import sys, os
@@ -59,34 +86,72 @@ open(os.path.join(sys.argv[2], "ref.frag"), "w").write(sh.getSourceCode("pixel")
 """
 
 
-def ours_warm(docs):
-    sys.path.insert(0, os.path.dirname(HERE))
-    from shadergen.api import Generator
-    from shadergen.errors import ShaderGenError
+class WarmWorker:
+    """A long-lived generator process answering one document at a time."""
 
-    gen = Generator()
+    def __init__(self, python: str, code: str):
+        self.proc = subprocess.Popen([python, "-c", code], cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     text=True)
+
+    def times(self, path: str) -> dict:
+        self.proc.stdin.write(path + "\n")
+        self.proc.stdin.flush()
+        line = self.proc.stdout.readline()
+        if not line:
+            raise SystemExit(f"a warm worker ({self.proc.args[0]}) exited on {path}")
+        return json.loads(line)
+
+    def close(self) -> None:
+        self.proc.stdin.close()
+        self.proc.wait(60)
+
+
+def warm(docs: list[str], repeat: int) -> tuple[list[tuple[float, float]], dict[str, str]]:
+    """(ours ms, reference ms) per element both generated, each its best round; and the documents
+    the reference could not load, with why."""
+    workers = {"ours": WarmWorker(sys.executable, OURS_WARM), "reference": WarmWorker(ORACLE_PY, REF_WARM)}
+    best: dict[str, dict[tuple[str, str], float]] = {name: {} for name in workers}
+    skipped: dict[str, str] = {}
+    try:
+        for round_ in range(repeat):
+            for i, path in enumerate(d for d in docs if d not in skipped):
+                order = list(workers) if (i + round_) % 2 == 0 else list(reversed(workers))
+                for name in order:
+                    if path in skipped:
+                        continue
+                    answer = workers[name].times(path)
+                    if "skipped" in answer:
+                        skipped[path] = answer["skipped"]
+                        continue
+                    for element, ms in answer["times"]:
+                        key = (path, element)
+                        best[name][key] = min(ms, best[name].get(key, ms))
+    finally:
+        for worker in workers.values():
+            worker.close()
+    ours, reference = best["ours"], best["reference"]
+    return [(ms, reference[key]) for key, ms in ours.items() if key in reference and key[0] not in skipped], skipped
+
+
+def cold(docs: list[str], count: int) -> list[tuple[float, float]]:
+    """(ours ms, reference ms) per document: a whole process each, alternating, best of three."""
+    # Cold means a fresh process of the installed product: bytecode written once, as an install does
+    # (this machine sets PYTHONDONTWRITEBYTECODE, which would otherwise recompile every module per run).
+    subprocess.run([sys.executable, "-m", "compileall", "-q", os.path.join(ROOT, "shadergen")],
+                   capture_output=True, check=False)
     out = []
-    for path in docs:
-        doc = gen.load(Path(path))  # parsed once, as the reference's document is
-        for p in gen.prepare_all(doc):
-            if isinstance(p, Exception):
-                continue
-            t0 = time.perf_counter()
-            try:
-                gen.prepare(doc, element=p.element).emit()
-            except ShaderGenError:
-                continue
-            out.append([path, p.element, (time.perf_counter() - t0) * 1e3])
+    for path in docs[:: max(1, len(docs) // count)][:count]:
+        with tempfile.TemporaryDirectory() as d:
+            commands = ([sys.executable, "-m", "shadergen.cli", "generate", path, "--out", d],
+                        [ORACLE_PY, "-c", REF_COLD, path, d])
+            best = [float("inf"), float("inf")]
+            for round_ in range(3):
+                for k in ((0, 1) if round_ % 2 == 0 else (1, 0)):
+                    t0 = time.perf_counter()
+                    subprocess.run(commands[k], cwd=ROOT, capture_output=True, check=False)
+                    best[k] = min(best[k], (time.perf_counter() - t0) * 1e3)
+        out.append((best[0], best[1]))
     return out
-
-
-def cold(cmd, repeat=3):
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        subprocess.run(cmd, capture_output=True, check=False)
-        times.append((time.perf_counter() - t0) * 1e3)
-    return min(times)
 
 
 def main():
@@ -94,32 +159,17 @@ def main():
     ap.add_argument("corpus")
     ap.add_argument("--filter", default="TestSuite/stdlib")
     ap.add_argument("--cold-docs", type=int, default=10)
+    ap.add_argument("--repeat", type=int, default=3, help="warm rounds over the documents")
     a = ap.parse_args()
-    docs = sorted(os.path.join(d, f) for d, _, fs in os.walk(a.corpus) for f in fs
+    docs = sorted(os.path.abspath(os.path.join(d, f)) for d, _, fs in os.walk(a.corpus) for f in fs
                   if f.endswith(".mtlx") and a.filter in os.path.join(d, f))
-    reference = json.loads(subprocess.run([ORACLE_PY, "-c", REF_WARM, *docs], capture_output=True, text=True).stdout)
-    ref, skipped = reference["times"], {path for path, _ in reference["skipped"]}
-    for path, why in reference["skipped"]:
+    pairs, skipped = warm(docs, a.repeat)
+    for path, why in skipped.items():
         print(f"skipped (the reference cannot load it): {os.path.relpath(path, a.corpus)}: {why}")
-    docs = [d for d in docs if d not in skipped]
-    ours = ours_warm(docs)
-    ref_by = {(p, e): ms for p, e, ms in ref}
-    pairs = [(ms, ref_by[(p, e)]) for p, e, ms in ours if (p, e) in ref_by]
-    warm_ratio = statistics.median(o / r for o, r in pairs)
-    # Cold means a fresh process of the installed product: bytecode written once, as an install does
-    # (this machine sets PYTHONDONTWRITEBYTECODE, which would otherwise recompile every module per run).
-    subprocess.run([sys.executable, "-m", "compileall", "-q", os.path.join(os.path.dirname(HERE), "shadergen")],
-                   capture_output=True, check=False)
-    colds = []
-    shadergen = [sys.executable, "-m", "shadergen.cli", "generate"]
-    for path in docs[:: max(1, len(docs) // a.cold_docs)][: a.cold_docs]:
-        with tempfile.TemporaryDirectory() as d:
-            o = cold(shadergen + [path, "--out", d])
-            r = cold([ORACLE_PY, "-c", REF_COLD, path, d])
-        colds.append((o, r))
+    colds = cold([d for d in docs if d not in skipped], a.cold_docs)
     print(f"{'measure':<34}{'ours ms':>10}{'reference ms':>14}{'ratio':>8}")
     print(f"{'warm, median per element (n=%d)' % len(pairs):<34}{statistics.median(o for o, _ in pairs):>10.3f}"
-          f"{statistics.median(r for _, r in pairs):>14.3f}{warm_ratio:>8.2f}")
+          f"{statistics.median(r for _, r in pairs):>14.3f}{statistics.median(o / r for o, r in pairs):>8.2f}")
     co, cr = statistics.median(o for o, _ in colds), statistics.median(r for _, r in colds)
     print(f"{'cold process, median (n=%d docs)' % len(colds):<34}{co:>10.1f}{cr:>14.1f}"
           f"{statistics.median(o / r for o, r in colds):>8.2f}")
