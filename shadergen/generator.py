@@ -11,6 +11,7 @@ import re
 from .errors import ShaderGenError
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
+from .nodes.closure_weights import emit_lobe_weights
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
 
@@ -55,6 +56,7 @@ class EmitContext:
         self.vertex_main: dict[str, str] = {}  # vertex data member -> the statement assigning it
         self.function_names: dict[int, str] = {}  # id(Function) -> its name in the shader
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
+        self.lobe_weights: dict[int, str] = {}  # id(lobe's weight Input) -> its weight at this point
 
     @property
     def pixel(self) -> Stage:
@@ -66,6 +68,8 @@ class EmitContext:
 
     # -- values ----------------------------------------------------------------------------
     def value(self, inp: Input) -> str:
+        if id(inp) in self.lobe_weights:
+            return self.lobe_weights[id(inp)]
         if inp.connection is not None:
             return self.vars[id(inp.connection)]
         if inp.socket is not None:
@@ -182,6 +186,11 @@ class EmitContext:
                     self.emit_branches(graph, node)
                 else:
                     node.impl.emit_function_call(node, self)
+
+    def emit_lobe_weights(self, inp: Input) -> None:
+        """Once per shading point, before its contexts: lobes that a mix above them may leave out
+        get their weight at this point (nodes/closure_weights.py)."""
+        emit_lobe_weights(self, inp)
 
     def emit_closures(self, inp: Input, context: str) -> str:
         """Evaluate the closure nodes upstream of `inp` in one shading context (seed's

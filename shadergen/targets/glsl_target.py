@@ -57,6 +57,9 @@ class GlslTarget:
     def compare(self, kind: str, a: str, b: str) -> str:
         return f"{a} {CONDITION_OPERATORS[kind]} {b}"
 
+    def select(self, condition: str, if_true: str, if_false: str) -> str:
+        return f"{condition if condition.isidentifier() else f'({condition})'} ? {if_true} : {if_false}"
+
     def below(self, value: str, bound: int, type_name: str) -> str:
         return f"{value} < {bound if type_name == 'integer' else f'{bound}.0'}"
 
@@ -131,6 +134,8 @@ class GlslTarget:
             w.line(self.declare("vector3", "L", zero))
             w.line(self.declare("float", "occlusion", "1.0"))
             w.line(self.declare("float", "surfaceOpacity", opacity))
+            for inp in {id(inp): inp for context, inp in contexts if context != "emission"}.values():
+                ctx.emit_lobe_weights(inp)
             for context, inp in contexts:
                 if context == "reflection":
                     with w.block(self.count_loop("activeLightIndex", "numActiveLightSources()")):

@@ -123,6 +123,9 @@ class WgslTarget(GlslTarget):
         except Untranslatable as e:
             raise Untranslatable(e.message.removeprefix("no WGSL translation: "), path) from None
 
+    def select(self, condition: str, if_true: str, if_false: str) -> str:
+        return f"select({if_false}, {if_true}, {condition})"
+
     def count_loop(self, index: str, bound: str) -> str:
         return f"for (var {index}: i32 = 0; {index} < {bound}; {index}++)"
 

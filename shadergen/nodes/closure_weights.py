@@ -1,0 +1,95 @@
+"""Which closures reach the surface at a shading point, decided once before its contexts.
+
+A closure under a `mix` reaches the surface only while the mix gives it a share: `fg` where the mix
+weight is not 0, `bg` where it is not 1. Every other closure operator passes what reaches it on to
+all its closure inputs: `layer` sees the base through the top, `add` sums both, and `multiply`
+needs its input even at weight 0, because what that input lets through to a base below (its
+throughput) is not scaled. The conditions are carried down the closure graph (a closure read
+twice reaches the surface when either reader gives it a share) and written once per shading
+point; a lobe (a closure with a `weight` input) that does not reach the surface is given weight 0
+there, so that its own early exit skips its work in every context: one uniform branch per lobe,
+inside the lobe, not one per call site.
+"""
+from ..graph import Input, Node
+from ..passes.closures import closure_inputs, is_closure_node
+from ..passes.fold import constant
+
+SHARE_GONE = {"mix": {"fg": 0.0, "bg": 1.0}}  # operator -> input -> the weight at which it gets nothing
+WEIGHT_INPUT = {"mix": "mix"}
+
+
+def closure_nodes(inp: Input) -> list[Node]:
+    """The closure nodes `inp` reads, readers before what they read."""
+    order: list[Node] = []
+    seen: set[int] = set()
+    stack = [(inp.connection.node, False)] if inp.connection is not None else []
+    while stack:
+        node, done = stack.pop()
+        if done:
+            order.append(node)
+            continue
+        if id(node) in seen or not is_closure_node(node):
+            continue
+        seen.add(id(node))
+        stack.append((node, True))
+        stack.extend((i.connection.node, False) for i in closure_inputs(node) if i.connection is not None)
+    return order[::-1]
+
+
+def emit_lobe_weights(ctx, inp: Input) -> None:
+    """Declares each lobe's weight at this point where a mix above it may take it away, and makes
+    the lobe's calls read it (ctx.lobe_weights)."""
+    nodes = closure_nodes(inp)
+    if not nodes:
+        return
+    reached: dict[int, list[str | None]] = {id(nodes[0]): [None]}  # None: always reached
+    lines: list[str] = []
+    for node in nodes:
+        condition = _any(reached.get(id(node), ["false"]))
+        inputs = closure_inputs(node)
+        if inputs:
+            if condition is not None and not condition.isidentifier():
+                condition = _declare(ctx, lines, "boolean", f"{node.name}_reached", condition)
+            for i in inputs:
+                if i.connection is not None:
+                    share = _share_condition(ctx, node, i)
+                    reached.setdefault(id(i.connection.node), []).append(_all(condition, share))
+        elif condition is not None and "weight" in node.inputs and node.inputs["weight"].type == "float":
+            weight = node.inputs["weight"]
+            ctx.lobe_weights[id(weight)] = _declare(ctx, lines, "float", f"{node.name}_active_weight",
+                                                    ctx.target.select(condition, ctx.value(weight), "0.0"))
+    if lines:
+        ctx.body.line("// lobes under a mix: weight 0 where the mix leaves them out")
+        for line in lines:
+            ctx.body.line(line)
+
+
+def _share_condition(ctx, node: Node, inp: Input) -> str | None:
+    """When `node` passes anything to its closure input `inp` (None: always)."""
+    gone = SHARE_GONE.get(node.category, {}).get(inp.name)
+    if gone is None:
+        return None
+    weight = node.inputs[WEIGHT_INPUT[node.category]]
+    known, value = constant(node, weight.name)
+    if known:
+        return None if value != gone else "false"
+    return f"{ctx.value(weight)} != {ctx.syntax.literal('float', gone)}"
+
+
+def _declare(ctx, lines: list[str], type_name: str, wanted: str, expression: str) -> str:
+    name = ctx.namer(wanted)
+    lines.append(ctx.target.declare(type_name, name, expression))
+    return name
+
+
+def _all(a: str | None, b: str | None) -> str | None:
+    if a is None or b is None:
+        return b if a is None else a
+    return f"{a} && {b}"
+
+
+def _any(conditions: list[str | None]) -> str | None:
+    if None in conditions:
+        return None
+    unique = list(dict.fromkeys(conditions))
+    return unique[0] if len(unique) == 1 else " || ".join(f"({c})" if "&&" in c else c for c in unique)
