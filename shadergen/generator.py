@@ -11,7 +11,7 @@ import re
 from .errors import ShaderGenError
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
-from .nodes.closure_weights import emit_lobe_weights
+from .nodes.lobes import emit_lobes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
 
@@ -57,6 +57,7 @@ class EmitContext:
         self.function_names: dict[int, str] = {}  # id(Function) -> its name in the shader
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
         self.lobe_weights: dict[int, str] = {}  # id(lobe's weight Input) -> its weight at this point
+        self.prepared_lobes: dict[int, str] = {}  # id(lobe Node) -> its prepared state, in this surface
 
     @property
     def pixel(self) -> Stage:
@@ -110,6 +111,8 @@ class EmitContext:
     def call(self, function: str, node: Node) -> None:
         outs = [self.declare(o) for o in node.outputs.values()]
         args = [self.value(i) for i in node.inputs.values()] + outs
+        if id(node) in self.prepared_lobes:  # its inputs were read once, by its preparation
+            args = [self.prepared_lobes[id(node)]] + outs
         if is_closure_node(node):
             args = self.target.closure_arguments() + args
         self.body.line(self.target.call(function, args))
@@ -187,10 +190,10 @@ class EmitContext:
                 else:
                     node.impl.emit_function_call(node, self)
 
-    def emit_lobe_weights(self, inp: Input) -> None:
-        """Once per shading point, before its contexts: lobes that a mix above them may leave out
-        get their weight at this point (nodes/closure_weights.py)."""
-        emit_lobe_weights(self, inp)
+    def emit_lobes(self, inp: Input, point_arguments) -> None:
+        """Once per shading point, before its contexts: the lobes' weights at this point and their
+        prepared states (nodes/lobes.py)."""
+        emit_lobes(self, inp, point_arguments)
 
     def emit_closures(self, inp: Input, context: str) -> str:
         """Evaluate the closure nodes upstream of `inp` in one shading context (seed's

@@ -3,6 +3,7 @@
 A Syntax knows nothing of graphs; the generator asks it how to spell things.
 """
 import math
+import re
 
 from ..types import TYPES, default_value
 
@@ -156,6 +157,15 @@ class ClosureConvention:
 
     def handles_transmission(self, source: str) -> bool:
         return self.transmission_context in source
+
+    def prepared_state(self, source: str, function: str) -> str | None:
+        """The type of the state `<function>_prepare` writes (its last parameter, `out`), where the
+        source prepares the lobe once per shading point; None where it does not."""
+        found = re.search(rf"\bvoid\s+{re.escape(function)}_prepare\s*\(([^)]*)\)", source)
+        if found is None:
+            return None
+        last = found.group(1).split(",")[-1].split()
+        return last[1] if len(last) == 3 and last[0] == "out" else None
 
     def empty_at_zero_weight(self, source: str, function: str) -> bool:
         """A lobe that returns before it writes its throughput leaves the closure's zero (no

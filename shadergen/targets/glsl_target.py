@@ -134,8 +134,18 @@ class GlslTarget:
             w.line(self.declare("vector3", "L", zero))
             w.line(self.declare("float", "occlusion", "1.0"))
             w.line(self.declare("float", "surfaceOpacity", opacity))
+            point: list[str] = []
+
+            def point_arguments() -> list[str]:  # the closure data lobes are prepared with
+                if not point:
+                    w.line("// lobes prepared once per shading point, before any light")
+                    w.line(self.declare("ClosureData", "pointData",
+                                        "makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion)"))
+                    point.append("pointData")
+                return point
+
             for inp in {id(inp): inp for context, inp in contexts if context != "emission"}.values():
-                ctx.emit_lobe_weights(inp)
+                ctx.emit_lobes(inp, point_arguments)
             for context, inp in contexts:
                 if context == "reflection":
                     with w.block(self.count_loop("activeLightIndex", "numActiveLightSources()")):

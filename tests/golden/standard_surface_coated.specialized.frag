@@ -154,6 +154,13 @@ void mx_rotate3d_vector3(vec3 v, float degrees, vec3 axis, out vec3 result)
     result = v * c + cross(v, k) * s + k * (dot(k, v) * (1.0 - c));
 }
 
+
+// Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
+// function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
+// seen through the surface along the view direction), INDIRECT (the environment, sampled by the
+// closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
+#define CLOSURE_TYPE_DEFAULT 0
+
 #define CLOSURE_TYPE_REFLECTION 1
 
 #define CLOSURE_TYPE_TRANSMISSION 2
@@ -907,6 +914,37 @@ vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
 
 // The GGX reflection lobe shared by the specular closures (dielectric, conductor, generalized
 // Schlick, and the environment term of hair).
+//
+// A specular closure is prepared once per shading point, before any light (its `_prepare`
+// function, which the generator calls before the shading contexts): normal, frame, Fresnel set-up,
+// directional albedo and the environment it reflects do not depend on the light. The closure
+// function then answers each context from the prepared SpecularLobe:
+//   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
+//                 BRDF's), F and the multiple-scattering compensation taken at the half vector.
+//   INDIRECT      the environment, sampled once by filtered importance sampling, compensated there.
+//   TRANSMISSION  no light of its own: what is seen through a layer loses exactly the albedo its
+//                 environment term has (the same samples).
+
+
+struct SpecularLobe
+{
+    float weight;            // 0 where the lobe scatters nothing
+    vec3 tint;
+    vec3 surfaceN;           // the usable shading normal, on either side
+    vec3 N;                  // the normal facing V
+    vec3 V;                  // towards the viewer, mirrored about the normal for retro-reflection
+    vec3 X;                  // tangent
+    bool retroreflective;
+    vec2 alpha;              // clamped roughness pair
+    FresnelData fd;
+    int scatterMode;         // 0 R, 1 T, 2 RT
+    int distribution;
+    mat3 frame;              // (X, Y, N) about N
+    vec3 Vt;                 // V in that frame
+    vec3 albedo;             // what the lobe reflects of light arriving along V (the caller's table value, compensated)
+    vec3 environment;        // the environment the lobe reflects towards V
+    vec3 environmentAlbedo;  // the fraction of the environment it reflects, from the same samples
+};
 
 
 // The fraction of light arriving with `cosine` that the lobe reflects, multiple scattering
@@ -918,40 +956,69 @@ vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleSca
 }
 
 
-// The lobe with Fresnel `fd` in the current closure context, multiple scattering included.
-// `albedo` returns the fraction of light the lobe reflects at this view, which a layer below does
-// not receive: in INDIRECT and TRANSMISSION the sampled value that matches the environment term,
-// under lights `singleScatteringAlbedo` (the caller's table value) compensated at the view angle.
-//   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
-//                 BRDF's), F and the compensation taken at the half vector.
-//   INDIRECT      the environment by filtered importance sampling, compensated there.
-//   TRANSMISSION  no light of its own; the albedo as in INDIRECT.
-// N must face V; alpha is the clamped roughness pair.
-vec3 mx_specular_lobe(ClosureData closureData, vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd,
-                      vec3 singleScatteringAlbedo, out vec3 albedo)
+// What every specular closure prepares alike; the caller sets `albedo` from its own table. The
+// environment is fetched unless the lobe only transmits (its albedo is still needed there).
+SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec3 tint, vec2 roughness,
+                                      bool retroreflective, FresnelData fd, vec3 N, vec3 X, int distribution,
+                                      int scatterMode)
 {
-    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-        return mx_environment_radiance(N, V, X, alpha, 0, fd, albedo);
-    if (closureData.closureType != CLOSURE_TYPE_REFLECTION)
-    {
-        // What is seen through a layer must lose exactly what its environment term reflects.
-        mx_environment_samples(N, V, X, alpha, fd, false, albedo);
-        return vec3(0.0);
-    }
+    SpecularLobe lobe;
+    lobe.weight = mx_weight_is_zero(weight) ? 0.0 : weight;
+    lobe.tint = max(tint, 0.0);
+    lobe.surfaceN = mx_usable_normal(N, closureData.N);
+    lobe.V = retroreflective ? reflect(-closureData.V, lobe.surfaceN) : closureData.V;
+    lobe.N = mx_facing_normal(lobe.surfaceN, lobe.V);
+    lobe.X = X;
+    lobe.retroreflective = retroreflective;
+    lobe.alpha = mx_ggx_clamp_alpha(roughness);
+    lobe.fd = fd;
+    lobe.scatterMode = scatterMode;
+    lobe.distribution = distribution;
+    lobe.frame = mx_tangent_frame(lobe.N, X);
+    lobe.Vt = lobe.V * lobe.frame;
+    lobe.Vt.z = max(lobe.Vt.z, MX_EPS);
+    lobe.albedo = vec3(0.0);
+    lobe.environment = vec3(0.0);
+    lobe.environmentAlbedo = vec3(0.0);
+    if (lobe.weight > 0.0)
+        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
+                                                  lobe.environmentAlbedo);
+    return lobe;
+}
 
-    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    albedo = mx_specular_albedo(NdotV, alpha, fd, singleScatteringAlbedo);
 
-    mat3 frame = mx_tangent_frame(N, X);
-    vec3 Vt = V * frame;
-    vec3 Lt = closureData.L * frame;
-    Vt.z = max(Vt.z, MX_EPS);
+// The lobe towards closureData.L (REFLECTION), multiple scattering included.
+vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
+{
+    vec3 Lt = closureData.L * lobe.frame;
     if (Lt.z <= 0.0)
         return vec3(0.0);
-    vec3 H = normalize(Lt + Vt);
-    vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
-    float DG = mx_ggx_D(H, alpha) * mx_ggx_G2(Vt, Lt, alpha);
-    return F * mx_ggx_energy_compensation(NdotV, mx_ggx_isotropic_alpha(alpha), F) * (DG * closureData.occlusion / (4.0 * Vt.z));
+    vec3 H = normalize(Lt + lobe.Vt);
+    vec3 F = mx_fresnel_eval(clamp(dot(lobe.Vt, H), MX_EPS, 1.0), lobe.fd);
+    float DG = mx_ggx_D(H, lobe.alpha) * mx_ggx_G2(lobe.Vt, Lt, lobe.alpha);
+    float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
+    return F * mx_ggx_energy_compensation(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), F) *
+           (DG * closureData.occlusion / (4.0 * lobe.Vt.z));
+}
+
+
+// What the lobe reflects of the environment as seen through it along the real view direction:
+// the prepared samples, or new ones where retro-reflection prepared them along the mirrored view.
+vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
+{
+    if (!lobe.retroreflective)
+        return lobe.environmentAlbedo;
+    vec3 albedo;
+    mx_environment_samples(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X, lobe.alpha, lobe.fd,
+                           false, albedo);
+    return albedo;
+}
+
+
+// What the layers below receive of light from one direction, given what the lobe reflects of it.
+vec3 mx_specular_throughput(vec3 reflected, float weight)
+{
+    return max(vec3(1.0) - reflected * weight, 0.0);
 }
 
 
@@ -1265,42 +1332,51 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 
 
-void mx_dielectric_bsdf(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness, bool retroreflective,
-                        float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X, int distribution, int scatter_mode,
-                        inout BSDF bsdf)
+// Once per shading point (lib/mx_specular.glsl).
+void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
+                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
+                                int distribution, int scatter_mode, out SpecularLobe lobe)
+{
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(max(ior, 0.0)), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution,
+                                    scatter_mode);
+    float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
+    float tableAlbedo = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.ior.x);
+    lobe.albedo = mx_specular_albedo(NdotV, lobe.alpha, fd, vec3(tableAlbedo));
+}
+
+
+// In each context. What the interface reflects, multiple scattering included, does not reach the
+// layers below.
+void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF bsdf)
 {
     int context = closureData.closureType;
     bool transmission = context == CLOSURE_TYPE_TRANSMISSION;
-    if (mx_weight_is_zero(weight) || (scatter_mode == 1 && !transmission) || !mx_is_scattering_context(context))
+    if (lobe.weight == 0.0 || (lobe.scatterMode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
-    // Retro-reflection mirrors the view about the normal (reflection and environment only).
-    N = mx_usable_normal(N, closureData.N);
-    vec3 V = (retroreflective && !transmission) ? reflect(-closureData.V, N) : closureData.V;
-    N = mx_facing_normal(N, V);
-    vec2 alpha = mx_ggx_clamp_alpha(roughness);
-    float eta = max(ior, 0.0);
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(eta), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
-                                     thinfilm_thickness, thinfilm_ior);
-    // What the interface reflects, multiple scattering included, does not reach the layers below.
-    float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    float isoAlpha = mx_ggx_isotropic_alpha(alpha);
-    float tableAlbedo = mx_dielectric_albedo(NdotV, isoAlpha, eta);
-    vec3 reflected;
-    vec3 lobe = mx_specular_lobe(closureData, N, V, X, alpha, fd, vec3(tableAlbedo), reflected);
-    bsdf.throughput = max(vec3(1.0) - reflected * weight, 0.0);
-    if (context == CLOSURE_TYPE_REFLECTION)  // the light crosses the interface on its way in too
+    if (context == CLOSURE_TYPE_REFLECTION)
     {
-        float NdotL = dot(N, closureData.L);
-        vec3 reflectedL = mx_specular_albedo(NdotL, alpha, fd, vec3(mx_dielectric_albedo(NdotL, isoAlpha, eta)));
-        bsdf.throughput *= max(vec3(1.0) - reflectedL * weight, 0.0);
+        // the light crosses the interface on its way in too
+        float NdotL = dot(lobe.N, closureData.L);
+        float tableAlbedoL = mx_dielectric_albedo(NdotL, mx_ggx_isotropic_alpha(lobe.alpha), lobe.fd.ior.x);
+        vec3 reflectedL = mx_specular_albedo(NdotL, lobe.alpha, lobe.fd, vec3(tableAlbedoL));
+        bsdf.throughput = mx_specular_throughput(lobe.albedo, lobe.weight) * mx_specular_throughput(reflectedL, lobe.weight);
+        bsdf.response = mx_specular_reflection(closureData, lobe) * lobe.tint * lobe.weight;
     }
-
-    vec3 tintRGB = max(tint, 0.0);
-    if (!transmission)
-        bsdf.response = lobe * tintRGB * weight;
-    else if (scatter_mode != 0)
-        bsdf.response = mx_surface_transmission(N, V, X, alpha, distribution, fd, tintRGB) * weight;
+    else if (context == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
+        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
+    }
+    else
+    {
+        bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
+        if (lobe.scatterMode != 0)
+            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
+                                                    lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
+    }
 }
 
 
@@ -1605,6 +1681,12 @@ void main()
         vec3 L = vec3(0.0);
         float occlusion = 1.0;
         float surfaceOpacity = 1.0;
+        // lobes prepared once per shading point, before any light
+        ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
+        SpecularLobe SR_coated_coat_brdf_lobe;
+        mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_lobe);
+        SpecularLobe SR_coated_specular_brdf_lobe;
+        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); ++activeLightIndex)
         {
             lightshader lightShader;
@@ -1612,9 +1694,9 @@ void main()
             L = lightShader.direction;
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
             BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
             BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
@@ -1627,9 +1709,9 @@ void main()
         {
             ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_out);
+            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_out);
+            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
             BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
             BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));

@@ -33,7 +33,9 @@ def test_the_mix_weight_gates_its_lobes_in_the_source():
     main = GEN.prepare(MIXED).emit()["stages"]["pixel"].split("void main()")[1]
     assert "metal_active_weight = (blend_mix != 0.0) ? metal_weight : 0.0;" in main
     assert "matte_active_weight = (blend_mix != 1.0) ? matte_weight : 0.0;" in main
-    assert main.count("mx_conductor_bsdf(closureData, metal_active_weight,") == main.count("mx_conductor_bsdf(")
+    assert main.count("mx_conductor_bsdf_prepare(pointData, metal_active_weight,") == 1
+    assert main.count("mx_oren_nayar_diffuse_bsdf(closureData, matte_active_weight,") == main.count(
+        "mx_oren_nayar_diffuse_bsdf(")
 
 
 def test_a_lobe_left_out_at_run_time_leaves_the_image_of_the_other(renderer):

@@ -1,4 +1,7 @@
-"""Which closures reach the surface at a shading point, decided once before its contexts.
+"""What the lobes of a surface need at a shading point, written once before its contexts: their
+weight there, and the state of the lobes whose source prepares them.
+
+Weights. Which closures reach the surface is decided from the mix weights above them.
 
 A closure under a `mix` reaches the surface only while the mix gives it a share: `fg` where the mix
 weight is not 0, `bg` where it is not 1. Every other closure operator passes what reaches it on to
@@ -9,10 +12,16 @@ twice reaches the surface when either reader gives it a share) and written once 
 point; a lobe (a closure with a `weight` input) that does not reach the surface is given weight 0
 there, so that its own early exit skips its work in every context: one uniform branch per lobe,
 inside the lobe, not one per call site.
+
+Preparation. A lobe whose source defines `<function>_prepare` (its inputs, then an `out` state) does
+its light-independent work there (normal, Fresnel set-up, directional albedo, the environment it
+reflects), once per shading point; its call in each context then takes the shading context and that
+state instead of its inputs (the target's closure convention reads this from the source).
 """
 from ..graph import Input, Node
 from ..passes.closures import closure_inputs, is_closure_node
 from ..passes.fold import constant
+from .base import SourceFunctionImpl
 
 SHARE_GONE = {"mix": {"fg": 0.0, "bg": 1.0}}  # operator -> input -> the weight at which it gets nothing
 WEIGHT_INPUT = {"mix": "mix"}
@@ -36,10 +45,27 @@ def closure_nodes(inp: Input) -> list[Node]:
     return order[::-1]
 
 
-def emit_lobe_weights(ctx, inp: Input) -> None:
+def emit_lobes(ctx, inp: Input, point_arguments) -> None:
+    """The weights, then the prepared states, of the lobes `inp` reads. `point_arguments()`
+    declares the shading point's closure data on first use and returns what a prepare call takes
+    before the lobe's inputs."""
+    nodes = closure_nodes(inp)
+    emit_weights(ctx, nodes)
+    ctx.prepared_lobes = {}
+    for node in nodes:
+        impl = node.impl
+        state = ctx.target.closures.prepared_state(impl.source, impl.function) \
+            if isinstance(impl, SourceFunctionImpl) else None
+        if state is not None:
+            args = point_arguments() + [ctx.value(i) for i in node.inputs.values()]
+            name = ctx.prepared_lobes[id(node)] = ctx.namer(f"{node.name}_lobe")
+            ctx.body.line(ctx.target.declare(state, name))
+            ctx.body.line(ctx.target.call(f"{impl.function}_prepare", args + [name]))
+
+
+def emit_weights(ctx, nodes: list[Node]) -> None:
     """Declares each lobe's weight at this point where a mix above it may take it away, and makes
     the lobe's calls read it (ctx.lobe_weights)."""
-    nodes = closure_nodes(inp)
     if not nodes:
         return
     reached: dict[int, list[str | None]] = {id(nodes[0]): [None]}  # None: always reached
