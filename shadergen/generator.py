@@ -11,7 +11,7 @@ import re
 from .errors import ShaderGenError
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
-from .nodes.lobes import emit_lobes
+from .nodes.lobes import closure_nodes, emit_lobes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
 
@@ -199,18 +199,7 @@ class EmitContext:
         """Evaluate the closure nodes upstream of `inp` in one shading context (seed's
         SgNodeContext): the caller has declared `closureData` for that context. Data nodes feeding
         the closures were computed once, before. Returns the expression of the result."""
-        nodes: list[Node] = []
-        seen: set[int] = set()
-
-        def visit(out: Output | None):
-            if out is None or id(out.node) in seen or not is_closure_node(out.node):
-                return
-            seen.add(id(out.node))
-            for i in out.node.inputs.values():
-                visit(i.connection)
-            nodes.append(out.node)
-
-        visit(inp.connection)
+        nodes = closure_nodes(inp)[::-1]  # what a closure reads before it
         saved = self.closure
         self.closure = context
         try:

@@ -41,7 +41,8 @@ def closure_nodes(inp: Input) -> list[Node]:
             continue
         seen.add(id(node))
         stack.append((node, True))
-        stack.extend((i.connection.node, False) for i in closure_inputs(node) if i.connection is not None)
+        # reversed, so that the first input is visited first: callers write them in that order
+        stack.extend((i.connection.node, False) for i in reversed(closure_inputs(node)) if i.connection is not None)
     return order[::-1]
 
 
@@ -52,7 +53,7 @@ def emit_lobes(ctx, inp: Input, point_arguments) -> None:
     nodes = closure_nodes(inp)
     emit_weights(ctx, nodes)
     ctx.prepared_lobes = {}
-    for node in nodes:
+    for node in reversed(nodes):  # in the order the contexts call them
         impl = node.impl
         state = ctx.target.closures.prepared_state(impl.source, impl.function) \
             if isinstance(impl, SourceFunctionImpl) else None

@@ -2220,17 +2220,17 @@ void main()
         float occlusion = 1.0;
         float surfaceOpacity = SR_coated_opacity_mean_out;
         // lobes under a mix: weight 0 where the mix leaves them out
-        float SR_coated_metal_brdf_active_weight = (SR_coated_metalness != 0.0) ? 1.0 : 0.0;
         bool SR_coated_dielectric_reached = SR_coated_metalness != 1.0;
-        float SR_coated_specular_brdf_active_weight = SR_coated_dielectric_reached ? SR_coated_specular : 0.0;
+        bool SR_coated_opaque_base_reached = SR_coated_dielectric_reached && SR_coated_transmission != 1.0;
+        float SR_coated_diffuse_brdf_active_weight = (SR_coated_opaque_base_reached && SR_coated_subsurface != 1.0) ? SR_coated_base : 0.0;
+        bool SR_coated_subsurface_bsdf_reached = SR_coated_opaque_base_reached && SR_coated_subsurface != 0.0;
+        float SR_coated_volume_subsurface_active_weight = (SR_coated_subsurface_bsdf_reached && SR_coated_thin_walled_weight_out != 1.0) ? 1.0 : 0.0;
+        float SR_coated_thin_subsurface_active_weight = (SR_coated_subsurface_bsdf_reached && SR_coated_thin_walled_weight_out != 0.0) ? 1.0 : 0.0;
         bool SR_coated_transmission_bsdf_transmission_reached = SR_coated_dielectric_reached && SR_coated_transmission != 0.0;
         bool SR_coated_transmission_bsdf_interface_over_medium_reached = SR_coated_transmission_bsdf_transmission_reached && SR_coated_transmission_bsdf_has_medium_out != 0.0;
         float SR_coated_transmission_bsdf_interface_active_weight = ((SR_coated_transmission_bsdf_transmission_reached && SR_coated_transmission_bsdf_has_medium_out != 1.0) || SR_coated_transmission_bsdf_interface_over_medium_reached) ? 1.0 : 0.0;
-        bool SR_coated_opaque_base_reached = SR_coated_dielectric_reached && SR_coated_transmission != 1.0;
-        bool SR_coated_subsurface_bsdf_reached = SR_coated_opaque_base_reached && SR_coated_subsurface != 0.0;
-        float SR_coated_thin_subsurface_active_weight = (SR_coated_subsurface_bsdf_reached && SR_coated_thin_walled_weight_out != 0.0) ? 1.0 : 0.0;
-        float SR_coated_volume_subsurface_active_weight = (SR_coated_subsurface_bsdf_reached && SR_coated_thin_walled_weight_out != 1.0) ? 1.0 : 0.0;
-        float SR_coated_diffuse_brdf_active_weight = (SR_coated_opaque_base_reached && SR_coated_subsurface != 1.0) ? SR_coated_base : 0.0;
+        float SR_coated_specular_brdf_active_weight = SR_coated_dielectric_reached ? SR_coated_specular : 0.0;
+        float SR_coated_metal_brdf_active_weight = (SR_coated_metalness != 0.0) ? 1.0 : 0.0;
         // lobes prepared once per shading point, before any light
         ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe SR_coated_coat_brdf_lobe;
