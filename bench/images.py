@@ -69,8 +69,10 @@ def compare(args) -> int:
         print(f"| {rel} | {value:.1f} |")
     low = [r for r, v in rows if not v >= args.min_psnr]
     finite = [v for _, v in rows if math.isfinite(v)]
-    print(f"\n{len(rows)} images, {len(low)} below {args.min_psnr} dB (missing counts as below); "
-          f"lowest {min(finite) if finite else float('nan'):.1f} dB, {len(rows) - len(finite)} identical or missing")
+    missing = sum(math.isnan(v) for _, v in rows)
+    print(f"\n{len(rows)} images, {len(low)} below {args.min_psnr} dB ({missing} missing, counted as below), "
+          f"{sum(v == math.inf for _, v in rows)} identical; lowest of the others "
+          f"{min(finite) if finite else float('nan'):.1f} dB")
     return 1 if low or not rows else 0
 
 
