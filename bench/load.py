@@ -301,6 +301,7 @@ def main() -> int:
     parser.add_argument("--seconds", type=float, default=10.0, help="per scenario")
     args = parser.parse_args()
     proc = tmp = None
+    load_before = os.getloadavg()
     if args.url is None:
         proc, args.url, tmp = start_server(args.workers, args.render_workers)
     try:
@@ -316,7 +317,10 @@ def main() -> int:
             proc.terminate()
             proc.wait(30)
             shutil.rmtree(tmp, ignore_errors=True)
-    print(f"server {args.url}, {os.cpu_count()} cores, {args.seconds:g} s per scenario\n")
+    # other work on the machine shows in every figure: the load it was measured under goes with them
+    loads = " -> ".join("/".join(f"{x:.1f}" for x in load) for load in (load_before, os.getloadavg()))
+    print(f"server {args.url}, {os.cpu_count()} cores, load average (1/5/15 min) {loads}, "
+          f"{args.seconds:g} s per scenario\n")
     print(table(results))
     alone, beside = results[-3], results[-2]
     ratios = [percentile(beside.latencies, q) / percentile(alone.latencies, q) for q in (0.5, 0.99)]
