@@ -1,5 +1,6 @@
 """WGSL conformance and size: every renderable element of every document under the given folders,
-generated for wgsl (and glsl, for the size ratio), each WGSL module validated with naga.
+generated for wgsl (and glsl, for the size ratio), each WGSL module validated by wgpu
+(creating its shader module: naga inside wgpu-native, on a Vulkan device).
 
     .venv/bin/python bench/wgsl.py ../shared/corpus/resources/Materials/TestSuite/stdlib \
         ../shared/corpus/resources/Materials/TestSuite/pbrlib [--interface specialized] [--failures N]
@@ -9,48 +10,41 @@ and worst ratio of WGSL fragment lines to our GLSL fragment lines for the same e
 """
 import argparse
 import collections
-import os
-import shutil
 import statistics
-import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 from shadergen.api import generate_file
+from shadergen.render.wgpu_device import wgsl_errors
 
 
 def lines(text: str) -> int:
     return sum(1 for ln in text.splitlines() if ln.strip())
 
 
-def naga_ok(naga: str, text: str, folder: str) -> tuple[bool, str]:
-    path = os.path.join(folder, "m.wgsl")
-    with open(path, "w") as f:
-        f.write(text)
-    p = subprocess.run([naga, path], capture_output=True, text=True, timeout=60)
-    return p.returncode == 0, (p.stderr or p.stdout).strip().split("\n")[0]
+def first_error_line(message: str) -> str:
+    """The validator's own sentence: the line after wgpu's "Caused by:" preamble."""
+    useful = [ln.strip() for ln in message.splitlines() if ln.strip() and not ln.strip().startswith(("Caused", "In wgpu", "WGSL"))]
+    return useful[0] if useful else message.strip()[:80]
 
 
-def measure(folder: Path, naga: str, interface: str, reasons: collections.Counter) -> dict:
+def measure(folder: Path, interface: str, reasons: collections.Counter) -> dict:
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for doc in sorted(folder.rglob("*.mtlx")):
-            glsl = {r["element"]: r for r in generate_file(str(doc), target="glsl", all=True, interface=interface)
-                    if "error" not in r}
-            for rec in generate_file(str(doc), target="wgsl", all=True, interface=interface):
-                row = {"generated": "error" not in rec, "valid": False, "ratio": None}
-                if not row["generated"]:
-                    reasons[rec["error"]["message"][:90]] += 1
-                else:
-                    results = [naga_ok(naga, rec["stages"][s], tmp) for s in ("vertex", "pixel")]
-                    row["valid"] = all(ok for ok, _ in results)
-                    for ok, message in results:
-                        if not ok:
-                            reasons[f"naga: {message[:80]} ({doc.name})"] += 1
-                    if rec["element"] in glsl:
-                        row["ratio"] = lines(rec["stages"]["pixel"]) / lines(glsl[rec["element"]]["stages"]["pixel"])
-                rows.append(row)
+    for doc in sorted(folder.rglob("*.mtlx")):
+        glsl = {r["element"]: r for r in generate_file(str(doc), target="glsl", all=True, interface=interface)
+                if "error" not in r}
+        for rec in generate_file(str(doc), target="wgsl", all=True, interface=interface):
+            row = {"generated": "error" not in rec, "valid": False, "ratio": None}
+            if not row["generated"]:
+                reasons[rec["error"]["message"][:90]] += 1
+            else:
+                errors = wgsl_errors({s: rec["stages"][s] for s in ("vertex", "pixel")})
+                row["valid"] = not errors
+                for message in errors.values():
+                    reasons[f"invalid: {first_error_line(message)[:80]} ({doc.name})"] += 1
+                if rec["element"] in glsl:
+                    row["ratio"] = lines(rec["stages"]["pixel"]) / lines(glsl[rec["element"]]["stages"]["pixel"])
+            rows.append(row)
     return summarize(rows)
 
 
@@ -70,14 +64,11 @@ def main() -> int:
     p.add_argument("--interface", default="complete")
     p.add_argument("--failures", type=int, default=10, help="how many failure reasons to print")
     a = p.parse_args()
-    naga = shutil.which("naga") or os.path.expanduser("~/.cargo/bin/naga")
-    if not os.path.exists(naga):
-        sys.exit("naga not found: bash scripts/naga.sh")
     reasons: collections.Counter = collections.Counter()
     print(f"{'folder':<40} {'elements':>8} {'generated':>10} {'validated':>10} {'lines wgsl/glsl median':>23} {'worst':>6}")
     everything = []
     for folder in a.folders:
-        s = measure(folder, naga, a.interface, reasons)
+        s = measure(folder, a.interface, reasons)
         everything += s["rows"]
         print(f"{folder.name:<40} {s['elements']:>8} {s['generated']:>9.1f}% {s['validated']:>9.1f}% "
               f"{s['median']:>23.2f} {s['worst']:>6.2f}")

@@ -3,11 +3,9 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/system-packages.sh --containers || exit 1
-bash scripts/naga.sh || exit 1
-export PATH="$PATH:$HOME/.cargo/bin"
 [ -x .venv/bin/python ] || python3 -m venv .venv || exit 1
 .venv/bin/pip install -q --upgrade pip || exit 1
-.venv/bin/pip install -q -e ".[render,service,usd,dev]" || exit 1
+.venv/bin/pip install -q -e ".[render,wgpu,service,usd,dev]" || exit 1
 .venv/bin/python -m pytest -q "$@"
 rc=$?
 [ $rc -eq 5 ] && { echo "pytest collected no tests: failing"; exit 1; }

@@ -1,4 +1,5 @@
-"""What a test needs from the machine (glslangValidator, redis-server, dpkg, an importable renderer).
+"""What a test needs from the machine (glslangValidator, redis-server, dpkg, an importable renderer,
+a WebGPU device).
 On a developer's machine a missing tool skips the test; under CI=true it fails it, so a green CI
 run always means every check ran."""
 import importlib
@@ -42,3 +43,15 @@ def require_renderer() -> None:
     probe = "from shadergen.render import Renderer; Renderer(texture_roots=[], search_paths=[])"
     if subprocess.run([sys.executable, "-c", probe], capture_output=True, timeout=60).returncode != 0:
         missing("shadergen.render.Renderer", "pip install -e '.[render]'")
+
+
+def require_wgpu():
+    """The WGSL validator (wgpu creating shader modules on a Vulkan device): a function from
+    name -> source to name -> message of every rejected module."""
+    from shadergen.render.errors import RenderError
+    from shadergen.render.wgpu_device import wgpu_device, wgsl_errors
+    try:
+        wgpu_device()
+    except RenderError as exc:
+        missing("a WebGPU device", exc.message)
+    return wgsl_errors

@@ -1,9 +1,6 @@
 """The WGSL target: the libraries' GLSL translated (translate.py), uniform buffers laid out by WGSL's
-rules, and every generated module accepted by naga (the validator wgpu itself runs)."""
-import os
-import subprocess
-import tempfile
-
+rules, and every generated module accepted by the validator: wgpu creating the shader module (naga
+inside wgpu-native, on Mesa's Vulkan driver), as a WebGPU implementation does."""
 import pytest
 
 from shadergen.targets.glsl import STRUCTS
@@ -14,26 +11,13 @@ from .test_stdlib_compiles import stdlib_nodedefs
 
 
 @pytest.fixture(scope="session")
-def naga() -> str:
-    from required_tools import tool_path
-    return tool_path("naga")
+def validator():
+    """name -> source => name -> message of every module the validator rejects."""
+    from required_tools import require_wgpu
+    return require_wgpu()
 
 
-def naga_errors(naga: str, sources: dict[str, str]) -> dict[str, str]:
-    """name -> naga's message, for every module naga rejects."""
-    errors = {}
-    with tempfile.TemporaryDirectory() as d:
-        for name, text in sources.items():
-            path = os.path.join(d, name.replace("/", "_") + ".wgsl")
-            with open(path, "w") as f:
-                f.write(text)
-            p = subprocess.run([naga, path], capture_output=True, text=True, timeout=60)
-            if p.returncode != 0:
-                errors[name] = (p.stderr or p.stdout)[-400:]
-    return errors
-
-
-def test_every_generated_stdlib_nodedef_validates(gen, naga):
+def test_every_generated_stdlib_nodedef_validates(gen, validator):
     nodedefs = stdlib_nodedefs()
     sources, not_generated = {}, []
     for nd in nodedefs:
@@ -48,12 +32,12 @@ def test_every_generated_stdlib_nodedef_validates(gen, naga):
             sources[f"{nd.name}.{stage}"] = source
     generated = len(nodedefs) - len(not_generated)
     assert generated / len(nodedefs) >= 0.98, "\n".join(not_generated[:20])
-    errors = naga_errors(naga, sources)
+    errors = validator(sources)
     assert not errors, f"{len(errors)} modules rejected:\n" + "\n".join(f"{k}: {v}" for k, v in list(errors.items())[:10])
 
 
 @pytest.mark.parametrize("interface", ["complete", "reduced", "specialized"])
-def test_interface_modes_validate(gen, naga, interface):
+def test_interface_modes_validate(gen, validator, interface):
     text = doc('<nodegraph name="g"><position name="p" type="vector3"/>'
                '<multiply name="m" type="vector3"><input name="in1" type="vector3" nodename="p"/>'
                '<input name="in2" type="float" value="0.5"/></multiply>'
@@ -61,7 +45,7 @@ def test_interface_modes_validate(gen, naga, interface):
                '<output name="out" type="vector3" nodename="c"/></nodegraph>')
     rec = gen.prepare(text, target="wgsl", interface=interface).emit()
     assert "@fragment" in rec["stages"]["pixel"] and "@vertex" in rec["stages"]["vertex"]
-    assert not naga_errors(naga, rec["stages"])
+    assert not validator(rec["stages"])
     public = {m["name"] for m in rec["layout"]["pixel"]["members"]}
     assert bool(public) == (interface == "complete")  # the others fold values that no interface exposes
 
@@ -107,7 +91,7 @@ def test_what_it_cannot_take_is_reported():
         translate("void f(out vec3 v) { v.xy = vec2(1.0); }")
 
 
-def test_a_lit_standard_surface_validates(gen, naga):
+def test_a_lit_standard_surface_validates(gen, validator):
     """Closures in every shading context, the light loop with its dispatch, the environment's
     textures, LightData in the uniform buffer."""
     text = doc('<standard_surface name="ss" type="surfaceshader"><input name="coat" type="float" value="0.5"/>'
@@ -117,8 +101,18 @@ def test_a_lit_standard_surface_validates(gen, naga):
     rec = gen.prepare(text, target="wgsl").emit()
     pixel = rec["stages"]["pixel"]
     assert "sampleLightSource(pu.u_lightData[activeLightIndex]" in pixel
-    assert not naga_errors(naga, rec["stages"])
+    assert not validator(rec["stages"])
     members = {m["name"]: m for m in rec["layout"]["pixel"]["members"]}
     assert members["u_lightData"]["wgsl"] == "array<LightData, MAX_LIGHT_SOURCES>"
     assert members["u_lightData"]["offset"] % 16 == 0
     assert {t["name"] for t in rec["layout"]["pixel"]["textures"]} >= {"u_envRadiance", "u_envIrradiance"}
+
+
+def test_the_validator_rejects_invalid_wgsl_with_its_line(validator):
+    errors = validator({"bad": "fn f() -> f32 {\n    let x: i32 = 1.5;\n    return x;\n}\n"})
+    assert "bad" in errors and "i32" in errors["bad"], errors
+    from shadergen.render.errors import RenderError
+    from shadergen.render.wgpu_device import shader_module, wgpu_device
+    with pytest.raises(RenderError) as caught:
+        shader_module(wgpu_device(), "fn f() -> f32 {\n    return undefined_name;\n}\n", "pixel")
+    assert caught.value.where == "pixel:2"
