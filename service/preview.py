@@ -14,7 +14,7 @@ def preview_assets() -> tuple[dict, dict[str, bytes]]:
     from shadergen.render.environment import Environment
     from shadergen.render.geometry import load_mesh
     from shadergen.render.imageio import BACKGROUND
-    from shadergen.render.renderer import fixed_uniforms
+    from shadergen.render.inputs import fixed_uniforms
 
     environment = Environment.procedural()
     mesh = load_mesh(THUMBNAIL_MESH)

@@ -12,6 +12,9 @@ from . import Environment, RenderError, Renderer
 from .imageio import write_image
 from .renderer import ENV_METHODS
 
+# backend -> the target a document is generated for
+BACKENDS = {"gl": "glsl", "wgpu": "wgsl"}
+
 
 TEXTURE_ROOTS_VARIABLE = "SHADERGEN_TEXTURE_ROOTS"
 EXAMPLES = f"""examples:
@@ -30,6 +33,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--record", metavar="REC.json",
                         help="render this shader record (JSON, or JSON Lines: first record or --element; - for stdin)")
     parser.add_argument("--element", metavar="NAMEPATH", help="renderable element (default: the first)")
+    parser.add_argument("--backend", choices=tuple(BACKENDS), default="gl",
+                        help="gl: our GLSL drawn with OpenGL on EGL; wgpu: our WGSL drawn with WebGPU on Vulkan "
+                             "(lavapipe without a GPU), same scene")
     parser.add_argument("--interface", default="specialized",
                         help="interface of the generated shader (default specialized: values folded into the code, "
                              "the same image as complete, the smallest shader); complete | reduced | specialized")
@@ -82,13 +88,16 @@ def _run(args) -> int:
     if bool(args.document) == bool(args.record):
         raise RenderError("invalid_request", "give either a document or --record REC.json")
     record = _record_from_file(args.record, args.element) if args.record \
-        else _record_from_document(args.document, args.element, args.interface)
+        else _record_from_document(args.document, args.element, args.interface, BACKENDS[args.backend])
     if args.irr and not args.env:
         raise RenderError("invalid_request", "--irr needs --env (the procedural sky computes its own)")
     env = Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
     document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
     env_roots = [p for p in os.environ.get(TEXTURE_ROOTS_VARIABLE, "").split(os.pathsep) if p]
-    renderer = Renderer(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
+    renderer_class = Renderer
+    if args.backend == "wgpu":
+        from .wgpu_renderer import WgpuRenderer as renderer_class  # imports wgpu only when asked for
+    renderer = renderer_class(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
                         confined=args.confine)
     result = renderer.render(record, size=args.size, mesh=args.mesh, env=env, env_samples=args.env_samples,
                              env_method=args.env_method,
@@ -123,13 +132,13 @@ def _record_from_file(path: str, element: str | None) -> dict:
     return _choose(records, element, path)
 
 
-def _record_from_document(path: str, element: str | None, interface: str) -> dict:
+def _record_from_document(path: str, element: str | None, interface: str, target: str) -> dict:
     try:
         from shadergen.api import generate_file
     except ImportError as exc:
         raise RenderError("unavailable", "this build has no generator (shadergen.api); render a record "
                           "with --record REC.json instead") from exc
-    return _choose(generate_file(path, target="glsl", element=element, interface=interface), element, path)
+    return _choose(generate_file(path, target=target, element=element, interface=interface), element, path)
 
 
 def _choose(records: list, element: str | None, source: str) -> dict:

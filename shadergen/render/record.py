@@ -1,6 +1,6 @@
 """A shader record of the JSON contract (../shared/DESIGN.md), checked before anything touches GL:
 whoever produced it (our generator, the reference oracle, a hand-written test), a record must
-name a GL target and carry both stage sources; uniform listings are optional (GLSL initialisers
+name a target the renderer draws and carry both stage sources; uniform listings are optional (GLSL initialisers
 then supply the values)."""
 import hashlib
 from collections.abc import Iterator
@@ -11,8 +11,8 @@ RENDERABLE_TARGETS = ("glsl", "essl")  # ESSL 3.00 compiles on desktop GL 4.3+ (
 UNIFORM_BLOCKS = ("PublicUniforms", "PrivateUniforms")
 
 
-def check_record(record) -> tuple[str, str]:
-    """(vertex source, pixel source) of a renderable record, or RenderError saying what is wrong."""
+def check_record(record, targets: tuple[str, ...] = RENDERABLE_TARGETS) -> tuple[str, str]:
+    """(vertex source, pixel source) of a record of one of `targets`, or RenderError saying what is wrong."""
     if not isinstance(record, dict):
         raise RenderError("invalid_record", f"a shader record is a JSON object, not {type(record).__name__}")
     where = record.get("element")
@@ -21,9 +21,10 @@ def check_record(record) -> tuple[str, str]:
         raise RenderError("invalid_record", "the record is an error record, nothing to render: "
                           f"{error.get('code', 'error')}: {error.get('message', '')}", where)
     target = record.get("target", "glsl")
-    if target not in RENDERABLE_TARGETS:
-        raise RenderError("unsupported_target", f"cannot render target {target!r} on GL: use "
-                          + " or ".join(RENDERABLE_TARGETS), where)
+    if target not in targets:
+        hint = " (wgsl records are drawn by the wgpu backend)" if target == "wgsl" else ""
+        raise RenderError("unsupported_target", f"this renderer draws {' or '.join(targets)}, not {target!r}{hint}",
+                          where)
     stages = record.get("stages")
     if not isinstance(stages, dict):
         raise RenderError("invalid_record", "the record has no 'stages' object", where)

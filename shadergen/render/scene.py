@@ -42,12 +42,19 @@ def matrix_bytes(m: np.ndarray) -> bytes:
     return np.asarray(m, "f4").T.tobytes()
 
 
-def scene_uniforms() -> dict[str, object]:
+# GL's clip space has z in -w..w, WebGPU's (Vulkan's, D3D's) 0..w: z' = (z + w) / 2.
+DEPTH_ZERO_TO_ONE = np.array([[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 0.5, 0.5], [0, 0, 0, 1.0]])
+
+
+def scene_uniforms(depth_zero_to_one: bool = False) -> dict[str, object]:
     """Every predefined scene uniform of the seed's figure 7, by name: matrices as numpy 4x4
-    arrays, vectors as tuples, time and frame as floats."""
+    arrays, vectors as tuples, time and frame as floats. `depth_zero_to_one`: the projection
+    maps depth into WebGPU's clip space (the same image: x and y are untouched)."""
     world = np.eye(4)
     view = look_at(EYE, TARGET, UP)
     proj = perspective(FOV_Y_DEGREES, 1.0, NEAR, FAR)
+    if depth_zero_to_one:
+        proj = DEPTH_ZERO_TO_ONE @ proj
     matrices = {"world": world, "view": view, "projection": proj,
                 "worldView": view @ world, "viewProjection": proj @ view,
                 "worldViewProjection": proj @ view @ world}

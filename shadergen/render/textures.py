@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import RenderError
 from .context import gl_extras
 from .imageio import read_image
 from .packages import has_member, member_file, split_member
@@ -106,16 +107,18 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
 
 
 class TextureCache:
-    """GL textures of image files, by resolved path and modification time, least recently used
+    """Textures of image files, by resolved path and modification time, least recently used
     first out when over `budget_bytes` (trimmed between renders, never during one), and 1 x 1
-    textures of constant colours for missing files and unbound samplers."""
+    textures of constant colours for missing files and unbound samplers. `upload` makes a
+    texture of the drawing API from a float32 (h, w, c) image; a texture has `width`, `height`,
+    `components` and `release()`."""
 
     def __init__(self, budget_bytes: int = 512 << 20):
         self.budget_bytes = budget_bytes
         self._files: OrderedDict[tuple, object] = OrderedDict()
         self._constants: dict[tuple, object] = {}
 
-    def file(self, ctx, path: str):
+    def file(self, upload, path: str):
         """The texture of a path resolve_file returned (a package member included)."""
         package, member = split_member(path)
         stat = os.stat(package)
@@ -127,16 +130,28 @@ class TextureCache:
             else:
                 with member_file(package, member) as copy:
                     image = read_image(copy)
-            texture = upload(ctx, image)
+            texture = upload(image)
             self._files[key] = texture
         self._files.move_to_end(key)
         return texture
 
-    def constant(self, ctx, rgba: tuple[float, float, float, float]):
+    def constant(self, upload, rgba: tuple[float, float, float, float]):
         texture = self._constants.get(rgba)
         if texture is None:
-            texture = self._constants[rgba] = upload(ctx, np.array(rgba, "f4").reshape(1, 1, 4))
+            texture = self._constants[rgba] = upload(np.array(rgba, "f4").reshape(1, 1, 4))
         return texture
+
+    def texture(self, upload, request) -> tuple[object, str | None]:
+        """The texture of an inputs.TextureRequest, or a 1 x 1 texture of its default colour and
+        the warning saying why the file could not be used."""
+        problem = request.problem
+        if request.path:
+            try:
+                return self.file(upload, request.path), None
+            except RenderError as exc:
+                problem = f"{request.path}: {exc.message}"
+        warning = f"texture for {request.name} unusable, using its default colour: {problem}" if problem else None
+        return self.constant(upload, request.sampling.border), warning
 
     def trim(self) -> None:
         total = sum(t.width * t.height * t.components * 4 for t in self._files.values())

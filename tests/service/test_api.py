@@ -46,6 +46,17 @@ def test_generate_json_returns_the_contract_record(client):
     assert rec["timings_ms"]["generate"] >= 0
 
 
+def test_generate_wgsl_returns_both_modules_and_the_buffer_layout(client):
+    rec = generate(client, "ramp.mtlx", target="wgsl").json()
+    assert rec["target"] == "wgsl", rec
+    assert "@fragment" in rec["stages"]["pixel"] and "@vertex" in rec["stages"]["vertex"]
+    members = {m["name"]: m for m in rec["layout"]["pixel"]["members"]}
+    assert "mul_in2" in members and members["mul_in2"]["offset"] % 4 == 0
+    assert "pu.mul_in2" in rec["stages"]["pixel"]
+    listed = client.post("/v1/generate?target=wgsl&source=false", content=document("ramp.mtlx"), headers=XML).json()
+    assert listed["stages"] == {"vertex": None, "pixel": None} and listed["layout"] == rec["layout"]
+
+
 def test_generate_raw_xml_with_query_parameters(client):
     r = client.post("/v1/generate?target=glsl&element=NG_ramp/out", content=document("ramp.mtlx"), headers=XML)
     assert r.status_code == 200, r.text

@@ -48,11 +48,11 @@ def test_usd_renders_like_the_equivalent_materialx(gen, renderer, scenes, usd, m
 def test_sampler_state_is_read_from_the_usd_inputs_of_the_image(gen, scenes):
     """The renderer finds an image's address and filter modes beside its file by the record's
     paths, which for USD are attribute paths (`.../Image.inputs:file`)."""
-    from shadergen.render.renderer import _siblings
+    from shadergen.render.inputs import siblings
     from shadergen.render.textures import GL_MIRRORED_REPEAT, GL_REPEAT, sampling_from
 
     [record] = list(gen.records(scenes.brick))
     variables = record["blocks"]["pixel"]["PublicUniforms"]
     [file] = [v for v in variables if v["path"] == "/World/Looks/Brick/Textures/Image.inputs:file"]
-    sampling = sampling_from(_siblings(file, variables))
+    sampling = sampling_from(siblings(file, variables))
     assert (sampling.wrap_u, sampling.wrap_v, sampling.closest) == (GL_MIRRORED_REPEAT, GL_REPEAT, True)

@@ -22,23 +22,31 @@ from ...errors import ShaderGenError
 UNIFORM_BLOCKS = ("PrivateUniforms", "PublicUniforms")
 
 
+def struct_members(variables) -> tuple[list[dict], int]:
+    """(members with their offsets, size rounded to 16) of a struct of (name, MaterialX type)
+    pairs in order: a stage's uniform buffer, or one LightData."""
+    members, offset = [], 0
+    for name, type_name in variables:
+        if type_name not in MEMBER:
+            raise ShaderGenError("unsupported_node", f"a {type_name} uniform is not yet laid out for wgsl", name)
+        wgsl, align, size = MEMBER[type_name]
+        offset = -(-offset // align) * align
+        members.append({"name": name, "type": type_name, "wgsl": wgsl, "offset": offset, "size": size})
+        offset += size
+    return members, -(-offset // 16) * 16
+
+
 def uniform_layout(stage, group: int) -> dict:
     """The stage's uniform buffer (binding 0 of `group`) and its textures, each a texture and a
     sampler binding after it."""
-    members, textures, offset = [], [], 0
+    numeric, textures = [], []
     for block in UNIFORM_BLOCKS:
         for v in stage.blocks[block]:
             if v.type == "filename":
                 binding = 1 + 2 * len(textures)
                 textures.append({"name": v.name, "group": group, "texture_binding": binding,
                                  "sampler_binding": binding + 1})
-                continue
-            if v.type not in MEMBER:
-                raise ShaderGenError("unsupported_node", f"a {v.type} uniform is not yet laid out for wgsl", v.name)
-            wgsl, align, size = MEMBER[v.type]
-            offset = -(-offset // align) * align
-            members.append({"name": v.name, "type": v.type, "wgsl": wgsl, "offset": offset, "size": size})
-            offset += size
-    return {"group": group, "binding": 0, "size": -(-offset // 16) * 16, "members": members, "textures": textures}
-
-
+            else:
+                numeric.append((v.name, v.type))
+    members, size = struct_members(numeric)
+    return {"group": group, "binding": 0, "size": size, "members": members, "textures": textures}

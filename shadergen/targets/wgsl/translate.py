@@ -6,7 +6,9 @@ arguments to vector built-ins (`clamp(v, 0.0, 1.0)`), pointers instead of `out` 
 immutable parameters, no overloading, braces around every branch. So every expression is emitted
 with its GLSL type, and the emitter converts where GLSL would have converted implicitly.
 What it cannot take (swizzle writes, unknown built-ins) raises Untranslatable with the reason; the
-generator reports that as a generation error of the node.
+generator reports that as a generation error of the node. Comments go along: those on a line of
+their own above the statement or definition that follows them, those after code at the end of the
+line WGSL writes for that code (inside an expression they are dropped).
 """
 import re
 from dataclasses import dataclass, field
@@ -23,7 +25,8 @@ class Untranslatable(ShaderGenError):
 
 
 TOKEN = re.compile(r"""
-    (?P<ws>\s+|//[^\n]*|/\*.*?\*/)
+    (?P<comment>//[^\n]*|/\*.*?\*/)
+  | (?P<ws>\s+)
   | (?P<pp>\#[^\n]*)
   | (?P<num>0[xX][0-9a-fA-F]+u?|(\d+\.\d*|\.\d+|\d+)([eE][+-]?\d+)?[fu]?)
   | (?P<id>[A-Za-z_]\w*)
@@ -54,16 +57,29 @@ def preprocess(text: str, defined: set[str]) -> str:
     return "\n".join(out)
 
 
+TRAILING = "//>"  # marks a comment that follows code on its line
+
+
 def tokenize(text: str) -> list[str]:
-    out, pos = [], 0
+    """Tokens, comments among them as `// text` lines (a block comment gives one per line; a
+    comment after code on its line starts with TRAILING instead)."""
+    out, pos, line_start = [], 0, True
     while pos < len(text):
         m = TOKEN.match(text, pos)
         if not m:
             raise Untranslatable(f"unexpected character {text[pos]!r}")
         pos = m.end()
         if m.lastgroup == "ws":
+            line_start = line_start or "\n" in m.group()
+            continue
+        if m.lastgroup == "comment":
+            body = m.group()[2:-2] if m.group().startswith("/*") else m.group()[2:]
+            lines = [ln.strip().lstrip("*").strip() for ln in body.split("\n")]
+            prefix = "//" if line_start else TRAILING
+            out += [f"{prefix} {ln}".rstrip() for ln in lines if ln]
             continue
         out.append(m.group())
+        line_start = False
     return out
 
 
@@ -85,7 +101,17 @@ GLSL_TYPES = {"void", "float", "int", "uint", "bool", "vec2", "vec3", "vec4", "i
 
 class Parser:
     def __init__(self, tokens: list[str], structs: set[str]):
-        self.t, self.i, self.structs = tokens, 0, structs
+        self.t, self.i, self.structs = [], 0, structs
+        self.comments: dict[int, list[str]] = {}  # token index -> the comments just before it
+        for tok in tokens:
+            if tok.startswith("//"):
+                self.comments.setdefault(len(self.t), []).append(tok)
+            else:
+                self.t.append(tok)
+
+    def take_comments(self) -> list:
+        """The comments before the next token, as ("comment", text) statements and items."""
+        return [("comment", text) for text in self.comments.pop(self.i, [])]
 
     def peek(self, k=0) -> str:
         return self.t[self.i + k] if self.i + k < len(self.t) else ""
@@ -271,7 +297,9 @@ class Parser:
         self.expect("{")
         out = []
         while self.peek() != "}":
+            out += self.take_comments()
             out.append(self.statement())
+        out += self.take_comments()
         self.expect("}")
         return out
 
@@ -279,6 +307,7 @@ class Parser:
         """Functions, structs, constants and #defines of a library file."""
         items = []
         while self.peek():
+            items += self.take_comments()
             tok = self.peek()
             if tok.startswith("#"):
                 self.next()
@@ -334,7 +363,7 @@ class Parser:
                 self.next()
                 continue
             items.append(("function", ret, name, params, self.block()))
-        return items
+        return items + self.take_comments()
 
 
 # -- types ---------------------------------------------------------------------------------------------
@@ -427,6 +456,9 @@ class FunctionEmitter:
 
     def line(self, text: str) -> None:
         self.lines.append("    " * self.depth + text)
+
+    def comment(self, text: str) -> None:
+        add_comment(self.lines, text, "    " * self.depth)
 
     # expressions: (wgsl text, glsl type)
     def expr(self, e: Expr) -> tuple[str, str]:
@@ -652,7 +684,7 @@ class FunctionEmitter:
         saved, self.lines = self.lines, []
         self.braced(opener, body)
         inner, self.lines = self.lines[1:], saved
-        if body[0] != "block" and len(inner) == 1:
+        if body[0] != "block" and len(inner) == 1 and "//" not in inner[0]:
             self.line(f"{opener} {{ {inner[0].strip()} }}")
         else:
             self.line(opener + " {")
@@ -661,7 +693,9 @@ class FunctionEmitter:
 
     def statement(self, s) -> None:
         kind = s[0]
-        if kind == "block":
+        if kind == "comment":
+            self.comment(s[1])
+        elif kind == "block":
             self.braced("", s)
             self.line("}")
         elif kind == "decl":
@@ -748,6 +782,17 @@ class FunctionEmitter:
         raise Untranslatable("an expression statement without effect")
 
 
+def add_comment(lines: list[str], comment: str, indent: str) -> None:
+    """A comment token as WGSL: at the end of the last line when it followed code there (and that
+    line is code), else on a line of its own."""
+    trailing = comment.startswith(TRAILING)
+    text = "//" + comment[len(TRAILING) if trailing else 2:]
+    if trailing and lines and lines[-1].strip():
+        lines[-1] += "  " + text
+    else:
+        lines.append(indent + text)
+
+
 def strip_parens(text: str) -> str:
     """`(*p)` as an assignment target reads better as `*p`; a whole parenthesised condition loses its
     parentheses (the `if ( )` has them)."""
@@ -792,7 +837,9 @@ class Translator:
         names = [it[2] for it in items if it[0] == "function"]
         out: list[str] = []
         for it in items:
-            if it[0] == "define":
+            if it[0] == "comment":
+                add_comment(out, it[1], "")
+            elif it[0] == "define":
                 value = FunctionEmitter(self.lib, [], "void").expr(Parser(tokenize(it[2]), set()).expression())
                 self.lib.globals[it[1]] = value[1]
                 out.append(f"const {it[1]}: {wgsl_type(value[1])} = {value[0]};")
@@ -811,8 +858,13 @@ class Translator:
                         raise Untranslatable("a module-scope variable")
                     value, vt = emitter.expr(init)
                     if size is not None:  # a constant array: its type is its constructor's
+                        # A `const` array indexed at run time is a value: naga copies all of it into a
+                        # local at every index (SPIR-V cannot index a value), which makes drivers
+                        # compile for minutes (lavapipe: a 932-line surface, over five minutes against
+                        # four seconds); a private variable is indexed in place.
                         self.lib.globals[name] = vt
-                        out.append(f"const {safe_name(name)} = {value};")
+                        array_type = value.split("(", 1)[0]
+                        out.append(f"var<private> {safe_name(name)}: {array_type} = {value};")
                         continue
                     self.lib.globals[name] = t
                     out.append(f"const {safe_name(name)}: {wgsl_type(t)} = {emitter.convert(value, vt, t)};")
