@@ -37,7 +37,7 @@ BUILTIN_RETURN = {
 TEXTURE_CALLS = {"texture": "textureSample", "textureGrad": "textureSampleGrad", "textureLod": "textureSampleLevel",
                  "textureSize": "textureDimensions", "texelFetch": "textureLoad"}
 
-RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx", "dFdy": "dpdy"}
+RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx"}
 
 WGSL_RESERVED = set("""
 alias break case const const_assert continue continuing default diagnostic discard else enable false fn for if let

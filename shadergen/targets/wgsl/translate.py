@@ -638,6 +638,8 @@ class FunctionEmitter:
             bits = f"bitcast<{'u32' if n == 1 else f'vec{n}u'}>({x})"
             mask, inf = ("0x7fffffffu", "0x7f800000u") if n == 1 else (f"vec{n}u(0x7fffffffu)", f"vec{n}u(0x7f800000u)")
             return f"(({bits} & {mask}) {'>' if name == 'isnan' else '=='} {inf})", vector_of("bool", n)
+        if name == "dFdy":  # GL's window y runs up, WebGPU's framebuffer y down
+            return f"(-dpdy({texts[0]}))", types[0]
         if name in TEXTURE_CALLS:
             if args[0][1] != "sampler2D":
                 raise Untranslatable(f"{name} of a {args[0][1]}")

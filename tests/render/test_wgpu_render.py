@@ -1,0 +1,111 @@
+"""`--backend wgpu`: our WGSL drawn by WebGPU (wgpu on Vulkan, lavapipe without a GPU) gives the image
+our GLSL gives drawn by GL, in the same scene (meshes, environment, light rig, textures, values)."""
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from shadergen.api import Generator
+from shadergen.render import RenderError
+
+from .conftest import DATA
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+SIZE = 48
+TEXTURED = '''<?xml version="1.0"?>
+<materialx version="1.39">
+  <nodegraph name="g">
+    <texcoord name="t" type="vector2"/>
+    <image name="img" type="color3"><input name="file" type="filename" value="quads.png"/>
+      <input name="texcoord" type="vector2" nodename="t"/><input name="uaddressmode" type="string" value="mirror"/></image>
+    <dotproduct name="hd" type="float"><input name="in1" type="vector2" nodename="t"/>
+      <input name="in2" type="vector2" value="0.3, 1.0"/></dotproduct>
+    <multiply name="hs" type="float"><input name="in1" type="float" nodename="hd"/><input name="in2" type="float" value="25"/></multiply>
+    <sin name="hw" type="float"><input name="in" type="float" nodename="hs"/></sin>
+    <heighttonormal name="hn" type="vector3"><input name="in" type="float" nodename="hw"/></heighttonormal>
+    <dotproduct name="d" type="float"><input name="in1" type="vector3" nodename="hn"/>
+      <input name="in2" type="vector3" value="0.3, 0.5, 0.8"/></dotproduct>
+    <multiply name="m" type="color3"><input name="in1" type="color3" nodename="img"/><input name="in2" type="float" nodename="d"/></multiply>
+    <output name="out" type="color3" nodename="m"/>
+  </nodegraph>
+</materialx>
+'''
+LIT = '''<?xml version="1.0"?>
+<materialx version="1.39">
+  <standard_surface name="ss" type="surfaceshader"><input name="base_color" type="color3" value="0.8, 0.3, 0.2"/>
+    <input name="specular_roughness" type="float" value="0.35"/><input name="coat" type="float" value="0.5"/></standard_surface>
+  <surfacematerial name="m" type="material"><input name="surfaceshader" type="surfaceshader" nodename="ss"/></surfacematerial>
+</materialx>
+'''
+
+
+@pytest.fixture(scope="module")
+def wgpu_renderer():
+    from required_tools import require_wgpu
+    require_wgpu()
+    from shadergen.render.wgpu_renderer import WgpuRenderer
+    return WgpuRenderer(search_paths=[])
+
+
+def psnr(a: np.ndarray, b: np.ndarray) -> float:
+    mse = float(np.mean((a.astype("f8") - b.astype("f8")) ** 2))
+    return math.inf if mse == 0 else 10 * math.log10(1 / mse)
+
+
+@pytest.mark.parametrize("name, text, interface, lights", [
+    ("textured graph with screen-space derivatives, every value a uniform", TEXTURED, "complete", None),
+    ("procedural marble", (EXAMPLES / "marble_checker.mtlx").read_text(), "specialized", None),
+    ("lit standard_surface", LIT, "specialized", DATA / "rig.mtlx"),
+])
+def test_wgsl_drawn_by_wgpu_matches_glsl_drawn_by_gl(renderer, wgpu_renderer, name, text, interface, lights):
+    gen = Generator()
+    images = {}
+    for target, draw in (("glsl", renderer), ("wgsl", wgpu_renderer)):
+        record = gen.prepare(text, target=target, interface=interface).emit()
+        result = draw.render(record, size=SIZE, lights=lights and str(lights), document_dir=str(DATA))
+        assert result.warnings == [], result.warnings
+        images[target] = result.rgba
+    wgsl, glsl = images["wgsl"], images["glsl"]
+    assert wgsl.shape == glsl.shape == (SIZE, SIZE, 4)
+    assert glsl[..., 3].mean() > 0.3 and glsl[SIZE // 2, SIZE // 2, :3].max() > 0.02  # something was drawn
+    assert psnr(wgsl, glsl) >= 40.0, (name, psnr(wgsl, glsl))
+
+
+def test_records_go_to_the_renderer_of_their_target(renderer, wgpu_renderer):
+    gen = Generator()
+    wgsl = gen.prepare(TEXTURED, target="wgsl").emit()
+    with pytest.raises(RenderError) as caught:
+        renderer.render(wgsl, size=8)
+    assert caught.value.code == "unsupported_target" and "wgpu" in caught.value.message
+    with pytest.raises(RenderError) as caught:
+        wgpu_renderer.render(gen.prepare(TEXTURED, target="glsl").emit(), size=8)
+    assert caught.value.code == "unsupported_target"
+
+
+def test_invalid_wgsl_is_a_compile_error_at_its_line(wgpu_renderer):
+    record = Generator().prepare(TEXTURED, target="wgsl").emit()
+    pixel = record["stages"]["pixel"].splitlines()
+    line = next(i for i, text in enumerate(pixel) if "fn fragmentMain" in text) + 2
+    pixel.insert(line - 1, "    let broken: i32 = 1.5;")
+    record["stages"]["pixel"] = "\n".join(pixel)
+    with pytest.raises(RenderError) as caught:
+        wgpu_renderer.render(record, size=8)
+    assert caught.value.code == "compile_error" and caught.value.where == f"pixel:{line}"
+
+
+def test_the_command_line_draws_with_wgpu(tmp_path, wgpu_renderer):
+    run = subprocess.run([sys.executable, "-m", "shadergen.cli", "render", str(EXAMPLES / "marble_checker.mtlx"),
+                          "--backend", "wgpu", "--npy", "m.npy", "--size", "32", "--json"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=600)
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout.strip().splitlines()[-1])["outputs"] == ["m.npy"]
+    image = np.load(tmp_path / "m.npy")
+    assert image.shape == (32, 32, 4) and image[16, 16, 3] == 1.0
+    refused = subprocess.run([sys.executable, "-m", "shadergen.cli", "render", str(EXAMPLES / "marble_checker.mtlx"),
+                              "--backend", "wgpu", "--npy", "p.npy", "--env-method", "prefilter"],
+                             capture_output=True, text=True, cwd=tmp_path, timeout=600)
+    assert refused.returncode == 1 and "invalid_request" in refused.stderr and "Traceback" not in refused.stderr
