@@ -116,3 +116,32 @@ def test_the_validator_rejects_invalid_wgsl_with_its_line(validator):
     with pytest.raises(RenderError) as caught:
         shader_module(wgpu_device(), "fn f() -> f32 {\n    return undefined_name;\n}\n", "pixel")
     assert caught.value.where == "pixel:2"
+
+
+def test_arrays_initialised_and_passed():
+    out = translate("float g(vec3 t[3], int i) { return t[i].x; }\n"
+                    "float f(vec3 a) { const float P[3] = float[3](1.0, 2.0, 3.0);\n"
+                    "    vec3 ts[3] = vec3[3](a, a, a); return g(ts, 1) * P[2]; }")
+    assert "fn g(t: array<vec3f, 3>, i: i32) -> f32" in out
+    assert "var P: array<f32, 3> = array<f32, 3>(1.0, 2.0, 3.0);" in out  # indexed in place, not copied
+    assert "var ts: array<vec3f, 3> = array<vec3f, 3>(a, a, a);" in out and "g(ts, 1)" in out
+
+
+def test_comments_that_explain_are_kept_where_they_were():
+    out = translate("// Why f exists\nfloat f(float x)\n{\n    // square it\n    float y = x * x; // and why\n"
+                    "    if (y > 1.0) y = 1.0; // clamped\n    return y;\n}\n")
+    lines = out.splitlines()
+    assert lines[0] == "// Why f exists" and lines[1].startswith("fn f(")
+    assert "    // square it" in lines and "    var y: f32 = x * x;  // and why" in lines
+    assert "    if (y > 1.0) { y = 1.0; }  // clamped" in lines
+
+
+def test_inverse_is_a_helper_of_the_target(gen, validator):
+    text = doc('<nodegraph name="g"><invertmatrix name="i" type="matrix33"><input name="in" type="matrix33" '
+               'value="1,0,0, 0,2,0, 0,0,4"/></invertmatrix><transformmatrix name="t" type="vector3">'
+               '<input name="in" type="vector3" value="1,1,1"/><input name="mat" type="matrix33" nodename="i"/>'
+               '</transformmatrix><output name="out" type="vector3" nodename="t"/></nodegraph>')
+    pixel = gen.prepare(text, target="wgsl").emit()["stages"]["pixel"]
+    assert "mx_inverse_mat3(pu.i_in)" in pixel and "fn mx_inverse_mat3(" in pixel
+    assert "fn mx_inverse_mat4(" not in pixel  # helpers nothing calls are dropped
+    assert not validator({"pixel": pixel})

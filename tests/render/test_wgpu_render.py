@@ -34,6 +34,23 @@ TEXTURED = '''<?xml version="1.0"?>
   </nodegraph>
 </materialx>
 '''
+INVERSES = '''<?xml version="1.0"?>
+<materialx version="1.39">
+  <nodegraph name="g">
+    <position name="p" type="vector3"/>
+    <invertmatrix name="inv4" type="matrix44"><input name="in" type="matrix44"
+      value="2, 0.1, 0.2, 0.05, 0.3, 1, 0.5, 0.1, 0.3, 0.2, 1.5, 0.02, 0.2, 0.3, 0.1, 1"/></invertmatrix>
+    <transformmatrix name="t4" type="vector3"><input name="in" type="vector3" nodename="p"/>
+      <input name="mat" type="matrix44" nodename="inv4"/></transformmatrix>
+    <invertmatrix name="inv3" type="matrix33"><input name="in" type="matrix33" value="1, 0.2, 0, 0, 2, 0.4, 0.1, 0, 0.5"/></invertmatrix>
+    <transformmatrix name="t3" type="vector3"><input name="in" type="vector3" nodename="t4"/>
+      <input name="mat" type="matrix33" nodename="inv3"/></transformmatrix>
+    <multiply name="s" type="vector3"><input name="in1" type="vector3" nodename="t3"/><input name="in2" type="float" value="0.2"/></multiply>
+    <add name="a" type="vector3"><input name="in1" type="vector3" nodename="s"/><input name="in2" type="float" value="0.5"/></add>
+    <output name="out" type="vector3" nodename="a"/>
+  </nodegraph>
+</materialx>
+'''
 LIT = '''<?xml version="1.0"?>
 <materialx version="1.39">
   <standard_surface name="ss" type="surfaceshader"><input name="base_color" type="color3" value="0.8, 0.3, 0.2"/>
@@ -58,6 +75,7 @@ def psnr(a: np.ndarray, b: np.ndarray) -> float:
 
 @pytest.mark.parametrize("name, text, interface, lights", [
     ("textured graph with screen-space derivatives, every value a uniform", TEXTURED, "complete", None),
+    ("inverted matrices (WGSL has no inverse())", INVERSES, "complete", None),
     ("procedural marble", (EXAMPLES / "marble_checker.mtlx").read_text(), "specialized", None),
     ("lit standard_surface", LIT, "specialized", DATA / "rig.mtlx"),
 ])
@@ -72,7 +90,9 @@ def test_wgsl_drawn_by_wgpu_matches_glsl_drawn_by_gl(renderer, wgpu_renderer, na
     wgsl, glsl = images["wgsl"], images["glsl"]
     assert wgsl.shape == glsl.shape == (SIZE, SIZE, 4)
     assert glsl[..., 3].mean() > 0.3 and glsl[SIZE // 2, SIZE // 2, :3].max() > 0.02  # something was drawn
-    assert psnr(wgsl, glsl) >= 40.0, (name, psnr(wgsl, glsl))
+    # The issue asks 40 dB of every Examples material; the same arithmetic on Mesa's two CPU
+    # rasterizers gives over 80 here (one wrong cofactor in the 4x4 inverse gives 53).
+    assert psnr(wgsl, glsl) >= 70.0, (name, psnr(wgsl, glsl))
 
 
 def test_records_go_to_the_renderer_of_their_target(renderer, wgpu_renderer):

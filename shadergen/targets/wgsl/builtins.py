@@ -39,6 +39,47 @@ TEXTURE_CALLS = {"texture": "textureSample", "textureGrad": "textureSampleGrad",
 
 RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx"}
 
+# GLSL built-ins WGSL lacks, as WGSL functions every stage may call (the dead-code pass drops
+# those it does not). inverse(): the adjugate over the determinant. For a 3x3 matrix of columns
+# a, b, c the rows of the inverse are b x c, c x a, a x b over det = a . (b x c). For a 4x4 matrix
+# a[i][j] (column i, row j), Laplace expansion along the first two columns (s: their 2x2 minors;
+# c: the complementary minors of the last two); the cofactors of a's transpose, transposed back by
+# writing them column after column.
+INVERSE_HELPERS = {"mat3": "mx_inverse_mat3", "mat4": "mx_inverse_mat4"}
+HELPERS = """\
+fn mx_inverse_mat3(m: mat3x3f) -> mat3x3f {
+    let r0 = cross(m[1], m[2]);
+    let r1 = cross(m[2], m[0]);
+    let r2 = cross(m[0], m[1]);
+    return transpose(mat3x3f(r0, r1, r2)) * (1.0 / dot(m[0], r0));
+}
+
+fn mx_inverse_mat4(a: mat4x4f) -> mat4x4f {
+    let s0 = a[0][0] * a[1][1] - a[1][0] * a[0][1];
+    let s1 = a[0][0] * a[1][2] - a[1][0] * a[0][2];
+    let s2 = a[0][0] * a[1][3] - a[1][0] * a[0][3];
+    let s3 = a[0][1] * a[1][2] - a[1][1] * a[0][2];
+    let s4 = a[0][1] * a[1][3] - a[1][1] * a[0][3];
+    let s5 = a[0][2] * a[1][3] - a[1][2] * a[0][3];
+    let c5 = a[2][2] * a[3][3] - a[3][2] * a[2][3];
+    let c4 = a[2][1] * a[3][3] - a[3][1] * a[2][3];
+    let c3 = a[2][1] * a[3][2] - a[3][1] * a[2][2];
+    let c2 = a[2][0] * a[3][3] - a[3][0] * a[2][3];
+    let c1 = a[2][0] * a[3][2] - a[3][0] * a[2][2];
+    let c0 = a[2][0] * a[3][1] - a[3][0] * a[2][1];
+    let inv_det = 1.0 / (s0 * c5 - s1 * c4 + s2 * c3 + s3 * c2 - s4 * c1 + s5 * c0);
+    return mat4x4f(
+        a[1][1] * c5 - a[1][2] * c4 + a[1][3] * c3, -a[0][1] * c5 + a[0][2] * c4 - a[0][3] * c3,
+        a[3][1] * s5 - a[3][2] * s4 + a[3][3] * s3, -a[2][1] * s5 + a[2][2] * s4 - a[2][3] * s3,
+        -a[1][0] * c5 + a[1][2] * c2 - a[1][3] * c1, a[0][0] * c5 - a[0][2] * c2 + a[0][3] * c1,
+        -a[3][0] * s5 + a[3][2] * s2 - a[3][3] * s1, a[2][0] * s5 - a[2][2] * s2 + a[2][3] * s1,
+        a[1][0] * c4 - a[1][1] * c2 + a[1][3] * c0, -a[0][0] * c4 + a[0][1] * c2 - a[0][3] * c0,
+        a[3][0] * s4 - a[3][1] * s2 + a[3][3] * s0, -a[2][0] * s4 + a[2][1] * s2 - a[2][3] * s0,
+        -a[1][0] * c3 + a[1][1] * c1 - a[1][2] * c0, a[0][0] * c3 - a[0][1] * c1 + a[0][2] * c0,
+        -a[3][0] * s3 + a[3][1] * s1 - a[3][2] * s0, a[2][0] * s3 - a[2][1] * s1 + a[2][2] * s0) * inv_det;
+}
+"""
+
 WGSL_RESERVED = set("""
 alias break case const const_assert continue continuing default diagnostic discard else enable false fn for if let
 loop override requires return struct switch true var while NULL Self abstract active alignas alignof as asm

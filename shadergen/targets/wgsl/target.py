@@ -17,11 +17,12 @@ from ...shader import PIXEL, VERTEX, Variable, Writer
 from ..deadcode import used_functions
 from ..glsl import LIGHT_DATA_MEMBERS, STRUCTS, TYPE_NAMES, ClosureConvention, Syntax, _float
 from ..glsl_target import PLACEHOLDER, GlslTarget
-from .builtins import WGSL_RESERVED, WGSL_TYPES
+from .builtins import HELPERS, WGSL_RESERVED, WGSL_TYPES
 from .layout import uniform_layout
 from .translate import Translator, Untranslatable
 
 _TRANSLATOR: Translator | None = None
+HELPER_LINES = HELPERS.splitlines() + [""]  # the same str objects each request, as the libraries' lines
 
 
 def translator() -> Translator:
@@ -147,7 +148,8 @@ class WgslTarget(GlslTarget):
 
     # -- stage assembly ----------------------------------------------------------------------------
     def used_functions(self, function_lines: list[str], roots: str) -> tuple[list[str], set[str]]:
-        return used_functions(function_lines, roots)
+        """The functions main reaches, WGSL's stand-ins for GLSL built-ins among them."""
+        return used_functions(HELPER_LINES + function_lines, roots)
 
     def layout(self, ctx) -> dict:
         """Byte offsets of every uniform in its stage's buffer, and the texture bindings."""

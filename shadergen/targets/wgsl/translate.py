@@ -14,7 +14,7 @@ import re
 from dataclasses import dataclass, field
 
 from ...errors import ShaderGenError
-from .builtins import BUILTIN_RETURN, COMPONENTWISE, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
+from .builtins import BUILTIN_RETURN, COMPONENTWISE, INVERSE_HELPERS, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
 
 
 class Untranslatable(ShaderGenError):
@@ -353,6 +353,10 @@ class Parser:
                     qualifier = self.next()
                     qualifier = "in" if qualifier == "const" else qualifier
                 params.append((qualifier, self.next(), self.next()))
+                if self.peek() == "[":  # an array parameter: `vec3 tint[3]` has type vec3[3]
+                    self.next()
+                    params[-1] = (qualifier, f"{params[-1][1]}[{self.next()}]", params[-1][2])
+                    self.expect("]")
                 if self.peek() == ",":
                     self.next()
             self.expect(")")
@@ -399,6 +403,14 @@ def wgsl_type(t: str) -> str:
     return WGSL_TYPES.get(t, t)
 
 
+def param_type(t: str) -> str:
+    """A parameter's WGSL type; a GLSL array parameter `T[N]` is array<T, N>."""
+    if t.endswith("]"):
+        element, size = t[:-1].split("[")
+        return f"array<{wgsl_type(element)}, {size}>"
+    return wgsl_type(t)
+
+
 @dataclass
 class Signature:
     name: str  # the WGSL name (suffixed when the GLSL name is overloaded)
@@ -417,6 +429,9 @@ class Library:
         self.aliases: dict[str, str] = {}
 
     def canon(self, t: str) -> str:
+        """The type as expressions carry it: aliases resolved, arrays of any size as `T[]`."""
+        if t.endswith("]"):
+            return self.canon(t[:t.index("[")]) + "[]"
         return self.aliases.get(t, t)
 
     def resolve(self, name: str, arg_types: list[str]) -> Signature | None:
@@ -638,6 +653,10 @@ class FunctionEmitter:
             bits = f"bitcast<{'u32' if n == 1 else f'vec{n}u'}>({x})"
             mask, inf = ("0x7fffffffu", "0x7f800000u") if n == 1 else (f"vec{n}u(0x7fffffffu)", f"vec{n}u(0x7f800000u)")
             return f"(({bits} & {mask}) {'>' if name == 'isnan' else '=='} {inf})", vector_of("bool", n)
+        if name == "inverse":  # WGSL has none: a function of the target's own (builtins.HELPERS)
+            if types[0] not in INVERSE_HELPERS:
+                raise Untranslatable(f"inverse of a {types[0]}")
+            return f"{INVERSE_HELPERS[types[0]]}({texts[0]})", types[0]
         if name == "dFdy":  # GL's window y runs up, WebGPU's framebuffer y down
             return f"(-dpdy({texts[0]}))", types[0]
         if name in TEXTURE_CALLS:
@@ -743,12 +762,11 @@ class FunctionEmitter:
         return self.one_declaration(const, t, *decls[0])
 
     def one_declaration(self, const: bool, t: str, name: str, size, init) -> str:
-        if size is not None:
+        if size is not None:  # a variable even when const: indexed at run time, as a value it would be copied
             n, _ = self.expr(size)
             self.scopes[-1][name] = self.lib.canon(t) + "[]"
-            if init is not None:
-                raise Untranslatable("array initialisers")
-            return f"var {safe_name(name)}: array<{wgsl_type(t)}, {n}>"
+            declared = f"var {safe_name(name)}: array<{wgsl_type(t)}, {n}>"
+            return declared if init is None else f"{declared} = {self.expr(init)[0]}"
         t = self.scopes[-1][name] = self.lib.canon(t)
         if init is None:
             return f"var {safe_name(name)}: {wgsl_type(t)}"
@@ -877,7 +895,9 @@ class Translator:
 
     def function(self, item, overloaded: bool) -> list[str]:
         _, ret, name, params, body = item
-        wgsl_name = f"{name}_{'_'.join(t for _, t, _ in params)}" if overloaded else name
+        suffix = "_".join(re.sub(r"\[(\w+)\]", r"_\1", t) for _, t, _ in params)  # vec3[3] -> vec3_3
+        wgsl_name = f"{name}_{suffix}" if overloaded else name
+        declared = {n: t for _, t, n in params}  # array parameters keep their size here
         params = [(q, self.lib.canon(t), n) for q, t, n in params]
         ret = self.lib.canon(ret)
         self.lib.functions.setdefault(name, []).append(Signature(wgsl_name, ret, params))
@@ -888,12 +908,12 @@ class Translator:
         for q, t, n in params:
             if q == "in":
                 if n in assigned:  # WGSL parameters are immutable: work on a copy
-                    texts.append(f"{n}_in: {wgsl_type(t)}")
-                    copies.append(f"    var {safe_name(n)}: {wgsl_type(t)} = {n}_in;")
+                    texts.append(f"{n}_in: {param_type(declared[n])}")
+                    copies.append(f"    var {safe_name(n)}: {param_type(declared[n])} = {n}_in;")
                 else:
-                    texts.append(f"{safe_name(n)}: {wgsl_type(t)}")
+                    texts.append(f"{safe_name(n)}: {param_type(declared[n])}")
             else:
-                texts.append(f"{safe_name(n)}: ptr<function, {wgsl_type(t)}>")
+                texts.append(f"{safe_name(n)}: ptr<function, {param_type(declared[n])}>")
             if t == "sampler2D":  # a GLSL sampler is a WGSL texture and its sampler
                 texts[-1] = f"{safe_name(n)}: texture_2d<f32>, {n}_sampler: sampler"
         emitter.statements(body)
