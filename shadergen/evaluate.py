@@ -136,6 +136,8 @@ def _evaluate(category: str, i: dict, out_type: str):
     if category in ("and", "or", "xor", "not"):
         return {"and": lambda: i["in1"] and i["in2"], "or": lambda: i["in1"] or i["in2"],
                 "xor": lambda: i["in1"] != i["in2"], "not": lambda: not i["in"]}[category]()
+    if category in ("maxcomponent", "mincomponent"):
+        return (max if category == "maxcomponent" else min)(i["in"])
     if category == "magnitude":
         return math.sqrt(_dot(i["in"], i["in"]))
     if category == "distance":
