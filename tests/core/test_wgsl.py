@@ -145,3 +145,11 @@ def test_inverse_is_a_helper_of_the_target(gen, validator):
     assert "mx_inverse_mat3(pu.i_in)" in pixel and "fn mx_inverse_mat3(" in pixel
     assert "fn mx_inverse_mat4(" not in pixel  # helpers nothing calls are dropped
     assert not validator({"pixel": pixel})
+
+
+def test_an_out_argument_into_a_member_goes_through_a_copy():
+    """naga's SPIR-V writer in wgpu 0.32 panics on a pointer into a struct member (`&p.a`)."""
+    out = translate("struct P { vec3 a; };\nvoid g(out vec3 r) { r = vec3(1.0); }\n"
+                    "vec3 f() { P p; g(p.a); return p.a; }")
+    assert "var written_0: vec3f = p.a;" in out and "g(&written_0);" in out and "p.a = written_0;" in out
+    assert out.index("g(&written_0);") < out.index("p.a = written_0;") < out.index("return p.a;")

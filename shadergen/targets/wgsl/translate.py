@@ -455,6 +455,8 @@ class FunctionEmitter:
         self.scopes: list[dict[str, str]] = [{}]
         self.pointers: set[str] = set()
         self.lines: list[str] = []
+        self.writebacks: list[str] = []  # copies back from out-argument temporaries, after the statement
+        self.temporaries = 0
         self.depth = 1
         for q, t, n in params:
             self.scopes[0][n] = lib.canon(t)
@@ -605,8 +607,14 @@ class FunctionEmitter:
                     texts.append(self.convert(text, t, pt))
                 elif arg.kind == "id" and arg.value in self.pointers:
                     texts.append(safe_name(arg.value))
-                else:
+                elif arg.kind == "id":
                     texts.append(f"&{text}")
+                else:  # a member or element goes through a copy: naga's SPIR-V writer (wgpu 0.32) panics on
+                    temp = f"written_{len(self.writebacks) + self.temporaries}"  # a pointer into a composite
+                    self.temporaries += 1
+                    self.line(f"var {temp}: {wgsl_type(pt)} = {text};")
+                    self.writebacks.append(f"{text} = {temp};")
+                    texts.append(f"&{temp}")
             return f"{sig.name}({', '.join(texts)})", sig.ret
         if name in self.lib.functions:
             raise Untranslatable(f"no overload of '{name}' takes ({', '.join(t for _, t in args)})")
@@ -713,6 +721,12 @@ class FunctionEmitter:
             self.line("}")
 
     def statement(self, s) -> None:
+        self.one_statement(s)
+        for line in self.writebacks:
+            self.line(line)
+        self.writebacks = []
+
+    def one_statement(self, s) -> None:
         kind = s[0]
         if kind == "comment":
             self.comment(s[1])
@@ -751,7 +765,14 @@ class FunctionEmitter:
                 self.line("return;")
             else:
                 text, t = self.expr(s[1])
-                self.line(f"return {self.convert(text, t, self.ret)};")
+                if self.writebacks:  # the copies back happen before the function returns
+                    self.line(f"let returned = {self.convert(text, t, self.ret)};")
+                    for line in self.writebacks:
+                        self.line(line)
+                    self.writebacks = []
+                    self.line("return returned;")
+                else:
+                    self.line(f"return {self.convert(text, t, self.ret)};")
         else:
             self.line(f"{kind};")
 
