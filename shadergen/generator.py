@@ -9,6 +9,7 @@ blocks, functions, main. The graph arrives finished (passes/): emission only wal
 import re
 
 from .errors import ShaderGenError
+from .features import graph_features, resolve
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .nodes.lobes import closure_nodes, emit_lobes
@@ -58,6 +59,7 @@ class EmitContext:
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
         self.lobe_weights: dict[int, str] = {}  # id(lobe's weight Input) -> its weight at this point
         self.prepared_lobes: dict[int, str] = {}  # id(lobe Node) -> its prepared state, in this surface
+        self.features: frozenset[str] | None = None  # library features the nodes need (None: all)
 
     @property
     def pixel(self) -> Stage:
@@ -145,7 +147,7 @@ class EmitContext:
         """A library source file with its includes ((path, text), dependencies first), each once."""
         for dep_path, text in files:
             if self.pixel.once(("file", dep_path)):
-                self.pixel.functions.extend(self.target.library_source(dep_path, text))
+                self.pixel.functions.extend(self.target.library_source(dep_path, resolve(text, self.features)))
                 self.pixel.functions.line()
 
     def emit_graph_function(self, function: Function) -> None:
@@ -263,6 +265,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.app_data("i_position", "vector3")
     for port in graph.interface:
         ctx.publish(port)
+    ctx.features = frozenset(graph_features(graph))
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)

@@ -12,6 +12,7 @@ import re
 
 from ..element import Element
 from ..errors import ShaderGenError
+from ..features import node_features
 from ..library import Library, read_source
 from ..targets.glsl_target import PLACEHOLDER
 
@@ -40,6 +41,10 @@ class NodeImpl:
 
     def is_editable(self, input_name: str) -> bool:
         return input_name not in self.fixed_inputs
+
+    def features(self, node) -> set[str]:
+        """The library features (shadergen/features.py) this node's calls need."""
+        return set()
 
     def create_variables(self, node, ctx) -> None:
         pass
@@ -78,6 +83,9 @@ class SourceFunctionImpl(NodeImpl):
         self.files = tuple(expand_includes(self.path, set()))  # (path, text) of it and its includes, dependencies first
         self.source = self.files[-1][1]  # the text of its own file, without its #include lines
         self.uses_derivatives = any(DERIVATIVES.search(text) for _, text in self.files)
+
+    def features(self, node) -> set[str]:
+        return node_features(node, self.source)
 
     def emit_function_definition(self, node, ctx) -> None:
         ctx.emit_source_files(self.files)

@@ -91,20 +91,6 @@ vec2 mx_sqr(vec2 x) { return x * x; }
 vec3 mx_sqr(vec3 x) { return x * x; }
 
 
-// x^y for x >= 0 and any y: GLSL leaves pow(0, y <= 0) undefined; here 0^y is 1 for y <= 0.
-float mx_power(float x, float y)
-{
-    return (y <= 0.0) ? 1.0 : pow(max(x, 0.0), y);
-}
-
-
-float mx_pow_6(float x)
-{
-    float x2 = x * x;
-    return x2 * x2 * x2;
-}
-
-
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
@@ -176,8 +162,6 @@ vec2 mx_fibonacci_point(int i, int count)
 
 #define FRESNEL_MODEL_DIELECTRIC 0
 
-#define FRESNEL_MODEL_CONDUCTOR 1
-
 #define FRESNEL_MODEL_SCHLICK 2
 
 
@@ -208,19 +192,6 @@ FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 
 bool mx_fresnel_has_thinfilm(FresnelData fd)
 {
     return fd.tf_thickness > 0.0;
-}
-
-
-// Generalised Schlick with Hoffman's F82 tint: the Schlick curve minus a x (1 - x)^6 lobe, whose
-// weight puts the curve through F82 at cos = 1/7 (about 82 degrees).
-vec3 mx_fresnel_f82(float cosTheta, FresnelData fd)
-{
-    const float COS_82 = 1.0 / 7.0;
-    const float LOBE_AT_82 = 0.0566527795;  // (1/7) (6/7)^6
-    float c = clamp(cosTheta, 0.0, 1.0);
-    vec3 schlick82 = mix(fd.F0, fd.F90, mx_power(1.0 - COS_82, fd.exponent));
-    vec3 a = schlick82 * (vec3(1.0) - fd.F82) / LOBE_AT_82;
-    return max(mix(fd.F0, fd.F90, mx_power(1.0 - c, fd.exponent)) - a * (c * mx_pow_6(1.0 - c)), 0.0);
 }
 
 
@@ -271,14 +242,6 @@ void mx_fresnel_conductor_pol(float cosTheta, vec3 n, vec3 k, out vec3 parallel,
     vec3 u = c2 * mag + vec3(s2 * s2);
     vec3 w = twoAc * s2;
     parallel = perpendicular * (u - w) / (u + w);
-}
-
-
-vec3 mx_fresnel_conductor(float cosTheta, vec3 n, vec3 k)
-{
-    vec3 par, perp;
-    mx_fresnel_conductor_pol(cosTheta, n, k, par, perp);
-    return 0.5 * (par + perp);
 }
 
 
@@ -378,12 +341,6 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 
     // Bottom interface, film to base, with its phase shifts.
     vec3 R23p, R23s, phi23p, phi23s;
-    if (schlick)
-    {
-        R23p = R23s = mx_fresnel_f82(c2, fd);  // unpolarised: the same for both
-        phi23p = phi23s = mix(vec3(0.0), vec3(MX_PI), lessThan(n3, vec3(n2)));
-    }
-    else
     {
         mx_fresnel_conductor_pol(c2, n3 / n2, k3 / n2, R23p, R23s);
         mx_fresnel_conductor_phase(c2, n2, n3, k3, phi23p, phi23s);
@@ -398,15 +355,15 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 
 // --- Dispatch --------------------------------------------------------------------------------
 
+// Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
+// and the thin film only when some closure's film can be thicker than 0.
 vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
 {
     if (mx_fresnel_has_thinfilm(fd))
         return mx_fresnel_airy(cosTheta, fd);
     if (fd.model == FRESNEL_MODEL_DIELECTRIC)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
-    if (fd.model == FRESNEL_MODEL_CONDUCTOR)
-        return mx_fresnel_conductor(cosTheta, fd.ior, fd.extinction);
-    return mx_fresnel_f82(cosTheta, fd);
+    return vec3(0.0);  // no closure of this shader uses another model
 }
 
 
@@ -1282,7 +1239,8 @@ float mx_albedo_dielectric_leaving(vec4 c, ivec2 i, int slab)
 
 
 // Reflection albedo of a GGX dielectric interface at view cosine mu, isotropic alpha and relative
-// index eta (transmitted side over incident side), eta clamped to [1/3, 3].
+// index eta (transmitted side over incident side), eta clamped to [1/3, 3]. The table of the dense
+// side is read only in shaders where some dielectric's index may be below 1 (shadergen/features.py).
 float mx_dielectric_albedo(float mu, float alpha, float eta)
 {
     bool leaving = eta < 1.0;
@@ -1292,14 +1250,15 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
     int slab = min(int(t), 6);
     vec4 c = mx_albedo_cell(sqrt(max(vec2(mu, alpha), 0.0)), vec2(16.0, 8.0));
     ivec2 i = ivec2(c.xy);
-    float low = leaving ? mx_albedo_dielectric_leaving(c, i, slab) : mx_albedo_dielectric_entering(c, i, slab);
-    float high = leaving ? mx_albedo_dielectric_leaving(c, i, slab + 1) : mx_albedo_dielectric_entering(c, i, slab + 1);
-    return mix(low, high, t - float(slab));
+    if (leaving)
+        return mix(mx_albedo_dielectric_leaving(c, i, slab), mx_albedo_dielectric_leaving(c, i, slab + 1), t - float(slab));
+    return mix(mx_albedo_dielectric_entering(c, i, slab), mx_albedo_dielectric_entering(c, i, slab + 1), t - float(slab));
 }
 
 
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
+
 
 
 // Once per shading point (lib/mx_specular.glsl).

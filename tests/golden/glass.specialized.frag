@@ -75,20 +75,6 @@ vec2 mx_sqr(vec2 x) { return x * x; }
 vec3 mx_sqr(vec3 x) { return x * x; }
 
 
-// x^y for x >= 0 and any y: GLSL leaves pow(0, y <= 0) undefined; here 0^y is 1 for y <= 0.
-float mx_power(float x, float y)
-{
-    return (y <= 0.0) ? 1.0 : pow(max(x, 0.0), y);
-}
-
-
-float mx_pow_6(float x)
-{
-    float x2 = x * x;
-    return x2 * x2 * x2;
-}
-
-
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
@@ -160,10 +146,6 @@ vec2 mx_fibonacci_point(int i, int count)
 
 #define FRESNEL_MODEL_DIELECTRIC 0
 
-#define FRESNEL_MODEL_CONDUCTOR 1
-
-#define FRESNEL_MODEL_SCHLICK 2
-
 
 // How a specular closure reflects: which model with its parameters, an optional thin film on top,
 // and whether the environment is to be sampled through the surface (refraction) instead of off it.
@@ -189,25 +171,6 @@ FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 
 }
 
 
-bool mx_fresnel_has_thinfilm(FresnelData fd)
-{
-    return fd.tf_thickness > 0.0;
-}
-
-
-// Generalised Schlick with Hoffman's F82 tint: the Schlick curve minus a x (1 - x)^6 lobe, whose
-// weight puts the curve through F82 at cos = 1/7 (about 82 degrees).
-vec3 mx_fresnel_f82(float cosTheta, FresnelData fd)
-{
-    const float COS_82 = 1.0 / 7.0;
-    const float LOBE_AT_82 = 0.0566527795;  // (1/7) (6/7)^6
-    float c = clamp(cosTheta, 0.0, 1.0);
-    vec3 schlick82 = mix(fd.F0, fd.F90, mx_power(1.0 - COS_82, fd.exponent));
-    vec3 a = schlick82 * (vec3(1.0) - fd.F82) / LOBE_AT_82;
-    return max(mix(fd.F0, fd.F90, mx_power(1.0 - c, fd.exponent)) - a * (c * mx_pow_6(1.0 - c)), 0.0);
-}
-
-
 // --- Dielectric ------------------------------------------------------------------------------
 
 // Unpolarised reflectance of a dielectric interface with relative index `eta` (transmitted over
@@ -225,172 +188,15 @@ float mx_fresnel_dielectric(float cosTheta, float eta)
 }
 
 
-// Reflectance per polarisation, (parallel, perpendicular).
-vec2 mx_fresnel_dielectric_pol(float cosTheta, float eta)
-{
-    float c2 = mx_sqr(clamp(cosTheta, 0.0, 1.0));
-    float s2 = 1.0 - c2;
-    float a2 = max(eta * eta - s2, 0.0);
-    float twoAc = 2.0 * sqrt(a2) * cosTheta;
-    float perp = (a2 + c2 - twoAc) / (a2 + c2 + twoAc);
-    float u = c2 * a2 + s2 * s2;
-    float w = twoAc * s2;
-    return vec2(perp * (u - w) / (u + w), perp);
-}
-
-
-// --- Conductor -------------------------------------------------------------------------------
-
-// Reflectance of a conductor with complex index n + ik, per polarisation.
-void mx_fresnel_conductor_pol(float cosTheta, vec3 n, vec3 k, out vec3 parallel, out vec3 perpendicular)
-{
-    float c2 = mx_sqr(clamp(cosTheta, 0.0, 1.0));
-    float s2 = 1.0 - c2;
-    vec3 d = n * n - k * k - vec3(s2);
-    vec3 mag = sqrt(d * d + 4.0 * n * n * k * k);  // a^2 + b^2
-    vec3 a = sqrt(max(0.5 * (mag + d), 0.0));
-    vec3 twoAc = 2.0 * a * cosTheta;
-    vec3 sum = mag + vec3(c2);
-    perpendicular = (sum - twoAc) / (sum + twoAc);
-    vec3 u = c2 * mag + vec3(s2 * s2);
-    vec3 w = twoAc * s2;
-    parallel = perpendicular * (u - w) / (u + w);
-}
-
-
-vec3 mx_fresnel_conductor(float cosTheta, vec3 n, vec3 k)
-{
-    vec3 par, perp;
-    mx_fresnel_conductor_pol(cosTheta, n, k, par, perp);
-    return 0.5 * (par + perp);
-}
-
-
-// Phase shifts on reflection at a conductor (Belcour & Barla 2017), per polarisation.
-void mx_fresnel_conductor_phase(float cosTheta, float eta1, vec3 eta2, vec3 kappa2, out vec3 phiP, out vec3 phiS)
-{
-    vec3 k = kappa2 / eta2;
-    vec3 s2 = vec3(1.0) - cosTheta * cosTheta;
-    vec3 oneMinusK2 = vec3(1.0) - k * k;
-    vec3 A = eta2 * eta2 * oneMinusK2 - eta1 * eta1 * s2;
-    vec3 B = sqrt(A * A + mx_sqr(2.0 * eta2 * eta2 * k));
-    vec3 U = sqrt((A + B) / 2.0);
-    vec3 V = max(vec3(0.0), sqrt((B - A) / 2.0));
-    phiS = atan(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr(eta1 * cosTheta));
-    phiP = atan(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
-                mx_sqr(eta2 * eta2 * (vec3(1.0) + k * k) * cosTheta) - eta1 * eta1 * (U * U + V * V));
-}
-
-
-float mx_f0_to_ior(float F0)
-{
-    float r = sqrt(clamp(F0, 0.01, 0.99));
-    return (1.0 + r) / (1.0 - r);
-}
-
-
-vec3 mx_f0_to_ior(vec3 F0)
-{
-    vec3 r = sqrt(clamp(F0, 0.01, 0.99));
-    return (vec3(1.0) + r) / (vec3(1.0) - r);
-}
-
-
-// --- Thin film (Belcour & Barla 2017) --------------------------------------------------------
-// A film of index n2 and thickness d over the base: light reflected at the top interface (R12) and
-// light that crossed the film once or more (an Airy series) interfere with an optical path
-// difference opd = 2 n2 d cos(theta2) per round trip. Belcour & Barla integrate each harmonic m of
-// the series against the CIE colour matching functions in closed form, approximating their
-// Fourier transforms by Gaussians; the amplitudes, centres and variances below are the paper's
-// published fits (x has a second, small Gaussian), normalised by the integral of y.
-
-// Colour matching (XYZ) of one harmonic cos(2 pi opd k + phase) over the visible wavenumbers k.
-vec3 mx_thinfilm_harmonic_xyz(float opd, vec3 phase)
-{
-    const vec3 AMPLITUDE = vec3(5.4856e-13, 4.4201e-13, 5.2481e-13);
-    const vec3 CENTRE = vec3(1.6810e+06, 1.7953e+06, 2.2084e+06);
-    const vec3 VARIANCE = vec3(4.3278e+09, 9.3046e+09, 6.6121e+09);
-    const float X2_AMPLITUDE = 9.7470e-14;
-    const float X2_CENTRE = 2.2399e+06;
-    const float X2_VARIANCE = 4.5282e+09;
-    const float Y_INTEGRAL = 1.0685e-7;
-    float w = 2.0 * MX_PI * opd;
-    vec3 xyz = AMPLITUDE * sqrt(2.0 * MX_PI * VARIANCE) * cos(CENTRE * w + phase) * exp(-VARIANCE * w * w);
-    xyz.x += X2_AMPLITUDE * sqrt(2.0 * MX_PI * X2_VARIANCE) * cos(X2_CENTRE * w + phase.x) * exp(-X2_VARIANCE * w * w);
-    return xyz / Y_INTEGRAL;
-}
-
-
-// Reflectance (XYZ) of one polarisation: R12 + T121^2 R23 / (1 - R12 R23) for the incoherent sum,
-// plus the interfering harmonics m = 1, 2, ... with amplitudes (Rdc - T121) r^m, r = sqrt(R12 R23),
-// and phase m (phi21 + phi23) (Belcour & Barla 2017, eqs. 9-11).
-vec3 mx_thinfilm_polarisation(float R12, vec3 R23, vec3 phase, float opd)
-{
-    float T121 = 1.0 - R12;
-    vec3 Rdc = T121 * T121 * R23 / max(vec3(1.0) - R12 * R23, MX_EPS);
-    vec3 r = sqrt(max(R12 * R23, 0.0));
-    vec3 amplitude = Rdc - vec3(T121);
-    vec3 xyz = vec3(R12) + Rdc;
-    for (int m = 1; m <= AIRY_FRESNEL_ITERATIONS; m++)
-    {
-        amplitude *= r;
-        xyz += 2.0 * amplitude * mx_thinfilm_harmonic_xyz(float(m) * opd, float(m) * phase);
-    }
-    return xyz;
-}
-
-
-// Reflectance of the film (fd.tf_thickness nm, index fd.tf_ior) in vacuum over the base `fd`:
-// a dielectric, a conductor, or generalised Schlick read as the dielectric of the same F0.
-vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
-{
-    // CIE XYZ to linear RGB with an equal-energy white (columns).
-    const mat3 XYZ_TO_RGB = mat3(2.3706743, -0.5138850, 0.0052982,
-                                 -0.9000405, 1.4253036, -0.0146949,
-                                 -0.4706338, 0.0885814, 1.0093968);
-    bool schlick = fd.model == FRESNEL_MODEL_SCHLICK;
-    float n2 = max(fd.tf_ior, 1.0);
-    vec3 n3 = schlick ? mx_f0_to_ior(fd.F0) : max(fd.ior, vec3(MX_EPS));
-    vec3 k3 = schlick ? vec3(0.0) : fd.extinction;
-    float c1 = clamp(cosTheta, 0.0, 1.0);
-    float c2 = sqrt(max(1.0 - (1.0 - c1 * c1) / (n2 * n2), 0.0));  // Snell into the film
-
-    // Top interface, (parallel, perpendicular); reflection from inside the film has phase pi,
-    // except for parallel polarisation below Brewster's angle.
-    vec2 R12 = mx_fresnel_dielectric_pol(c1, n2);
-    vec2 phi21 = vec2((c1 < 1.0 / sqrt(1.0 + n2 * n2)) ? 0.0 : MX_PI, MX_PI);
-
-    // Bottom interface, film to base, with its phase shifts.
-    vec3 R23p, R23s, phi23p, phi23s;
-    if (schlick)
-    {
-        R23p = R23s = mx_fresnel_f82(c2, fd);  // unpolarised: the same for both
-        phi23p = phi23s = mix(vec3(0.0), vec3(MX_PI), lessThan(n3, vec3(n2)));
-    }
-    else
-    {
-        mx_fresnel_conductor_pol(c2, n3 / n2, k3 / n2, R23p, R23s);
-        mx_fresnel_conductor_phase(c2, n2, n3, k3, phi23p, phi23s);
-    }
-
-    float opd = 2.0 * n2 * c2 * fd.tf_thickness * 1.0e-9;
-    vec3 xyz = mx_thinfilm_polarisation(R12.x, R23p, phi23p + phi21.x, opd) +
-               mx_thinfilm_polarisation(R12.y, R23s, phi23s + phi21.y, opd);
-    return clamp(XYZ_TO_RGB * (0.5 * xyz), 0.0, 1.0);
-}
-
-
 // --- Dispatch --------------------------------------------------------------------------------
 
+// Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
+// and the thin film only when some closure's film can be thicker than 0.
 vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
 {
-    if (mx_fresnel_has_thinfilm(fd))
-        return mx_fresnel_airy(cosTheta, fd);
     if (fd.model == FRESNEL_MODEL_DIELECTRIC)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
-    if (fd.model == FRESNEL_MODEL_CONDUCTOR)
-        return mx_fresnel_conductor(cosTheta, fd.ior, fd.extinction);
-    return mx_fresnel_f82(cosTheta, fd);
+    return vec3(0.0);  // no closure of this shader uses another model
 }
 
 
@@ -1119,138 +925,6 @@ const float MX_ALBEDO_DIELECTRIC_ENTERING[1024] = float[1024](
     0.148596, 0.134630, 0.122074, 0.110846, 0.100830, 0.091926, 0.083989, 0.076933);
 
 
-// the same for 1 / eta: from the dense side
-const float MX_ALBEDO_DIELECTRIC_LEAVING[1024] = float[1024](
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.255511, 0.046752, 0.035714,
-    0.979119, 0.948151, 0.888831, 0.908699, 0.953415, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.997794, 0.994089, 0.329966, 0.049314, 0.035720,
-    0.951327, 0.943865, 0.917425, 0.885676, 0.866380, 0.870482, 0.891655, 0.916948,
-    0.937826, 0.951644, 0.958277, 0.954666, 0.912903, 0.444561, 0.074119, 0.035724,
-    0.895304, 0.891290, 0.876298, 0.854685, 0.833292, 0.814806, 0.803686, 0.802159,
-    0.808727, 0.817671, 0.820798, 0.803229, 0.716827, 0.427786, 0.127498, 0.041602,
-    0.819737, 0.815375, 0.798924, 0.779917, 0.756490, 0.732394, 0.709050, 0.687577,
-    0.668316, 0.649062, 0.624391, 0.581742, 0.496383, 0.339233, 0.154016, 0.040922,
-    0.733121, 0.726896, 0.707170, 0.681546, 0.652100, 0.620003, 0.586555, 0.552285,
-    0.517117, 0.479868, 0.437628, 0.386377, 0.319956, 0.232770, 0.131188, 0.036816,
-    0.646991, 0.638214, 0.612971, 0.580361, 0.543129, 0.503385, 0.462098, 0.420091,
-    0.377976, 0.336190, 0.292061, 0.246507, 0.198350, 0.146637, 0.090826, 0.028955,
-    0.570367, 0.558650, 0.528053, 0.489728, 0.447192, 0.401997, 0.356746, 0.311944,
-    0.269245, 0.228949, 0.190893, 0.154909, 0.121066, 0.088574, 0.056825, 0.019973,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.115988, 0.071429,
-    0.982952, 0.952009, 0.891377, 0.909838, 0.955408, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.999727, 0.998348, 0.992860, 0.129355, 0.071445,
-    0.968723, 0.960608, 0.932203, 0.897583, 0.875932, 0.878063, 0.898231, 0.922858,
-    0.943816, 0.958500, 0.967522, 0.970736, 0.965236, 0.905528, 0.226586, 0.072555,
-    0.933948, 0.929392, 0.912423, 0.887703, 0.863672, 0.842264, 0.829253, 0.826542,
-    0.833828, 0.846005, 0.857377, 0.861405, 0.842441, 0.730202, 0.326227, 0.095993,
-    0.885406, 0.880495, 0.861967, 0.840731, 0.815036, 0.788581, 0.764037, 0.742872,
-    0.726043, 0.712671, 0.700263, 0.681926, 0.641439, 0.539648, 0.327934, 0.118710,
-    0.826867, 0.819947, 0.797855, 0.769751, 0.737935, 0.703955, 0.669759, 0.635721,
-    0.602765, 0.569865, 0.535367, 0.496637, 0.444969, 0.370417, 0.259885, 0.123405,
-    0.763930, 0.754029, 0.725683, 0.689236, 0.648368, 0.605011, 0.560745, 0.516480,
-    0.472665, 0.429530, 0.386865, 0.342000, 0.293649, 0.240461, 0.178027, 0.103880,
-    0.702902, 0.689332, 0.654059, 0.609020, 0.559213, 0.507790, 0.457411, 0.405979,
-    0.357283, 0.311763, 0.268163, 0.227118, 0.188074, 0.150531, 0.112791, 0.074122,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.320193, 0.107143,
-    0.984959, 0.953510, 0.892034, 0.910636, 0.955408, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.999727, 0.999843, 0.997728, 0.437082, 0.107174,
-    0.977319, 0.968788, 0.939301, 0.903559, 0.880449, 0.881726, 0.901543, 0.925622,
-    0.946316, 0.961276, 0.970844, 0.975547, 0.975278, 0.958400, 0.536781, 0.116376,
-    0.953132, 0.948305, 0.929939, 0.904018, 0.878056, 0.855204, 0.840974, 0.837312,
-    0.844530, 0.857548, 0.871284, 0.880955, 0.878283, 0.831376, 0.531530, 0.155625,
-    0.918446, 0.913191, 0.893227, 0.870822, 0.843703, 0.815785, 0.790300, 0.768505,
-    0.752165, 0.740844, 0.733310, 0.723808, 0.702710, 0.640384, 0.463574, 0.197910,
-    0.875652, 0.868245, 0.844796, 0.815153, 0.781814, 0.746560, 0.711682, 0.677448,
-    0.645035, 0.614249, 0.583974, 0.551689, 0.512273, 0.452637, 0.353719, 0.206912,
-    0.827936, 0.817342, 0.786953, 0.748454, 0.705423, 0.660416, 0.614693, 0.569608,
-    0.525529, 0.482656, 0.439406, 0.396817, 0.351278, 0.301949, 0.242904, 0.174492,
-    0.779161, 0.764712, 0.726699, 0.678552, 0.625411, 0.570751, 0.515252, 0.461161,
-    0.411113, 0.362539, 0.316145, 0.273770, 0.232797, 0.193847, 0.155964, 0.121825,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.142857,
-    0.986042, 0.954785, 0.892517, 0.911427, 0.955408, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.999727, 0.999843, 0.998621, 0.971573, 0.142908,
-    0.982540, 0.973918, 0.943647, 0.907034, 0.883573, 0.884005, 0.903032, 0.927263,
-    0.948153, 0.962942, 0.972462, 0.978123, 0.979488, 0.972534, 0.814542, 0.154727,
-    0.964867, 0.959972, 0.940687, 0.913740, 0.886847, 0.862968, 0.847794, 0.843794,
-    0.850620, 0.863972, 0.878738, 0.891004, 0.895014, 0.873276, 0.684692, 0.208341,
-    0.938896, 0.933386, 0.912619, 0.889268, 0.861057, 0.832313, 0.806271, 0.784150,
-    0.767648, 0.757308, 0.751775, 0.747034, 0.735663, 0.697245, 0.562386, 0.269381,
-    0.906623, 0.898831, 0.874159, 0.843531, 0.809211, 0.773212, 0.737616, 0.703318,
-    0.671226, 0.641655, 0.613957, 0.585903, 0.553976, 0.506141, 0.424563, 0.280732,
-    0.869475, 0.858260, 0.826557, 0.786472, 0.741965, 0.695818, 0.649253, 0.603589,
-    0.559306, 0.516760, 0.474627, 0.433565, 0.391433, 0.345356, 0.293043, 0.229550,
-    0.830276, 0.814780, 0.774793, 0.724522, 0.669086, 0.612114, 0.554627, 0.498820,
-    0.446688, 0.396631, 0.349753, 0.306074, 0.265538, 0.226597, 0.190720, 0.159744,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.178571,
-    0.987027, 0.955800, 0.892925, 0.912104, 0.955408, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.999727, 0.999843, 0.999643, 0.992783, 0.178647,
-    0.985907, 0.977170, 0.946651, 0.909243, 0.885010, 0.885458, 0.904221, 0.928583,
-    0.949172, 0.964032, 0.973960, 0.979454, 0.981955, 0.978989, 0.914583, 0.195842,
-    0.972757, 0.967543, 0.947935, 0.920142, 0.892785, 0.868201, 0.852470, 0.848177,
-    0.854821, 0.868113, 0.883476, 0.897083, 0.904419, 0.895087, 0.779190, 0.264241,
-    0.952868, 0.947146, 0.925696, 0.901691, 0.872827, 0.843327, 0.816801, 0.794563,
-    0.778143, 0.768083, 0.763796, 0.761682, 0.756421, 0.732763, 0.633956, 0.339548,
-    0.927576, 0.919461, 0.894326, 0.862784, 0.827709, 0.791039, 0.755080, 0.720804,
-    0.689231, 0.660815, 0.634767, 0.609983, 0.582060, 0.544240, 0.477377, 0.345553,
-    0.898029, 0.886457, 0.853876, 0.812812, 0.767141, 0.720011, 0.672743, 0.626799,
-    0.582454, 0.540096, 0.499805, 0.461056, 0.420991, 0.379380, 0.332994, 0.275245,
-    0.866180, 0.850193, 0.808853, 0.756715, 0.699470, 0.640617, 0.582384, 0.526309,
-    0.473384, 0.422078, 0.375028, 0.331404, 0.289754, 0.252508, 0.218504, 0.188583,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.214286,
-    0.988063, 0.956185, 0.893308, 0.912104, 0.955408, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.999727, 0.999843, 0.999916, 0.996628, 0.214392,
-    0.988662, 0.979741, 0.948909, 0.911287, 0.886684, 0.886509, 0.905497, 0.929239,
-    0.949681, 0.964578, 0.974554, 0.980549, 0.983720, 0.982832, 0.950390, 0.238106,
-    0.978617, 0.973374, 0.953395, 0.925049, 0.896961, 0.872124, 0.855797, 0.851189,
-    0.857691, 0.871052, 0.886826, 0.900876, 0.910473, 0.908329, 0.836021, 0.318715,
-    0.963218, 0.957400, 0.935478, 0.911041, 0.881538, 0.851561, 0.824544, 0.801868,
-    0.785280, 0.775809, 0.772218, 0.771872, 0.770507, 0.756861, 0.684995, 0.401614,
-    0.943401, 0.935148, 0.909176, 0.877094, 0.841485, 0.804317, 0.768135, 0.733675,
-    0.701971, 0.673939, 0.648994, 0.626328, 0.603410, 0.573431, 0.519244, 0.398000,
-    0.920150, 0.908145, 0.874626, 0.832653, 0.786507, 0.738730, 0.691126, 0.644729,
-    0.600395, 0.558244, 0.518453, 0.480408, 0.442862, 0.405532, 0.364132, 0.314774,
-    0.894394, 0.877795, 0.835457, 0.782246, 0.723594, 0.663288, 0.603860, 0.546514,
-    0.492535, 0.442156, 0.394574, 0.350739, 0.310081, 0.273411, 0.241013, 0.212025,
-    0.993992, 0.999872, 0.999992, 0.999998, 1.000000, 1.000000, 1.000000, 1.000000,
-    1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 0.250000,
-    0.988372, 0.956421, 0.893554, 0.912104, 0.955408, 0.979653, 0.990189, 0.994699,
-    0.996937, 0.998095, 0.999504, 0.999727, 0.999843, 0.999916, 0.998217, 0.250145,
-    0.990601, 0.981656, 0.950333, 0.912325, 0.887655, 0.887341, 0.905941, 0.929685,
-    0.950244, 0.965120, 0.975013, 0.981331, 0.984555, 0.985310, 0.966433, 0.279864,
-    0.982970, 0.977621, 0.957188, 0.928401, 0.900205, 0.874758, 0.858293, 0.853373,
-    0.859815, 0.873137, 0.889211, 0.903897, 0.914669, 0.916963, 0.870402, 0.372611,
-    0.970773, 0.964718, 0.942312, 0.917500, 0.887639, 0.857325, 0.830329, 0.807166,
-    0.790818, 0.781259, 0.778331, 0.779451, 0.780622, 0.774245, 0.722724, 0.459622,
-    0.954992, 0.946501, 0.920183, 0.887601, 0.851451, 0.813866, 0.777429, 0.742975,
-    0.711522, 0.683854, 0.659905, 0.638899, 0.619158, 0.594713, 0.551423, 0.445165,
-    0.936139, 0.923784, 0.889682, 0.847023, 0.800283, 0.752063, 0.704112, 0.657856,
-    0.613867, 0.572415, 0.533030, 0.496071, 0.461278, 0.425914, 0.388681, 0.343620,
-    0.915068, 0.898122, 0.854743, 0.800601, 0.741364, 0.680651, 0.620647, 0.562508,
-    0.507757, 0.457397, 0.409480, 0.365696, 0.325847, 0.290266, 0.258870, 0.229881);
-
-
 float mx_albedo_dielectric_entering(vec4 c, ivec2 i, int slab)
 {
     return mix(mix(MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
@@ -1258,15 +932,9 @@ float mx_albedo_dielectric_entering(vec4 c, ivec2 i, int slab)
 }
 
 
-float mx_albedo_dielectric_leaving(vec4 c, ivec2 i, int slab)
-{
-    return mix(mix(MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
-               mix(MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
-}
-
-
 // Reflection albedo of a GGX dielectric interface at view cosine mu, isotropic alpha and relative
-// index eta (transmitted side over incident side), eta clamped to [1/3, 3].
+// index eta (transmitted side over incident side), eta clamped to [1/3, 3]. The table of the dense
+// side is read only in shaders where some dielectric's index may be below 1 (shadergen/features.py).
 float mx_dielectric_albedo(float mu, float alpha, float eta)
 {
     bool leaving = eta < 1.0;
@@ -1276,14 +944,13 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
     int slab = min(int(t), 6);
     vec4 c = mx_albedo_cell(sqrt(max(vec2(mu, alpha), 0.0)), vec2(16.0, 8.0));
     ivec2 i = ivec2(c.xy);
-    float low = leaving ? mx_albedo_dielectric_leaving(c, i, slab) : mx_albedo_dielectric_entering(c, i, slab);
-    float high = leaving ? mx_albedo_dielectric_leaving(c, i, slab + 1) : mx_albedo_dielectric_entering(c, i, slab + 1);
-    return mix(low, high, t - float(slab));
+    return mix(mx_albedo_dielectric_entering(c, i, slab), mx_albedo_dielectric_entering(c, i, slab + 1), t - float(slab));
 }
 
 
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
+
 
 
 // Once per shading point (lib/mx_specular.glsl).

@@ -96,13 +96,6 @@ float mx_power(float x, float y)
 }
 
 
-float mx_pow_6(float x)
-{
-    float x2 = x * x;
-    return x2 * x2 * x2;
-}
-
-
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
@@ -313,19 +306,6 @@ vec3 mx_fresnel_schlick_exp(float cosTheta, vec3 F0, vec3 F90, float exponent)
 }
 
 
-// Generalised Schlick with Hoffman's F82 tint: the Schlick curve minus a x (1 - x)^6 lobe, whose
-// weight puts the curve through F82 at cos = 1/7 (about 82 degrees).
-vec3 mx_fresnel_f82(float cosTheta, FresnelData fd)
-{
-    const float COS_82 = 1.0 / 7.0;
-    const float LOBE_AT_82 = 0.0566527795;  // (1/7) (6/7)^6
-    float c = clamp(cosTheta, 0.0, 1.0);
-    vec3 schlick82 = mix(fd.F0, fd.F90, mx_power(1.0 - COS_82, fd.exponent));
-    vec3 a = schlick82 * (vec3(1.0) - fd.F82) / LOBE_AT_82;
-    return max(mix(fd.F0, fd.F90, mx_power(1.0 - c, fd.exponent)) - a * (c * mx_pow_6(1.0 - c)), 0.0);
-}
-
-
 // --- Dielectric ------------------------------------------------------------------------------
 
 // Unpolarised reflectance of a dielectric interface with relative index `eta` (transmitted over
@@ -480,12 +460,6 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 
     // Bottom interface, film to base, with its phase shifts.
     vec3 R23p, R23s, phi23p, phi23s;
-    if (schlick)
-    {
-        R23p = R23s = mx_fresnel_f82(c2, fd);  // unpolarised: the same for both
-        phi23p = phi23s = mix(vec3(0.0), vec3(MX_PI), lessThan(n3, vec3(n2)));
-    }
-    else
     {
         mx_fresnel_conductor_pol(c2, n3 / n2, k3 / n2, R23p, R23s);
         mx_fresnel_conductor_phase(c2, n2, n3, k3, phi23p, phi23s);
@@ -500,6 +474,8 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 
 // --- Dispatch --------------------------------------------------------------------------------
 
+// Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
+// and the thin film only when some closure's film can be thicker than 0.
 vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
 {
     if (mx_fresnel_has_thinfilm(fd))
@@ -508,7 +484,7 @@ vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
     if (fd.model == FRESNEL_MODEL_CONDUCTOR)
         return mx_fresnel_conductor(cosTheta, fd.ior, fd.extinction);
-    return mx_fresnel_f82(cosTheta, fd);
+    return vec3(0.0);  // no closure of this shader uses another model
 }
 
 
@@ -1391,7 +1367,8 @@ float mx_albedo_dielectric_leaving(vec4 c, ivec2 i, int slab)
 
 
 // Reflection albedo of a GGX dielectric interface at view cosine mu, isotropic alpha and relative
-// index eta (transmitted side over incident side), eta clamped to [1/3, 3].
+// index eta (transmitted side over incident side), eta clamped to [1/3, 3]. The table of the dense
+// side is read only in shaders where some dielectric's index may be below 1 (shadergen/features.py).
 float mx_dielectric_albedo(float mu, float alpha, float eta)
 {
     bool leaving = eta < 1.0;
@@ -1401,14 +1378,15 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
     int slab = min(int(t), 6);
     vec4 c = mx_albedo_cell(sqrt(max(vec2(mu, alpha), 0.0)), vec2(16.0, 8.0));
     ivec2 i = ivec2(c.xy);
-    float low = leaving ? mx_albedo_dielectric_leaving(c, i, slab) : mx_albedo_dielectric_entering(c, i, slab);
-    float high = leaving ? mx_albedo_dielectric_leaving(c, i, slab + 1) : mx_albedo_dielectric_entering(c, i, slab + 1);
-    return mix(low, high, t - float(slab));
+    if (leaving)
+        return mix(mx_albedo_dielectric_leaving(c, i, slab), mx_albedo_dielectric_leaving(c, i, slab + 1), t - float(slab));
+    return mix(mx_albedo_dielectric_entering(c, i, slab), mx_albedo_dielectric_entering(c, i, slab + 1), t - float(slab));
 }
 
 
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
+
 
 
 // Once per shading point (lib/mx_specular.glsl).
@@ -1675,6 +1653,7 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
 
 // <conductor_bsdf>: GGX reflection off a metal of complex index ior + i extinction (exact
 // conductor Fresnel), with an optional thin film. Opaque: nothing passes to a base.
+
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n, vec3 ior_k, vec2 roughness,
@@ -2031,6 +2010,7 @@ vec3 mx_eon_albedo(float mu, float sigma, vec3 rho)
 
 // <oren_nayar_diffuse_bsdf>: opaque rough diffuse reflection (lib/mx_diffuse.glsl), Lambert at
 // roughness 0; energy_compensation selects EON, the energy-preserving model of OpenPBR.
+
 
 
 

@@ -4,6 +4,7 @@
 #include "lib/mx_closure_type.glsl"
 #include "lib/mx_hair.glsl"
 #include "lib/mx_specular.glsl"
+#pragma shadergen feature FRESNEL_DIELECTRIC
 
 void mx_chiang_hair_bsdf(ClosureData closureData, vec3 tint_R, vec3 tint_TT, vec3 tint_TRT, float ior,
                          vec2 roughness_R, vec2 roughness_TT, vec2 roughness_TRT, float cuticle_angle,

@@ -1,6 +1,8 @@
 // <conductor_bsdf>: GGX reflection off a metal of complex index ior + i extinction (exact
 // conductor Fresnel), with an optional thin film. Opaque: nothing passes to a base.
 #include "lib/mx_specular.glsl"
+#pragma shadergen feature FRESNEL_CONDUCTOR
+#pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n, vec3 ior_k, vec2 roughness,

@@ -2,6 +2,10 @@
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 #include "lib/mx_specular.glsl"
 #include "lib/mx_albedo_dielectric.glsl"
+#pragma shadergen feature FRESNEL_DIELECTRIC
+#pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
+#pragma shadergen feature REFRACTION unless scatter_mode == R
+#pragma shadergen feature DIELECTRIC_LEAVING unless ior >= 1
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
@@ -43,8 +47,10 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     else
     {
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
+#ifdef MX_FEATURE_REFRACTION
         if (lobe.scatterMode != 0)
             bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
                                                     lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
+#endif
     }
 }

@@ -1,6 +1,9 @@
 // <generalized_schlick_bsdf>: GGX reflection (and refraction) with an artist-set Fresnel curve
 // through color0 (normal), color82 (about 82 degrees) and color90 (grazing), with `exponent`.
 #include "lib/mx_specular.glsl"
+#pragma shadergen feature FRESNEL_SCHLICK
+#pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
+#pragma shadergen feature REFRACTION unless scatter_mode == R
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_generalized_schlick_bsdf_prepare(ClosureData closureData, float weight, vec3 color0, vec3 color82, vec3 color90,
@@ -43,6 +46,7 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, SpecularLobe lobe, ino
     else
     {
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
+#ifdef MX_FEATURE_REFRACTION
         if (lobe.scatterMode != 0)
         {
             // Refracted with the index whose normal reflectance is the mean of color0.
@@ -51,5 +55,6 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, SpecularLobe lobe, ino
             bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V,
                                                     lobe.X, lobe.alpha, lobe.distribution, fd, vec3(1.0)) * lobe.weight;
         }
+#endif
     }
 }

@@ -3,6 +3,7 @@
 #include "lib/mx_closure_type.glsl"
 #include "lib/mx_diffuse.glsl"
 #include "lib/mx_environment_fis.glsl"
+#pragma shadergen feature ROUGH_DIFFUSE unless roughness <= 0
 
 void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, float roughness, vec3 N,
                                 bool energy_compensation, inout BSDF bsdf)
@@ -23,14 +24,22 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
         if (NdotL <= 0.0)
             return;
         float LdotV = dot(L, V);
+#ifdef MX_FEATURE_ROUGH_DIFFUSE
         vec3 f = energy_compensation ? mx_eon(NdotV, NdotL, LdotV, sigma, rho)
                                      : rho * mx_oren_nayar(NdotV, NdotL, LdotV, sigma);
+#else
+        vec3 f = rho;  // every diffuse lobe of this shader is smooth: both models are Lambert at sigma 0
+#endif
         bsdf.response = f * (closureData.occlusion * weight * NdotL * MX_INV_PI);
     }
     else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
     {
+#ifdef MX_FEATURE_ROUGH_DIFFUSE
         vec3 albedo = energy_compensation ? mx_eon_albedo(NdotV, sigma, rho)
                                           : rho * mx_oren_nayar_albedo_renormalised(NdotV, sigma);
+#else
+        vec3 albedo = rho;
+#endif
         bsdf.response = mx_environment_irradiance(N) * albedo * weight;
     }
 }

@@ -861,7 +861,7 @@ class Translator:
         `uniforms`: name -> GLSL type of the uniforms library functions read directly."""
         self.lib = Library()
         self.lib.globals.update(uniforms or {})
-        self.done: dict[str, str] = {}
+        self.done: dict[tuple[str, str], str] = {}
         self.defined = {"GL_ES"}
         self.prelude = {name: self._file(text) for name, text in prelude.items()}
 
@@ -869,9 +869,10 @@ class Translator:
         return [text.strip() for name, text in self.prelude.items() if name in used]
 
     def file(self, key: str, text: str) -> str:
-        if key not in self.done:
-            self.done[key] = self._file(text)
-        return self.done[key]
+        """A file translated once per text: shaders resolve its feature sections differently."""
+        if (key, text) not in self.done:
+            self.done[key, text] = self._file(text)
+        return self.done[key, text]
 
     def _file(self, text: str) -> str:
         items = Parser(tokenize(preprocess(text, self.defined)), set(self.lib.structs)).top_level()

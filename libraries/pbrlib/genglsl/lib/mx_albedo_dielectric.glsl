@@ -277,7 +277,8 @@ float mx_albedo_dielectric_leaving(vec4 c, ivec2 i, int slab)
 }
 
 // Reflection albedo of a GGX dielectric interface at view cosine mu, isotropic alpha and relative
-// index eta (transmitted side over incident side), eta clamped to [1/3, 3].
+// index eta (transmitted side over incident side), eta clamped to [1/3, 3]. The table of the dense
+// side is read only in shaders where some dielectric's index may be below 1 (shadergen/features.py).
 float mx_dielectric_albedo(float mu, float alpha, float eta)
 {
     bool leaving = eta < 1.0;
@@ -287,7 +288,9 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
     int slab = min(int(t), 6);
     vec4 c = mx_albedo_cell(sqrt(max(vec2(mu, alpha), 0.0)), vec2(16.0, 8.0));
     ivec2 i = ivec2(c.xy);
-    float low = leaving ? mx_albedo_dielectric_leaving(c, i, slab) : mx_albedo_dielectric_entering(c, i, slab);
-    float high = leaving ? mx_albedo_dielectric_leaving(c, i, slab + 1) : mx_albedo_dielectric_entering(c, i, slab + 1);
-    return mix(low, high, t - float(slab));
+#ifdef MX_FEATURE_DIELECTRIC_LEAVING
+    if (leaving)
+        return mix(mx_albedo_dielectric_leaving(c, i, slab), mx_albedo_dielectric_leaving(c, i, slab + 1), t - float(slab));
+#endif
+    return mix(mx_albedo_dielectric_entering(c, i, slab), mx_albedo_dielectric_entering(c, i, slab + 1), t - float(slab));
 }

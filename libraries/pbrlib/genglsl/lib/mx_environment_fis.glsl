@@ -50,7 +50,11 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     for (int i = 0; i < sampleCount; i++)
     {
         vec3 H = mx_ggx_sample_visible_normal(mx_fibonacci_point(i, sampleCount), Vt, alpha);
+#ifdef MX_FEATURE_REFRACTION
         vec3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
+#else
+        vec3 Lt = reflect(-Vt, H);  // no closure of this shader refracts
+#endif
         vec3 Li = vec3(0.0);
         if (fetch)
         {

@@ -31,12 +31,14 @@ vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData
     vec3 reflected = rule.z * mx_fresnel_eval(rule.x, fd) + rule.w * mx_fresnel_eval(rule.y, fd);
     float E = max(rule.z + rule.w, MX_EPS);  // the albedo with F = 1
     vec3 L;
+#ifdef MX_FEATURE_REFRACTION
     if (fd.refraction)
     {
         albedo = vec3(1.0) - reflected / E;
         L = mx_refraction_solid_sphere(-V, N, fd.ior.x);
     }
     else
+#endif
     {
         albedo = reflected * (vec3(1.0) + mx_fresnel_eval(NdotV, fd) * ((1.0 - E) / E));
         L = reflect(-V, N);

@@ -216,12 +216,14 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 
     // Bottom interface, film to base, with its phase shifts.
     vec3 R23p, R23s, phi23p, phi23s;
+#ifdef MX_FEATURE_FRESNEL_SCHLICK
     if (schlick)
     {
         R23p = R23s = mx_fresnel_f82(c2, fd);  // unpolarised: the same for both
         phi23p = phi23s = mix(vec3(0.0), vec3(MX_PI), lessThan(n3, vec3(n2)));
     }
     else
+#endif
     {
         mx_fresnel_conductor_pol(c2, n3 / n2, k3 / n2, R23p, R23s);
         mx_fresnel_conductor_phase(c2, n2, n3, k3, phi23p, phi23s);
@@ -235,13 +237,25 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 
 // --- Dispatch --------------------------------------------------------------------------------
 
+// Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
+// and the thin film only when some closure's film can be thicker than 0.
 vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
 {
+#ifdef MX_FEATURE_THIN_FILM
     if (mx_fresnel_has_thinfilm(fd))
         return mx_fresnel_airy(cosTheta, fd);
+#endif
+#ifdef MX_FEATURE_FRESNEL_DIELECTRIC
     if (fd.model == FRESNEL_MODEL_DIELECTRIC)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
+#endif
+#ifdef MX_FEATURE_FRESNEL_CONDUCTOR
     if (fd.model == FRESNEL_MODEL_CONDUCTOR)
         return mx_fresnel_conductor(cosTheta, fd.ior, fd.extinction);
+#endif
+#ifdef MX_FEATURE_FRESNEL_SCHLICK
     return mx_fresnel_f82(cosTheta, fd);
+#else
+    return vec3(0.0);  // no closure of this shader uses another model
+#endif
 }

@@ -1,0 +1,101 @@
+"""Generation-time features of the libraries (shadergen/features.py): sections a shader keeps only
+when one of its nodes can take them, resolved before any target sees the library text."""
+import pytest
+
+from shadergen.errors import ShaderGenError
+from shadergen.features import resolve
+
+from .conftest import doc, glslang, needs_glslang
+
+SECTIONS = """float f()
+{
+#ifdef MX_FEATURE_A
+    a();
+#ifdef MX_ENV_PREFILTER
+    prefiltered();
+#else
+    sampled();
+#endif
+#else
+    notA();
+#endif
+#ifndef MX_FEATURE_B
+    notB();
+#endif
+#pragma shadergen feature A unless x == 0
+    return 0.0;
+}"""
+
+
+def test_a_needed_section_stays_without_its_directives_and_the_compilers_own_conditionals_stay():
+    out = resolve(SECTIONS, frozenset({"A", "B"}))
+    assert "a();" in out and "notA();" not in out and "notB();" not in out
+    assert "#ifdef MX_ENV_PREFILTER" in out and "sampled();" in out and "#endif" in out
+    assert "MX_FEATURE" not in out and "#pragma" not in out
+
+
+def test_a_section_no_node_needs_is_dropped_with_what_it_holds_and_its_else_side_stays():
+    out = resolve(SECTIONS, frozenset())
+    assert "notA();" in out and "notB();" in out
+    assert "a();" not in out.replace("notA();", "") and "MX_ENV_PREFILTER" not in out and "sampled();" not in out
+
+
+def test_an_unasked_stage_keeps_every_section():
+    out = resolve(SECTIONS, None)
+    assert "a();" in out and "prefiltered();" in out and "notB();" not in out
+
+
+def test_elif_in_a_feature_section_is_refused():
+    with pytest.raises(ShaderGenError):
+        resolve("#ifdef MX_FEATURE_A\n#elif X\n#endif", frozenset())
+
+
+def material(bsdf: str) -> str:
+    return doc(f'{bsdf}<surface name="surf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="b"/></surface>'
+               '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" '
+               'nodename="surf"/></surfacematerial>')
+
+
+def pixel(gen, document: str, **kw) -> str:
+    return gen.prepare(document, **kw).emit()["stages"]["pixel"]
+
+
+DIELECTRIC = '<dielectric_bsdf name="b" type="BSDF"><input name="thinfilm_thickness" type="float" value="{t}"/>' \
+             '<input name="ior" type="float" value="{ior}"/><input name="scatter_mode" type="string" value="{mode}"/>' \
+             '</dielectric_bsdf>'
+
+
+@needs_glslang
+def test_a_film_of_thickness_0_leaves_the_thin_film_out_of_specialized_code_and_it_still_compiles(gen):
+    plain = pixel(gen, material(DIELECTRIC.format(t=0, ior=1.5, mode="R")), interface="specialized")
+    assert "mx_fresnel_airy" not in plain and "mx_fresnel_dielectric(" in plain
+    assert "mx_fresnel_conductor" not in plain and "mx_fresnel_f82" not in plain  # no closure of those models
+    assert "mx_refraction_solid_sphere" not in plain and "MX_ALBEDO_DIELECTRIC_LEAVING" not in plain
+    assert glslang(plain, "pixel")[0]
+    film = pixel(gen, material(DIELECTRIC.format(t=500, ior=1.5, mode="R")), interface="specialized")
+    assert "mx_fresnel_airy(" in film and glslang(film, "pixel")[0]
+
+
+def test_each_setting_brings_back_its_section(gen):
+    refracting = pixel(gen, material(DIELECTRIC.format(t=0, ior=1.5, mode="RT")), interface="specialized")
+    assert "mx_surface_transmission(" in refracting and "mx_refraction_solid_sphere(" in refracting
+    leaving = pixel(gen, material(DIELECTRIC.format(t=0, ior=0.7, mode="R")), interface="specialized")
+    assert "MX_ALBEDO_DIELECTRIC_LEAVING" in leaving
+
+
+def test_complete_and_kept_inputs_keep_every_section_their_uniform_can_reach(gen):
+    document = material(DIELECTRIC.format(t=0, ior=1.5, mode="R"))
+    complete = pixel(gen, document)
+    assert all(name in complete for name in ("mx_fresnel_airy(", "MX_ALBEDO_DIELECTRIC_LEAVING"))
+    assert "MX_FEATURE" not in complete and "#pragma" not in complete
+    kept = pixel(gen, document, interface="specialized", keep=["b/thinfilm_thickness"])
+    assert "mx_fresnel_airy(" in kept and "MX_ALBEDO_DIELECTRIC_LEAVING" not in kept
+
+
+def test_smooth_diffuse_is_lambert_and_rough_diffuse_brings_its_models(gen):
+    diffuse = '<oren_nayar_diffuse_bsdf name="b" type="BSDF"><input name="roughness" type="float" value="{r}"/>' \
+              '</oren_nayar_diffuse_bsdf>'
+    smooth = pixel(gen, material(diffuse.format(r=0)), interface="specialized")
+    assert "mx_oren_nayar(" not in smooth and "MX_ALBEDO_OREN_NAYAR" not in smooth and "mx_eon" not in smooth
+    rough = pixel(gen, material(diffuse.format(r=0.5)), interface="specialized")
+    assert "mx_oren_nayar(" in rough and "mx_eon(" in rough
