@@ -96,15 +96,24 @@ def _section(function_lines: tuple[str, ...]) -> Section:
 
 def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], set[str]]:
     """The function section's lines, reduced to what `roots` (main and declarations) use, and the
-    identifiers used by the roots and those lines."""
+    identifiers used by the roots and those lines. Items keep the spacing of their sources: one
+    blank line where the source had one or where dropped items come between, none between
+    neighbours that had none (a run of #defines)."""
     section = _section(tuple(function_lines))
     keep, used = section.reachable(roots)
     out: list[str] = []
+    previous = None
     for k in keep:
         lines = section.items[k]
-        out.extend(lines)
-        if lines and lines[-1].strip():
+        first = next((i for i, line in enumerate(lines) if line.strip()), len(lines))
+        if out and (first > 0 or previous != k - 1):
             out.append("")
+        for line in lines[first:]:
+            if line.strip() or out[-1].strip():
+                out.append(line)
+        previous = k
+    if out and out[-1].strip():
+        out.append("")
     return out, used
 
 

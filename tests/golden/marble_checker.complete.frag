@@ -34,7 +34,6 @@ uint mx_hn_rotl(uint x, uint k)
     return (x << k) | (x >> (32u - k));
 }
 
-
 // lookup3 final(): avalanche a, b, c into c.
 uint mx_hn_final(uint a, uint b, uint c)
 {
@@ -48,7 +47,6 @@ uint mx_hn_final(uint a, uint b, uint c)
     return c;
 }
 
-
 // lookup3 mix(): consumes one full block of three words (used for keys longer than three).
 void mx_hn_mix(inout uint a, inout uint b, inout uint c)
 {
@@ -60,7 +58,6 @@ void mx_hn_mix(inout uint a, inout uint b, inout uint c)
     c -= b; c ^= mx_hn_rotl(b, 4u);  b += a;
 }
 
-
 // Hashes of 2, 3, 4 and 5 integer words; the seed is 0xdeadbeef + 4 * length + 13.
 uint mx_hn_hash(int x, int y)
 {
@@ -68,13 +65,11 @@ uint mx_hn_hash(int x, int y)
     return mx_hn_final(s + uint(x), s + uint(y), s);
 }
 
-
 uint mx_hn_hash(int x, int y, int z)
 {
     uint s = 0xdeadbeefu + 25u;
     return mx_hn_final(s + uint(x), s + uint(y), s + uint(z));
 }
-
 
 uint mx_hn_hash(int x, int y, int z, int w)
 {
@@ -86,7 +81,6 @@ uint mx_hn_hash(int x, int y, int z, int w)
     return mx_hn_final(a + uint(w), b, c);
 }
 
-
 uint mx_hn_hash(int x, int y, int z, int w, int v)
 {
     uint s = 0xdeadbeefu + 33u;
@@ -96,7 +90,6 @@ uint mx_hn_hash(int x, int y, int z, int w, int v)
     mx_hn_mix(a, b, c);
     return mx_hn_final(a + uint(w), b + uint(v), c);
 }
-
 
 // Perlin's improved gradient noise on the integer lattice, and its fractal sum.
 //
@@ -109,11 +102,8 @@ float mx_pn_fade(float t)
     return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 }
 
-
 vec2 mx_pn_fade(vec2 t) { return vec2(mx_pn_fade(t.x), mx_pn_fade(t.y)); }
-
 vec3 mx_pn_fade(vec3 t) { return vec3(mx_pn_fade(t.x), mx_pn_fade(t.y), mx_pn_fade(t.z)); }
-
 
 // 2D: the low 3 hash bits choose one of the 8 gradients (+-1, +-2) and (+-2, +-1).
 float mx_pn_grad(uint h, vec2 f)
@@ -124,7 +114,6 @@ float mx_pn_grad(uint h, vec2 f)
     return ((h & 1u) != 0u ? -uv.x : uv.x) + ((h & 2u) != 0u ? -uv.y : uv.y);
 }
 
-
 // 3D: the low 4 hash bits choose one of the 12 cube-edge gradients (4 of them repeated).
 float mx_pn_grad(uint h, vec3 f)
 {
@@ -133,7 +122,6 @@ float mx_pn_grad(uint h, vec3 f)
     float v = (h < 4u) ? f.y : ((h == 12u || h == 14u) ? f.x : f.z);
     return ((h & 1u) != 0u ? -u : u) + ((h & 2u) != 0u ? -v : v);
 }
-
 
 float mx_pn_perlin(vec2 p)
 {
@@ -147,7 +135,6 @@ float mx_pn_perlin(vec2 p)
     float n11 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1), f - vec2(1.0, 1.0));
     return 0.6616 * mix(mix(n00, n10, w.x), mix(n01, n11, w.x), w.y);
 }
-
 
 float mx_pn_perlin(vec3 p)
 {
@@ -168,7 +155,6 @@ float mx_pn_perlin(vec3 p)
     return 0.9820 * mix(z0, z1, w.z);
 }
 
-
 // Fractal sum: octave k adds diminish^k * noise(p * lacunarity^k).
 float mx_pn_fractal(vec2 p, int octaves, float lacunarity, float diminish)
 {
@@ -183,7 +169,6 @@ float mx_pn_fractal(vec2 p, int octaves, float lacunarity, float diminish)
     return sum;
 }
 
-
 float mx_pn_fractal(vec3 p, int octaves, float lacunarity, float diminish)
 {
     float sum = 0.0;
@@ -197,12 +182,10 @@ float mx_pn_fractal(vec3 p, int octaves, float lacunarity, float diminish)
     return sum;
 }
 
-
 void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float diminish, vec3 position, out float result)
 {
     result = mx_pn_fractal(position, octaves, lacunarity, diminish) * amplitude;
 }
-
 
 void main()
 {

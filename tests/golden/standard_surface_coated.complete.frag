@@ -77,17 +77,12 @@ out vec4 out1;
 // Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
-
 const float MX_INV_PI = 1.0 / MX_PI;
-
 const float MX_EPS = 1.0e-8;  // floor for cosines and weights, as in MaterialX's hardware shading
 
 float mx_sqr(float x) { return x * x; }
-
 vec2 mx_sqr(vec2 x) { return x * x; }
-
 vec3 mx_sqr(vec3 x) { return x * x; }
-
 
 // x^y for x >= 0 and any y: GLSL leaves pow(0, y <= 0) undefined; here 0^y is 1 for y <= 0.
 float mx_power(float x, float y)
@@ -95,13 +90,11 @@ float mx_power(float x, float y)
     return (y <= 0.0) ? 1.0 : pow(max(x, 0.0), y);
 }
 
-
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
     return (dot(N, V) < 0.0) ? -N : N;
 }
-
 
 // Any orthonormal frame around the unit vector N, columns (X, Y, N) (Duff et al. 2017).
 mat3 mx_frame_from_normal(vec3 N)
@@ -114,14 +107,12 @@ mat3 mx_frame_from_normal(vec3 N)
                 N);
 }
 
-
 // A lobe's weight that scatters nothing: zero, negative, or NaN (a NaN computed in the graph, which
 // compares false with everything, is absorbed rather than spread over the image).
 bool mx_weight_is_zero(float weight)
 {
     return isnan(weight) || weight < MX_EPS;
 }
-
 
 // The normal a closure shades with: N when it is a usable direction, else the interpolated
 // surface normal (a normal map whose perturbation cancels to zero, or a NaN from the graph).
@@ -131,13 +122,11 @@ vec3 mx_usable_normal(vec3 N, vec3 surfaceNormal)
     return (isnan(len2) || isinf(len2) || len2 < MX_EPS) ? surfaceNormal : N * inversesqrt(len2);
 }
 
-
 // The normal a closure shades with, on the side of the surface that V sees.
 vec3 mx_shading_normal(vec3 N, vec3 surfaceNormal, vec3 V)
 {
     return mx_facing_normal(mx_usable_normal(N, surfaceNormal), V);
 }
-
 
 // Columns (X, Y, N): `X` made orthogonal to the unit normal `N`, then Y = N x X; any frame about N
 // when X is zero or along N.
@@ -151,7 +140,6 @@ mat3 mx_tangent_frame(vec3 N, vec3 X)
     return mat3(T, cross(N, T), N);
 }
 
-
 // Point `i` of a `count`-point spherical Fibonacci set in [0, 1)^2: a stratified first coordinate
 // and the golden-ratio sequence as the second. Every sampled integral of the library uses it, so
 // the sample pattern (and the image) matches the reference renderer's.
@@ -161,13 +149,11 @@ vec2 mx_fibonacci_point(int i, int count)
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
 
-
 // Density of a cosine-distributed direction with cosine `cosTheta` to the pole.
 float mx_cosine_pdf(float cosTheta)
 {
     return max(cosTheta, 0.0) * MX_INV_PI;
 }
-
 
 // Parameter conversions of the PBR library.
 
@@ -187,7 +173,6 @@ void mx_roughness_anisotropy(float roughness, float anisotropy, out vec2 result)
     }
 }
 
-
 // <artistic_ior>: complex index of refraction (n, k) of a metal from its reflectivity at normal
 // incidence and its edge tint (Gulbrandsen 2014).
 void mx_artistic_ior(vec3 reflectivity, vec3 edge_color, out vec3 ior, out vec3 extinction)
@@ -201,7 +186,6 @@ void mx_artistic_ior(vec3 reflectivity, vec3 edge_color, out vec3 ior, out vec3 
     extinction = sqrt(max(k2, 0.0));
 }
 
-
 // rotate3d: turn a vector by `degrees` about `axis` (normalized here).
 // MaterialX multiplies row vectors (v' = v * M), so the sense of rotation is that of
 // Rodrigues' formula with the cross product taken as v x k.
@@ -214,21 +198,15 @@ void mx_rotate3d_vector3(vec3 v, float degrees, vec3 axis, out vec3 result)
     result = v * c + cross(v, k) * s + k * (dot(k, v) * (1.0 - c));
 }
 
-
 // Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
 // function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
 // seen through the surface along the view direction), INDIRECT (the environment, sampled by the
 // closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
 #define CLOSURE_TYPE_DEFAULT 0
-
 #define CLOSURE_TYPE_REFLECTION 1
-
 #define CLOSURE_TYPE_TRANSMISSION 2
-
 #define CLOSURE_TYPE_INDIRECT 3
-
 #define CLOSURE_TYPE_EMISSION 4
-
 
 // The shading point as a closure sees it: the context, the light direction (REFLECTION only), the
 // direction to the viewer, the interpolated normal, the world position and the light's visibility.
@@ -242,29 +220,21 @@ struct ClosureData
     float occlusion;
 };
 
-
 ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
 {
     return ClosureData(closureType, L, V, N, P, occlusion);
 }
 
-
 // Fresnel reflectance: Schlick and its generalisations, exact dielectric and conductor
 // reflectance, and Belcour & Barla's thin-film (Airy) interference over any of them.
 
 #ifndef AIRY_FRESNEL_ITERATIONS
-
 #define AIRY_FRESNEL_ITERATIONS 2
-
 #endif
 
-
 #define FRESNEL_MODEL_DIELECTRIC 0
-
 #define FRESNEL_MODEL_CONDUCTOR 1
-
 #define FRESNEL_MODEL_SCHLICK 2
-
 
 // How a specular closure reflects: which model with its parameters, an optional thin film on top,
 // and whether the environment is to be sampled through the surface (refraction) instead of off it.
@@ -282,19 +252,16 @@ struct FresnelData
     bool refraction;
 };
 
-
 FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
                             float tf_thickness, float tf_ior)
 {
     return FresnelData(model, ior, extinction, F0, F82, F90, exponent, tf_thickness, tf_ior, false);
 }
 
-
 bool mx_fresnel_has_thinfilm(FresnelData fd)
 {
     return fd.tf_thickness > 0.0;
 }
-
 
 // --- Schlick ---------------------------------------------------------------------------------
 
@@ -304,7 +271,6 @@ vec3 mx_fresnel_schlick_exp(float cosTheta, vec3 F0, vec3 F90, float exponent)
     float m = clamp(1.0 - cosTheta, 0.0, 1.0);
     return mix(F0, F90, mx_power(m, exponent));
 }
-
 
 // --- Dielectric ------------------------------------------------------------------------------
 
@@ -322,7 +288,6 @@ float mx_fresnel_dielectric(float cosTheta, float eta)
     return 0.5 * s * s * (1.0 + p * p);
 }
 
-
 // Reflectance per polarisation, (parallel, perpendicular).
 vec2 mx_fresnel_dielectric_pol(float cosTheta, float eta)
 {
@@ -335,7 +300,6 @@ vec2 mx_fresnel_dielectric_pol(float cosTheta, float eta)
     float w = twoAc * s2;
     return vec2(perp * (u - w) / (u + w), perp);
 }
-
 
 // --- Conductor -------------------------------------------------------------------------------
 
@@ -355,14 +319,12 @@ void mx_fresnel_conductor_pol(float cosTheta, vec3 n, vec3 k, out vec3 parallel,
     parallel = perpendicular * (u - w) / (u + w);
 }
 
-
 vec3 mx_fresnel_conductor(float cosTheta, vec3 n, vec3 k)
 {
     vec3 par, perp;
     mx_fresnel_conductor_pol(cosTheta, n, k, par, perp);
     return 0.5 * (par + perp);
 }
-
 
 // Phase shifts on reflection at a conductor (Belcour & Barla 2017), per polarisation.
 void mx_fresnel_conductor_phase(float cosTheta, float eta1, vec3 eta2, vec3 kappa2, out vec3 phiP, out vec3 phiS)
@@ -379,20 +341,17 @@ void mx_fresnel_conductor_phase(float cosTheta, float eta1, vec3 eta2, vec3 kapp
                 mx_sqr(eta2 * eta2 * (vec3(1.0) + k * k) * cosTheta) - eta1 * eta1 * (U * U + V * V));
 }
 
-
 float mx_f0_to_ior(float F0)
 {
     float r = sqrt(clamp(F0, 0.01, 0.99));
     return (1.0 + r) / (1.0 - r);
 }
 
-
 vec3 mx_f0_to_ior(vec3 F0)
 {
     vec3 r = sqrt(clamp(F0, 0.01, 0.99));
     return (vec3(1.0) + r) / (vec3(1.0) - r);
 }
-
 
 // --- Thin film (Belcour & Barla 2017) --------------------------------------------------------
 // A film of index n2 and thickness d over the base: light reflected at the top interface (R12) and
@@ -418,7 +377,6 @@ vec3 mx_thinfilm_harmonic_xyz(float opd, vec3 phase)
     return xyz / Y_INTEGRAL;
 }
 
-
 // Reflectance (XYZ) of one polarisation: R12 + T121^2 R23 / (1 - R12 R23) for the incoherent sum,
 // plus the interfering harmonics m = 1, 2, ... with amplitudes (Rdc - T121) r^m, r = sqrt(R12 R23),
 // and phase m (phi21 + phi23) (Belcour & Barla 2017, eqs. 9-11).
@@ -436,7 +394,6 @@ vec3 mx_thinfilm_polarisation(float R12, vec3 R23, vec3 phase, float opd)
     }
     return xyz;
 }
-
 
 // Reflectance of the film (fd.tf_thickness nm, index fd.tf_ior) in vacuum over the base `fd`:
 // a dielectric, a conductor, or generalised Schlick read as the dielectric of the same F0.
@@ -471,7 +428,6 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
     return clamp(XYZ_TO_RGB * (0.5 * xyz), 0.0, 1.0);
 }
 
-
 // --- Dispatch --------------------------------------------------------------------------------
 
 // Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
@@ -487,7 +443,6 @@ vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
     return vec3(0.0);  // no closure of this shader uses another model
 }
 
-
 // Reading the albedo tables that tools/fit_albedo.py writes: regular grids over [0, 1]^2 with a
 // node at both ends, interpolated bilinearly.
 
@@ -500,12 +455,10 @@ vec4 mx_albedo_cell(vec2 p, vec2 size)
     return vec4(i, x - i);
 }
 
-
 int mx_albedo_index(ivec2 node, int columns)
 {
     return node.y * columns + node.x;
 }
-
 
 // Generated by tools/fit_albedo.py from numerical integration of the models' formulas; do not
 // edit: change the script and run it again. GGX directional albedo with Schlick's Fresnel.
@@ -577,7 +530,6 @@ const float MX_ALBEDO_GGX_SCHLICK[512] = float[512](
     0.562052, 0.009140, 0.515254, 0.006231, 0.472094, 0.004024, 0.432534, 0.002424,
     0.396411, 0.001327, 0.363600, 0.000628, 0.333787, 0.000226, 0.306833, 0.000034);
 
-
 // Albedo = F0 A + F90 B of the GGX lobe at view cosine mu and isotropic alpha.
 vec2 mx_ggx_albedo_schlick_scale_bias(float mu, float roughness)
 {
@@ -587,23 +539,19 @@ vec2 mx_ggx_albedo_schlick_scale_bias(float mu, float roughness)
                mix(vec2(MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(0, 1), 16) + 1]), vec2(MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(1, 1), 16)], MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(1, 1), 16) + 1]), c.z), c.w);
 }
 
-
 // GGX (Trowbridge-Reitz) microfacets after Walter et al. 2007, with Smith masking-shadowing in
 // Heitz 2014's height-correlated form, visible-normal sampling, and multiple-scattering energy
 // compensation from our own albedo table (tools/fit_albedo.py; Kulla & Conty 2017, Turquin 2019).
 // Directions are in the tangent frame: x along the tangent, z along the normal; alpha = (alpha_x,
 // alpha_y) is the roughness along x and y.
 
-
 // Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
 const float MX_GGX_MIN_ALPHA = 1.0e-4;
-
 
 vec2 mx_ggx_clamp_alpha(vec2 alpha)
 {
     return clamp(alpha, MX_GGX_MIN_ALPHA, 1.0);
 }
-
 
 // Normal distribution D(H) (Walter et al. 2007, eq. 33, in its anisotropic form).
 float mx_ggx_D(vec3 H, vec2 alpha)
@@ -613,7 +561,6 @@ float mx_ggx_D(vec3 H, vec2 alpha)
     return 1.0 / (MX_PI * alpha.x * alpha.y * q * q);
 }
 
-
 // Smith's Lambda of GGX for direction w (Heitz 2014, eq. 86): the mean slope seen along w.
 float mx_ggx_lambda(vec3 w, vec2 alpha)
 {
@@ -622,20 +569,17 @@ float mx_ggx_lambda(vec3 w, vec2 alpha)
     return 0.5 * (sqrt(1.0 + slope2) - 1.0);
 }
 
-
 // Masking of the view, G1 = 1 / (1 + Lambda(V)).
 float mx_ggx_G1(vec3 V, vec2 alpha)
 {
     return 1.0 / (1.0 + mx_ggx_lambda(V, alpha));
 }
 
-
 // Height-correlated masking-shadowing, G2 = 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014, eq. 99).
 float mx_ggx_G2(vec3 V, vec3 L, vec2 alpha)
 {
     return 1.0 / (1.0 + mx_ggx_lambda(V, alpha) + mx_ggx_lambda(L, alpha));
 }
-
 
 // What a light direction sampled through a visible normal carries, f cos / pdf with F = 1:
 // G2 / G1 (Heitz 2014, sect. 5.3), 0 below the horizon.
@@ -646,7 +590,6 @@ float mx_ggx_sample_weight(vec3 V, vec3 L, vec2 alpha)
     float lambdaV = mx_ggx_lambda(V, alpha);
     return (1.0 + lambdaV) / (1.0 + lambdaV + mx_ggx_lambda(L, alpha));
 }
-
 
 // A visible normal for view V from the uniform point u: the view stretched to the unit-roughness
 // configuration, a normal drawn uniformly on the spherical cap it sees (Dupuy & Benyoub 2023),
@@ -661,20 +604,17 @@ vec3 mx_ggx_sample_visible_normal(vec2 u, vec3 V, vec2 alpha)
     return normalize(vec3(Hs.xy * alpha, max(Hs.z, MX_EPS)));
 }
 
-
 // Density of the reflected direction drawn through visible normal H: D G1(V) / (4 cos(V)).
 float mx_ggx_reflection_pdf(vec3 H, vec3 V, vec2 alpha)
 {
     return mx_ggx_D(H, alpha) * mx_ggx_G1(V, alpha) / (4.0 * max(V.z, MX_EPS));
 }
 
-
 // One isotropic alpha standing for an anisotropic pair in the tables.
 float mx_ggx_isotropic_alpha(vec2 alpha)
 {
     return sqrt(alpha.x * alpha.y);
 }
-
 
 // Turquin 2019: the lobe scaled by 1 + F (1 - E) / E returns the energy that single scattering
 // loses between microfacets (1 - E with a white Fresnel), tinted by the Fresnel colour F.
@@ -684,7 +624,6 @@ vec3 mx_ggx_energy_compensation(float NdotV, float alpha, vec3 F)
     float E = max(scaleBias.x + scaleBias.y, MX_EPS);
     return vec3(1.0) + F * ((1.0 - E) / E);
 }
-
 
 // The lat-long environment map: lookups along world directions, shared by the two ways of lighting
 // with it (mx_environment_fis.glsl, mx_environment_prefilter.glsl).
@@ -697,14 +636,12 @@ vec2 mx_envmap_uv(vec3 dir)
     return vec2(atan(dir.x, -dir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(dir.y) * MX_INV_PI);
 }
 
-
 // The map `envMap` seen along world direction `dir`, at mip level `lod`.
 vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
 {
     vec3 mapDir = normalize((u_envMatrix * vec4(dir, 0.0)).xyz);
     return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
 }
-
 
 // Direction leaving a solid sphere of index `ior` that ray direction R enters where the normal is N.
 // Where a refraction is total internal reflection the ray reflects instead, so a direction always
@@ -720,13 +657,11 @@ vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
     return (dot(leaving, leaving) == 0.0) ? reflect(inside, exitNormal) : leaving;
 }
 
-
 // Irradiance / pi arriving at a point with normal N: what a white Lambert surface reflects.
 vec3 mx_environment_irradiance(vec3 N)
 {
     return mx_envmap_fetch(u_envIrradiance, N, 0.0) * u_envLightIntensity;
 }
-
 
 // Split-sum DFG table of GGX: the BRDF's directional albedo for any Fresnel F is
 // w1 F(c1) + w2 F(c2), a two-point Gauss quadrature in VdotH. Written by tools/fit_dfg.py
@@ -751,7 +686,6 @@ const float MX_DFG_C1[256] = float[](
     0.7510, 0.7461, 0.7278, 0.7068, 0.6844, 0.6671, 0.6531, 0.6434, 0.6380, 0.6363, 0.6374, 0.6402, 0.6442, 0.6486, 0.6532, 0.6575,
     0.8711, 0.8657, 0.8291, 0.7911, 0.7751, 0.7552, 0.7398, 0.7278, 0.7191, 0.7136, 0.7107, 0.7096, 0.7100, 0.7111, 0.7128, 0.7147,
     1.0000, 0.9957, 0.9386, 0.7953, 0.8307, 0.8398, 0.8393, 0.8345, 0.8297, 0.8256, 0.8217, 0.8184, 0.8154, 0.8130, 0.8109, 0.8093);
-
 const float MX_DFG_C2[256] = float[](
     0.0075, 0.5866, 0.6189, 0.6477, 0.6741, 0.6982, 0.7203, 0.7405, 0.7590, 0.7757, 0.7907, 0.8042, 0.8162, 0.8270, 0.8365, 0.8450,
     0.0055, 0.5778, 0.6147, 0.6453, 0.6723, 0.6967, 0.7191, 0.7394, 0.7581, 0.7750, 0.7902, 0.8038, 0.8160, 0.8269, 0.8365, 0.8451,
@@ -769,7 +703,6 @@ const float MX_DFG_C2[256] = float[](
     0.7512, 0.7567, 0.7683, 0.7832, 0.8009, 0.8211, 0.8408, 0.8588, 0.8747, 0.8881, 0.8991, 0.9080, 0.9150, 0.9205, 0.9248, 0.9280,
     0.8711, 0.8739, 0.8761, 0.8802, 0.8884, 0.8964, 0.9045, 0.9120, 0.9184, 0.9236, 0.9278, 0.9311, 0.9336, 0.9354, 0.9368, 0.9378,
     1.0000, 1.0000, 0.9994, 0.9973, 0.9943, 0.9902, 0.9854, 0.9801, 0.9748, 0.9699, 0.9655, 0.9618, 0.9588, 0.9565, 0.9548, 0.9537);
-
 const float MX_DFG_W1[256] = float[](
     0.9913, 0.9435, 0.9355, 0.8891, 0.8320, 0.7714, 0.7111, 0.6536, 0.6002, 0.5517, 0.5083, 0.4701, 0.4367, 0.4077, 0.3828, 0.3614,
     0.9665, 0.8848, 0.9073, 0.8780, 0.8267, 0.7681, 0.7084, 0.6508, 0.5971, 0.5483, 0.5045, 0.4658, 0.4318, 0.4024, 0.3771, 0.3553,
@@ -787,7 +720,6 @@ const float MX_DFG_W1[256] = float[](
     0.5007, 0.5258, 0.4265, 0.4195, 0.4215, 0.4334, 0.4285, 0.4082, 0.3747, 0.3325, 0.2870, 0.2425, 0.2015, 0.1653, 0.1344, 0.1085,
     0.5000, 0.3488, 0.1168, 0.1262, 0.1927, 0.2334, 0.2647, 0.2803, 0.2794, 0.2643, 0.2391, 0.2085, 0.1768, 0.1467, 0.1198, 0.0968,
     0.5000, 0.0063, 0.0067, 0.0085, 0.0244, 0.0535, 0.0915, 0.1315, 0.1669, 0.1917, 0.2019, 0.1978, 0.1828, 0.1613, 0.1375, 0.1142);
-
 const float MX_DFG_W2[256] = float[](
     0.0029, 0.0133, 0.0530, 0.1057, 0.1650, 0.2264, 0.2869, 0.3444, 0.3976, 0.4457, 0.4885, 0.5262, 0.5589, 0.5870, 0.6111, 0.6314,
     0.0334, 0.0073, 0.0453, 0.0992, 0.1596, 0.2219, 0.2829, 0.3404, 0.3935, 0.4413, 0.4836, 0.5204, 0.5520, 0.5790, 0.6018, 0.6207,
@@ -806,7 +738,6 @@ const float MX_DFG_W2[256] = float[](
     0.5000, 0.6512, 0.8832, 0.8726, 0.8011, 0.7496, 0.6973, 0.6475, 0.5980, 0.5473, 0.4949, 0.4410, 0.3866, 0.3334, 0.2832, 0.2372,
     0.5000, 0.9937, 0.9933, 0.9913, 0.9709, 0.9323, 0.8760, 0.8056, 0.7230, 0.6328, 0.5411, 0.4529, 0.3724, 0.3017, 0.2419, 0.1926);
 
-
 // (c1, c2, w1, w2) at NdotV and alpha, interpolated bilinearly.
 vec4 mx_environment_dfg_rule(float NdotV, float alpha)
 {
@@ -819,15 +750,12 @@ vec4 mx_environment_dfg_rule(float NdotV, float alpha)
     return mix(low, high, f.x);
 }
 
-
 // Image-based lighting from a prefiltered environment, by the split sum (Karis 2013, "Real Shading
 // in Unreal Engine 4"): the radiance map convolved with the GGX lobe per roughness (computed by the
 // renderer, shadergen/render/prefilter.py, with N = V = R), times the BRDF's directional albedo
 // from our DFG table (mx_environment_dfg.glsl, tools/fit_dfg.py). One lookup instead of
 // u_envRadianceSamples; used when the shader is compiled with MX_ENV_PREFILTER defined, and then
 // u_envRadiance must hold the prefiltered chain.
-
-
 
 // Mip level of the prefiltered chain holding the GGX lobe of `alpha`: level 0 is the unfiltered
 // map, level l >= 1 the lobe of alpha = 2^(l + 4 - u_envRadianceMips) up to alpha 1 (texels about
@@ -838,7 +766,6 @@ float mx_prefiltered_lod(float alpha)
     float firstAlpha = exp2(1.0 - roughest);
     return alpha < firstAlpha ? alpha / firstAlpha : min(log2(alpha) + roughest, roughest);
 }
-
 
 // Light leaving a point with normal N towards V after one GGX bounce of roughness alpha, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x; `albedo` as
@@ -866,7 +793,6 @@ vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData
     return mx_envmap_fetch(u_envRadiance, L, mx_prefiltered_lod(avgAlpha)) * albedo * u_envLightIntensity;
 }
 
-
 // Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
 // & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
 // sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
@@ -876,8 +802,6 @@ vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
 // in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
 
-
-
 // Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
 // with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
 float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
@@ -886,7 +810,6 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
     float stretch = sqrt(1.0 - dir.y * dir.y);
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
-
 
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
@@ -946,13 +869,11 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
 #endif
 }
 
-
 // The environment seen through the lobe (see mx_environment_samples).
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
     return mx_environment_samples(N, V, X, alpha, fd, true, albedo);
 }
-
 
 // Transmission rendered by refraction: what is seen through the surface is the environment,
 // refracted through a solid sphere of the surface's index; scene geometry behind is ignored.
@@ -966,7 +887,6 @@ vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     return mx_environment_radiance(N, V, X, alpha, distribution, fd, transmitted) * through;
 }
 
-
 // The GGX reflection lobe shared by the specular closures (dielectric, conductor, generalized
 // Schlick, and the environment term of hair).
 //
@@ -979,7 +899,6 @@ vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
 //   INDIRECT      the environment, sampled once by filtered importance sampling, compensated there.
 //   TRANSMISSION  no light of its own: what is seen through a layer loses exactly the albedo its
 //                 environment term has (the same samples).
-
 
 struct SpecularLobe
 {
@@ -1001,7 +920,6 @@ struct SpecularLobe
     vec3 environmentAlbedo;  // the fraction of the environment it reflects, from the same samples
 };
 
-
 // The fraction of light arriving with `cosine` that the lobe reflects, multiple scattering
 // included, from its single-scattering albedo there (the caller's table value).
 vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleScatteringAlbedo)
@@ -1009,7 +927,6 @@ vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleSca
     float c = clamp(cosine, MX_EPS, 1.0);
     return singleScatteringAlbedo * mx_ggx_energy_compensation(c, mx_ggx_isotropic_alpha(alpha), mx_fresnel_eval(c, fd));
 }
-
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
@@ -1041,7 +958,6 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     return lobe;
 }
 
-
 // The lobe towards closureData.L (REFLECTION), multiple scattering included.
 vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
 {
@@ -1056,7 +972,6 @@ vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
            (DG * closureData.occlusion / (4.0 * lobe.Vt.z));
 }
 
-
 // What the lobe reflects of the environment as seen through it along the real view direction:
 // the prepared samples, or new ones where retro-reflection prepared them along the mirrored view.
 vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
@@ -1069,13 +984,11 @@ vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
     return albedo;
 }
 
-
 // What the layers below receive of light from one direction, given what the lobe reflects of it.
 vec3 mx_specular_throughput(vec3 reflected, float weight)
 {
     return max(vec3(1.0) - reflected * weight, 0.0);
 }
-
 
 // True for the contexts a scattering closure answers (emission and the default context get nothing).
 bool mx_is_scattering_context(int closureType)
@@ -1083,7 +996,6 @@ bool mx_is_scattering_context(int closureType)
     return closureType == CLOSURE_TYPE_REFLECTION || closureType == CLOSURE_TYPE_TRANSMISSION ||
            closureType == CLOSURE_TYPE_INDIRECT;
 }
-
 
 // Generated by tools/fit_albedo.py from numerical integration of the models' formulas; do not
 // edit: change the script and run it again. GGX dielectric reflection albedo.
@@ -1219,7 +1131,6 @@ const float MX_ALBEDO_DIELECTRIC_ENTERING[1024] = float[1024](
     0.274494, 0.268620, 0.254055, 0.236320, 0.217466, 0.198708, 0.180763, 0.163993,
     0.148596, 0.134630, 0.122074, 0.110846, 0.100830, 0.091926, 0.083989, 0.076933);
 
-
 // the same for 1 / eta: from the dense side
 const float MX_ALBEDO_DIELECTRIC_LEAVING[1024] = float[1024](
     0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000, 0.000000,
@@ -1351,20 +1262,17 @@ const float MX_ALBEDO_DIELECTRIC_LEAVING[1024] = float[1024](
     0.915068, 0.898122, 0.854743, 0.800601, 0.741364, 0.680651, 0.620647, 0.562508,
     0.507757, 0.457397, 0.409480, 0.365696, 0.325847, 0.290266, 0.258870, 0.229881);
 
-
 float mx_albedo_dielectric_entering(vec4 c, ivec2 i, int slab)
 {
     return mix(mix(MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
                mix(MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
 
-
 float mx_albedo_dielectric_leaving(vec4 c, ivec2 i, int slab)
 {
     return mix(mix(MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
                mix(MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_DIELECTRIC_LEAVING[slab * 128 + mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
-
 
 // Reflection albedo of a GGX dielectric interface at view cosine mu, isotropic alpha and relative
 // index eta (transmitted side over incident side), eta clamped to [1/3, 3]. The table of the dense
@@ -1383,11 +1291,8 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
     return mix(mx_albedo_dielectric_entering(c, i, slab), mx_albedo_dielectric_entering(c, i, slab + 1), t - float(slab));
 }
 
-
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
-
-
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
@@ -1402,7 +1307,6 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
     float tableAlbedo = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.ior.x);
     lobe.albedo = mx_specular_albedo(NdotV, lobe.alpha, fd, vec3(tableAlbedo));
 }
-
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
 // layers below.
@@ -1435,7 +1339,6 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
                                                     lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
     }
 }
-
 
 // Generated by tools/fit_albedo.py from numerical integration of the models' formulas; do not
 // edit: change the script and run it again. Directional albedo of microfiber sheen (Estevez & Kulla 2017 distribution), roughness r.
@@ -1475,7 +1378,6 @@ const float MX_ALBEDO_SHEEN[256] = float[256](
     0.611692, 0.605527, 0.583945, 0.553827, 0.519479, 0.483502, 0.447243, 0.411342,
     0.376068, 0.341489, 0.307557, 0.274147, 0.241081, 0.208134, 0.175027, 0.141425);
 
-
 // Directional albedo of the model as published, at view cosine mu.
 float mx_sheen_albedo(float mu, float roughness)
 {
@@ -1484,7 +1386,6 @@ float mx_sheen_albedo(float mu, float roughness)
     return mix(mix(MX_ALBEDO_SHEEN[mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_SHEEN[mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
                mix(MX_ALBEDO_SHEEN[mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_SHEEN[mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
-
 
 // the model divided by max(1, E(mu_l), E(mu_v)), at roughness = row / 15, mu = (column / 15)^2; 96^2 cosine-distributed directions each
 const float MX_ALBEDO_SHEEN_RENORMALISED[256] = float[256](
@@ -1521,7 +1422,6 @@ const float MX_ALBEDO_SHEEN_RENORMALISED[256] = float[256](
     0.611692, 0.605527, 0.583945, 0.553827, 0.519479, 0.483502, 0.447243, 0.411342,
     0.376068, 0.341489, 0.307557, 0.274147, 0.241081, 0.208134, 0.175027, 0.141425);
 
-
 // Directional albedo of the model divided by max(1, E(mu_l), E(mu_v)), at view cosine mu.
 float mx_sheen_albedo_renormalised(float mu, float roughness)
 {
@@ -1531,7 +1431,6 @@ float mx_sheen_albedo_renormalised(float mu, float roughness)
                mix(MX_ALBEDO_SHEEN_RENORMALISED[mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_SHEEN_RENORMALISED[mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
 
-
 // Sheen, the back-scattering of fibres (cloth, dust, peach fuzz), two ways:
 //   microfiber: Estevez & Kulla 2017's distribution of fibre normals, D = (2 + 1/r) sin^(1/r) / 2pi,
 //       over the smooth denominator 4 (NdotL + NdotV - NdotL NdotV) of Ashikhmin & Premoze 2007 in
@@ -1540,12 +1439,10 @@ float mx_sheen_albedo_renormalised(float mu, float roughness)
 //       light at grazing angles for small r, the renormalised one never more than arrives;
 //   Zeltner et al. 2022: a linearly transformed cosine fitted to a volumetric fibre layer.
 
-
 // --- Microfiber (Estevez & Kulla 2017 distribution) -------------------------------------------------
 
 // The shaders' floor on r: 1/r is an exponent.
 const float MX_SHEEN_MIN_ROUGHNESS = 0.005;
-
 
 float mx_sheen_microfiber_D(float NdotH, float r)
 {
@@ -1554,14 +1451,12 @@ float mx_sheen_microfiber_D(float NdotH, float r)
     return (2.0 + inv) * pow(sin2, 0.5 * inv) / (2.0 * MX_PI);
 }
 
-
 // BRDF times NdotL.
 float mx_sheen_microfiber(float NdotL, float NdotV, float NdotH, float r)
 {
     float f = mx_sheen_microfiber_D(NdotH, r) / (4.0 * (NdotL + NdotV - NdotL * NdotV));
     return f * NdotL / max(1.0, max(mx_sheen_albedo(NdotL, r), mx_sheen_albedo(NdotV, r)));
 }
-
 
 // --- Zeltner et al. 2022 (LTC) -------------------------------------------------------------------
 // The albedo and inverse-matrix fits are the paper's own (published with its supplemental code,
@@ -1575,7 +1470,6 @@ float mx_sheen_ltc_albedo(float x, float y)
     return exp(-0.5 * mx_sqr((x - m) / s)) / (s * sqrt(2.0 * MX_PI)) + o;
 }
 
-
 // Entries a and b of the inverse LTC matrix [[a 0 b] [0 a 0] [0 0 1]].
 vec2 mx_sheen_ltc_inverse(float x, float y)
 {
@@ -1583,7 +1477,6 @@ vec2 mx_sheen_ltc_inverse(float x, float y)
     float b = sqrt(1.0 - x) * (y - 1.0) * y * y * y / (0.0000254053 + 1.71228 * x - 1.71506 * x * y + 1.34174 * y * y);
     return vec2(a, b);
 }
-
 
 // The LTC's frame: x in the plane of V and N, z = N.
 mat3 mx_sheen_ltc_frame(vec3 V, vec3 N, float NdotV)
@@ -1598,7 +1491,6 @@ mat3 mx_sheen_ltc_frame(vec3 V, vec3 N, float NdotV)
     return mx_frame_from_normal(N);
 }
 
-
 // The LTC lobe's density towards L, without the albedo factor (the caller applies it).
 float mx_sheen_ltc(vec3 L, vec3 V, vec3 N, float NdotV, float roughness)
 {
@@ -1609,11 +1501,8 @@ float mx_sheen_ltc(vec3 L, vec3 V, vec3 N, float NdotV, float roughness)
     return mx_cosine_pdf(wo.z) * mx_sqr(inv.x / len2);
 }
 
-
 // <sheen_bsdf>: back-scattering of fibres layered over a base (lib/mx_sheen.glsl). mode 0:
 // conty_kulla (microfiber), 1: zeltner (LTC).
-
-
 
 void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roughness, vec3 N, int mode, inout BSDF bsdf)
 {
@@ -1650,10 +1539,8 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
     }
 }
 
-
 // <conductor_bsdf>: GGX reflection off a metal of complex index ior + i extinction (exact
 // conductor Fresnel), with an optional thin film. Opaque: nothing passes to a base.
-
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n, vec3 ior_k, vec2 roughness,
@@ -1665,7 +1552,6 @@ void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n
     lobe = mx_specular_lobe_prepare(closureData, weight, vec3(1.0), roughness, retroreflective, fd, N, X, distribution, 0);
 }
 
-
 // In each context.
 void mx_conductor_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF bsdf)
 {
@@ -1676,7 +1562,6 @@ void mx_conductor_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF bs
     vec3 reflected = context == CLOSURE_TYPE_REFLECTION ? mx_specular_reflection(closureData, lobe) : lobe.environment;
     bsdf.response = reflected * lobe.weight;
 }
-
 
 // Media. The hardware targets model a medium by its transmittance over a unit distance,
 // exp(-absorption), answered in the TRANSMISSION context (the only one that looks through a surface).
@@ -1691,14 +1576,12 @@ void mx_absorption_vdf(ClosureData closureData, vec3 absorption, inout VDF resul
     }
 }
 
-
 // <anisotropic_vdf>: absorption and Henyey-Greenstein scattering; scattering is not rendered by the
 // hardware targets, so only absorption filters the light (as in MaterialX's GLSL).
 void mx_anisotropic_vdf(ClosureData closureData, vec3 absorption, vec3 scattering, float anisotropy, inout VDF result)
 {
     mx_absorption_vdf(closureData, absorption, result);
 }
-
 
 // <layer>: vertical layering. The base is lit by what the top layer lets through.
 
@@ -1708,14 +1591,12 @@ void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result
     result.throughput = top.throughput * base.throughput;
 }
 
-
 // A BSDF over a medium: the medium filters what the top layer scatters and lets through.
 void mx_layer_vdf(ClosureData closureData, BSDF top, VDF base, out BSDF result)
 {
     result.response = top.response * base.throughput;
     result.throughput = top.throughput * base.throughput;
 }
-
 
 // <mix> of closures: linear interpolation, bg at 0 and fg at 1.
 
@@ -1725,10 +1606,8 @@ void mx_mix_bsdf(ClosureData closureData, BSDF fg, BSDF bg, float mixValue, out 
     result.throughput = mix(bg.throughput, fg.throughput, mixValue);
 }
 
-
 // <translucent_bsdf>: diffuse transmission, light arriving from behind the surface leaving in
 // front of it (Lambert about the reversed normal).
-
 
 void mx_translucent_bsdf(ClosureData closureData, float weight, vec3 color, vec3 N, inout BSDF bsdf)
 {
@@ -1748,7 +1627,6 @@ void mx_translucent_bsdf(ClosureData closureData, float weight, vec3 color, vec3
     }
 }
 
-
 // Subsurface scattering at the shading point: Christensen & Burley 2015's normalised diffusion
 // profile, integrated around a circle of the surface's local radius of curvature so that light
 // diffuses past the terminator (the curvature-wrapped diffusion of Penner & Borshukov 2011).
@@ -1761,13 +1639,11 @@ vec3 mx_diffusion_shape(vec3 albedo)
     return vec3(1.9) - A + 3.5 * mx_sqr(A - vec3(0.8));
 }
 
-
 // The profile R(r) up to the factor A s / (8 pi), which cancels in the normalised wrap below.
 vec3 mx_diffusion_profile(float r, vec3 s)
 {
     return (exp(-s * r) + exp(-s * r / 3.0)) / max(r, 1.0e-4);
 }
-
 
 // Irradiance (relative to the light's) diffused to a point whose normal makes angle theta with the
 // light, on a circle of radius `radius`, for mean free path `mfp`: the profile-weighted average of
@@ -1789,7 +1665,6 @@ vec3 mx_diffusion_wrap(float cosTheta, float radius, vec3 mfp, vec3 albedo)
     return lit / max(total, vec3(MX_EPS));
 }
 
-
 // Subsurface reflectance towards L, cosine included, with the radius of curvature estimated from
 // screen-space derivatives of the normal and the position.
 vec3 mx_subsurface_scatter(vec3 N, vec3 L, vec3 P, vec3 albedo, vec3 mfp)
@@ -1799,11 +1674,8 @@ vec3 mx_subsurface_scatter(vec3 N, vec3 L, vec3 P, vec3 albedo, vec3 mfp)
     return albedo * mx_diffusion_wrap(dot(N, L), radius, mfp, albedo) * MX_INV_PI;
 }
 
-
 // <subsurface_bsdf>: subsurface scattering approximated at the shading point (lib/mx_subsurface.glsl);
 // the environment lights it as a diffuse surface of the same albedo. Opaque.
-
-
 
 void mx_subsurface_bsdf(ClosureData closureData, float weight, vec3 color, vec3 radius, float anisotropy, vec3 N,
                         inout BSDF bsdf)
@@ -1826,7 +1698,6 @@ void mx_subsurface_bsdf(ClosureData closureData, float weight, vec3 color, vec3 
         bsdf.response = mx_environment_irradiance(N) * albedo * weight;
     }
 }
-
 
 // Generated by tools/fit_albedo.py from numerical integration of the models' formulas; do not
 // edit: change the script and run it again. Directional albedo of Oren-Nayar 1994 (qualitative model), roughness sigma.
@@ -1866,7 +1737,6 @@ const float MX_ALBEDO_OREN_NAYAR[256] = float[256](
     0.822409, 0.822407, 0.822377, 0.822250, 0.821907, 0.814590, 0.807254, 0.797784,
     0.786396, 0.773030, 0.757562, 0.740018, 0.720378, 0.698461, 0.673133, 0.624060);
 
-
 // Directional albedo of the model as published, at view cosine mu.
 float mx_oren_nayar_albedo(float mu, float roughness)
 {
@@ -1875,7 +1745,6 @@ float mx_oren_nayar_albedo(float mu, float roughness)
     return mix(mix(MX_ALBEDO_OREN_NAYAR[mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_OREN_NAYAR[mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
                mix(MX_ALBEDO_OREN_NAYAR[mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_OREN_NAYAR[mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
-
 
 // the model divided by max(1, E(mu_l), E(mu_v)), at roughness = row / 15, mu = (column / 15)^2; 96^2 cosine-distributed directions each
 const float MX_ALBEDO_OREN_NAYAR_RENORMALISED[256] = float[256](
@@ -1912,7 +1781,6 @@ const float MX_ALBEDO_OREN_NAYAR_RENORMALISED[256] = float[256](
     0.822409, 0.822407, 0.822377, 0.822250, 0.821907, 0.814590, 0.807254, 0.797784,
     0.786396, 0.773030, 0.757562, 0.740018, 0.720378, 0.698461, 0.673133, 0.624060);
 
-
 // Directional albedo of the model divided by max(1, E(mu_l), E(mu_v)), at view cosine mu.
 float mx_oren_nayar_albedo_renormalised(float mu, float roughness)
 {
@@ -1921,7 +1789,6 @@ float mx_oren_nayar_albedo_renormalised(float mu, float roughness)
     return mix(mix(MX_ALBEDO_OREN_NAYAR_RENORMALISED[mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_OREN_NAYAR_RENORMALISED[mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
                mix(MX_ALBEDO_OREN_NAYAR_RENORMALISED[mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_OREN_NAYAR_RENORMALISED[mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
-
 
 // Diffuse reflectance models, each as a factor relative to Lambert (rho / pi):
 //   Oren & Nayar 1994, the qualitative model (their eq. 30), renormalised to conserve energy;
@@ -1933,13 +1800,10 @@ float mx_oren_nayar_albedo_renormalised(float mu, float roughness)
 // directional albedo of the result cannot exceed 1; it changes nothing where E <= 1 (Burley's
 // retro-reflection reaches E = 1.55 at grazing angles for roughness 1, Oren-Nayar's 1.01).
 
-
-
 float mx_renormalisation(float albedoL, float albedoV)
 {
     return 1.0 / max(1.0, max(albedoL, albedoV));
 }
-
 
 // --- Oren-Nayar, qualitative model ---------------------------------------------------------------
 
@@ -1956,15 +1820,12 @@ float mx_oren_nayar(float NdotV, float NdotL, float LdotV, float sigma)
     return (A + B * retro) * renorm;
 }
 
-
 // --- EON (OpenPBR) -------------------------------------------------------------------------------
 
 // Fujii's model f = rho / pi * A (1 + sigma s / t) has the closed-form directional albedo below;
 // the constants are its analytic integrals (OpenPBR specification, "EON" diffuse).
 const float MX_EON_C1 = 0.5 - 2.0 / (3.0 * MX_PI);
-
 const float MX_EON_C2 = 2.0 / 3.0 - 28.0 / (15.0 * MX_PI);
-
 
 float mx_eon_single_albedo(float mu, float sigma)
 {
@@ -1975,12 +1836,10 @@ float mx_eon_single_albedo(float mu, float sigma)
     return A * (1.0 + sigma * G * MX_INV_PI);
 }
 
-
 float mx_eon_mean_albedo(float sigma)
 {
     return (1.0 + MX_EON_C2 * sigma) / (1.0 + MX_EON_C1 * sigma);
 }
-
 
 // Colour of the multiple-scattering lobe: the energy single scattering misses, bounced again with
 // the surface's colour rho (a geometric series of bounces).
@@ -1988,7 +1847,6 @@ vec3 mx_eon_multiple_colour(vec3 rho, float meanAlbedo)
 {
     return rho * rho * meanAlbedo / max(vec3(1.0) - rho * (1.0 - meanAlbedo), MX_EPS);
 }
-
 
 vec3 mx_eon(float NdotV, float NdotL, float LdotV, float sigma, vec3 rho)
 {
@@ -2001,18 +1859,13 @@ vec3 mx_eon(float NdotV, float NdotL, float LdotV, float sigma, vec3 rho)
     return single + mx_eon_multiple_colour(rho, meanAlbedo) * lostV * lostL / max(1.0 - meanAlbedo, MX_EPS);
 }
 
-
 vec3 mx_eon_albedo(float mu, float sigma, vec3 rho)
 {
     return mix(mx_eon_multiple_colour(rho, mx_eon_mean_albedo(sigma)), rho, mx_eon_single_albedo(mu, sigma));
 }
 
-
 // <oren_nayar_diffuse_bsdf>: opaque rough diffuse reflection (lib/mx_diffuse.glsl), Lambert at
 // roughness 0; energy_compensation selects EON, the energy-preserving model of OpenPBR.
-
-
-
 
 void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, float roughness, vec3 N,
                                 bool energy_compensation, inout BSDF bsdf)
@@ -2045,7 +1898,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     }
 }
 
-
 // <multiply> of a closure by a weight (float or colour).
 
 // A BSDF's response is scaled by the weight clamped to [0, 1]; what it lets through is unchanged.
@@ -2055,7 +1907,6 @@ void mx_multiply_bsdf_color3(ClosureData closureData, BSDF in1, vec3 in2, out BS
     result.throughput = in1.throughput;
 }
 
-
 // <uniform_edf>: the same radiance in every direction.
 
 void mx_uniform_edf(ClosureData closureData, vec3 color, inout EDF result)
@@ -2064,10 +1915,8 @@ void mx_uniform_edf(ClosureData closureData, vec3 color, inout EDF result)
         result = color;
 }
 
-
 // <generalized_schlick_edf>: the base EDF weighted by a Schlick curve over the view angle, color0
 // along the normal and color90 at grazing angles.
-
 
 void mx_generalized_schlick_edf(ClosureData closureData, vec3 color0, vec3 color90, float exponent, EDF base,
                                 inout EDF result)
@@ -2079,7 +1928,6 @@ void mx_generalized_schlick_edf(ClosureData closureData, vec3 color0, vec3 color
     result = base * mx_fresnel_schlick_exp(NdotV, color0, color90, exponent);
 }
 
-
 // <point_light>: light from `light.position`, falling off as (distance + 1)^-decay_rate.
 void mx_point_light(LightData light, vec3 position, out lightshader result)
 {
@@ -2089,14 +1937,12 @@ void mx_point_light(LightData light, vec3 position, out lightshader result)
     result.intensity = light.color * light.intensity / pow(dist + 1.0, light.decay_rate + 1.0e-8);
 }
 
-
 // <directional_light>: parallel light travelling along `light.direction`.
 void mx_directional_light(LightData light, vec3 position, out lightshader result)
 {
     result.direction = -light.direction;
     result.intensity = light.color * light.intensity;
 }
-
 
 // <spot_light>: a point light restricted to a cone about `light.direction`. As in MaterialX's
 // hardware lights, inner_angle and outer_angle are compared with the cosine between the cone axis
@@ -2115,12 +1961,10 @@ void mx_spot_light(LightData light, vec3 position, out lightshader result)
     result.intensity *= (low < high) ? smoothstep(low, high, cosAxis) : step(high, cosAxis);
 }
 
-
 int numActiveLightSources()
 {
     return min(u_numActiveLightSources, MAX_LIGHT_SOURCES);
 }
-
 
 void sampleLightSource(LightData light, vec3 position, out lightshader result)
 {
@@ -2133,7 +1977,6 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
     else if (light.type == 3)
         mx_spot_light(light, position, result);
 }
-
 
 void main()
 {

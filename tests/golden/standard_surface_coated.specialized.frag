@@ -30,24 +30,18 @@ out vec4 out1;
 // Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
-
 const float MX_INV_PI = 1.0 / MX_PI;
-
 const float MX_EPS = 1.0e-8;  // floor for cosines and weights, as in MaterialX's hardware shading
 
 float mx_sqr(float x) { return x * x; }
-
 vec2 mx_sqr(vec2 x) { return x * x; }
-
 vec3 mx_sqr(vec3 x) { return x * x; }
-
 
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
     return (dot(N, V) < 0.0) ? -N : N;
 }
-
 
 // Any orthonormal frame around the unit vector N, columns (X, Y, N) (Duff et al. 2017).
 mat3 mx_frame_from_normal(vec3 N)
@@ -60,14 +54,12 @@ mat3 mx_frame_from_normal(vec3 N)
                 N);
 }
 
-
 // A lobe's weight that scatters nothing: zero, negative, or NaN (a NaN computed in the graph, which
 // compares false with everything, is absorbed rather than spread over the image).
 bool mx_weight_is_zero(float weight)
 {
     return isnan(weight) || weight < MX_EPS;
 }
-
 
 // The normal a closure shades with: N when it is a usable direction, else the interpolated
 // surface normal (a normal map whose perturbation cancels to zero, or a NaN from the graph).
@@ -77,13 +69,11 @@ vec3 mx_usable_normal(vec3 N, vec3 surfaceNormal)
     return (isnan(len2) || isinf(len2) || len2 < MX_EPS) ? surfaceNormal : N * inversesqrt(len2);
 }
 
-
 // The normal a closure shades with, on the side of the surface that V sees.
 vec3 mx_shading_normal(vec3 N, vec3 surfaceNormal, vec3 V)
 {
     return mx_facing_normal(mx_usable_normal(N, surfaceNormal), V);
 }
-
 
 // Columns (X, Y, N): `X` made orthogonal to the unit normal `N`, then Y = N x X; any frame about N
 // when X is zero or along N.
@@ -97,7 +87,6 @@ mat3 mx_tangent_frame(vec3 N, vec3 X)
     return mat3(T, cross(N, T), N);
 }
 
-
 // Point `i` of a `count`-point spherical Fibonacci set in [0, 1)^2: a stratified first coordinate
 // and the golden-ratio sequence as the second. Every sampled integral of the library uses it, so
 // the sample pattern (and the image) matches the reference renderer's.
@@ -106,7 +95,6 @@ vec2 mx_fibonacci_point(int i, int count)
     const float GOLDEN_RATIO = 1.6180339887498948;
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
-
 
 // Parameter conversions of the PBR library.
 
@@ -126,7 +114,6 @@ void mx_roughness_anisotropy(float roughness, float anisotropy, out vec2 result)
     }
 }
 
-
 // rotate3d: turn a vector by `degrees` about `axis` (normalized here).
 // MaterialX multiplies row vectors (v' = v * M), so the sense of rotation is that of
 // Rodrigues' formula with the cross product taken as v x k.
@@ -139,19 +126,14 @@ void mx_rotate3d_vector3(vec3 v, float degrees, vec3 axis, out vec3 result)
     result = v * c + cross(v, k) * s + k * (dot(k, v) * (1.0 - c));
 }
 
-
 // Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
 // function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
 // seen through the surface along the view direction), INDIRECT (the environment, sampled by the
 // closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
 #define CLOSURE_TYPE_DEFAULT 0
-
 #define CLOSURE_TYPE_REFLECTION 1
-
 #define CLOSURE_TYPE_TRANSMISSION 2
-
 #define CLOSURE_TYPE_INDIRECT 3
-
 
 // The shading point as a closure sees it: the context, the light direction (REFLECTION only), the
 // direction to the viewer, the interpolated normal, the world position and the light's visibility.
@@ -165,25 +147,19 @@ struct ClosureData
     float occlusion;
 };
 
-
 ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
 {
     return ClosureData(closureType, L, V, N, P, occlusion);
 }
 
-
 // Fresnel reflectance: Schlick and its generalisations, exact dielectric and conductor
 // reflectance, and Belcour & Barla's thin-film (Airy) interference over any of them.
 
 #ifndef AIRY_FRESNEL_ITERATIONS
-
 #define AIRY_FRESNEL_ITERATIONS 2
-
 #endif
 
-
 #define FRESNEL_MODEL_DIELECTRIC 0
-
 
 // How a specular closure reflects: which model with its parameters, an optional thin film on top,
 // and whether the environment is to be sampled through the surface (refraction) instead of off it.
@@ -201,13 +177,11 @@ struct FresnelData
     bool refraction;
 };
 
-
 FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
                             float tf_thickness, float tf_ior)
 {
     return FresnelData(model, ior, extinction, F0, F82, F90, exponent, tf_thickness, tf_ior, false);
 }
-
 
 // --- Dielectric ------------------------------------------------------------------------------
 
@@ -225,7 +199,6 @@ float mx_fresnel_dielectric(float cosTheta, float eta)
     return 0.5 * s * s * (1.0 + p * p);
 }
 
-
 // --- Dispatch --------------------------------------------------------------------------------
 
 // Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
@@ -236,7 +209,6 @@ vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
     return vec3(0.0);  // no closure of this shader uses another model
 }
-
 
 // Reading the albedo tables that tools/fit_albedo.py writes: regular grids over [0, 1]^2 with a
 // node at both ends, interpolated bilinearly.
@@ -250,12 +222,10 @@ vec4 mx_albedo_cell(vec2 p, vec2 size)
     return vec4(i, x - i);
 }
 
-
 int mx_albedo_index(ivec2 node, int columns)
 {
     return node.y * columns + node.x;
 }
-
 
 // Generated by tools/fit_albedo.py from numerical integration of the models' formulas; do not
 // edit: change the script and run it again. GGX directional albedo with Schlick's Fresnel.
@@ -327,7 +297,6 @@ const float MX_ALBEDO_GGX_SCHLICK[512] = float[512](
     0.562052, 0.009140, 0.515254, 0.006231, 0.472094, 0.004024, 0.432534, 0.002424,
     0.396411, 0.001327, 0.363600, 0.000628, 0.333787, 0.000226, 0.306833, 0.000034);
 
-
 // Albedo = F0 A + F90 B of the GGX lobe at view cosine mu and isotropic alpha.
 vec2 mx_ggx_albedo_schlick_scale_bias(float mu, float roughness)
 {
@@ -337,23 +306,19 @@ vec2 mx_ggx_albedo_schlick_scale_bias(float mu, float roughness)
                mix(vec2(MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(0, 1), 16) + 1]), vec2(MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(1, 1), 16)], MX_ALBEDO_GGX_SCHLICK[2 * mx_albedo_index(i + ivec2(1, 1), 16) + 1]), c.z), c.w);
 }
 
-
 // GGX (Trowbridge-Reitz) microfacets after Walter et al. 2007, with Smith masking-shadowing in
 // Heitz 2014's height-correlated form, visible-normal sampling, and multiple-scattering energy
 // compensation from our own albedo table (tools/fit_albedo.py; Kulla & Conty 2017, Turquin 2019).
 // Directions are in the tangent frame: x along the tangent, z along the normal; alpha = (alpha_x,
 // alpha_y) is the roughness along x and y.
 
-
 // Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
 const float MX_GGX_MIN_ALPHA = 1.0e-4;
-
 
 vec2 mx_ggx_clamp_alpha(vec2 alpha)
 {
     return clamp(alpha, MX_GGX_MIN_ALPHA, 1.0);
 }
-
 
 // Normal distribution D(H) (Walter et al. 2007, eq. 33, in its anisotropic form).
 float mx_ggx_D(vec3 H, vec2 alpha)
@@ -363,7 +328,6 @@ float mx_ggx_D(vec3 H, vec2 alpha)
     return 1.0 / (MX_PI * alpha.x * alpha.y * q * q);
 }
 
-
 // Smith's Lambda of GGX for direction w (Heitz 2014, eq. 86): the mean slope seen along w.
 float mx_ggx_lambda(vec3 w, vec2 alpha)
 {
@@ -372,20 +336,17 @@ float mx_ggx_lambda(vec3 w, vec2 alpha)
     return 0.5 * (sqrt(1.0 + slope2) - 1.0);
 }
 
-
 // Masking of the view, G1 = 1 / (1 + Lambda(V)).
 float mx_ggx_G1(vec3 V, vec2 alpha)
 {
     return 1.0 / (1.0 + mx_ggx_lambda(V, alpha));
 }
 
-
 // Height-correlated masking-shadowing, G2 = 1 / (1 + Lambda(V) + Lambda(L)) (Heitz 2014, eq. 99).
 float mx_ggx_G2(vec3 V, vec3 L, vec2 alpha)
 {
     return 1.0 / (1.0 + mx_ggx_lambda(V, alpha) + mx_ggx_lambda(L, alpha));
 }
-
 
 // What a light direction sampled through a visible normal carries, f cos / pdf with F = 1:
 // G2 / G1 (Heitz 2014, sect. 5.3), 0 below the horizon.
@@ -396,7 +357,6 @@ float mx_ggx_sample_weight(vec3 V, vec3 L, vec2 alpha)
     float lambdaV = mx_ggx_lambda(V, alpha);
     return (1.0 + lambdaV) / (1.0 + lambdaV + mx_ggx_lambda(L, alpha));
 }
-
 
 // A visible normal for view V from the uniform point u: the view stretched to the unit-roughness
 // configuration, a normal drawn uniformly on the spherical cap it sees (Dupuy & Benyoub 2023),
@@ -411,20 +371,17 @@ vec3 mx_ggx_sample_visible_normal(vec2 u, vec3 V, vec2 alpha)
     return normalize(vec3(Hs.xy * alpha, max(Hs.z, MX_EPS)));
 }
 
-
 // Density of the reflected direction drawn through visible normal H: D G1(V) / (4 cos(V)).
 float mx_ggx_reflection_pdf(vec3 H, vec3 V, vec2 alpha)
 {
     return mx_ggx_D(H, alpha) * mx_ggx_G1(V, alpha) / (4.0 * max(V.z, MX_EPS));
 }
 
-
 // One isotropic alpha standing for an anisotropic pair in the tables.
 float mx_ggx_isotropic_alpha(vec2 alpha)
 {
     return sqrt(alpha.x * alpha.y);
 }
-
 
 // Turquin 2019: the lobe scaled by 1 + F (1 - E) / E returns the energy that single scattering
 // loses between microfacets (1 - E with a white Fresnel), tinted by the Fresnel colour F.
@@ -434,7 +391,6 @@ vec3 mx_ggx_energy_compensation(float NdotV, float alpha, vec3 F)
     float E = max(scaleBias.x + scaleBias.y, MX_EPS);
     return vec3(1.0) + F * ((1.0 - E) / E);
 }
-
 
 // The lat-long environment map: lookups along world directions, shared by the two ways of lighting
 // with it (mx_environment_fis.glsl, mx_environment_prefilter.glsl).
@@ -447,7 +403,6 @@ vec2 mx_envmap_uv(vec3 dir)
     return vec2(atan(dir.x, -dir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(dir.y) * MX_INV_PI);
 }
 
-
 // The map `envMap` seen along world direction `dir`, at mip level `lod`.
 vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
 {
@@ -455,13 +410,11 @@ vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
     return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
 }
 
-
 // Irradiance / pi arriving at a point with normal N: what a white Lambert surface reflects.
 vec3 mx_environment_irradiance(vec3 N)
 {
     return mx_envmap_fetch(u_envIrradiance, N, 0.0) * u_envLightIntensity;
 }
-
 
 // Split-sum DFG table of GGX: the BRDF's directional albedo for any Fresnel F is
 // w1 F(c1) + w2 F(c2), a two-point Gauss quadrature in VdotH. Written by tools/fit_dfg.py
@@ -486,7 +439,6 @@ const float MX_DFG_C1[256] = float[](
     0.7510, 0.7461, 0.7278, 0.7068, 0.6844, 0.6671, 0.6531, 0.6434, 0.6380, 0.6363, 0.6374, 0.6402, 0.6442, 0.6486, 0.6532, 0.6575,
     0.8711, 0.8657, 0.8291, 0.7911, 0.7751, 0.7552, 0.7398, 0.7278, 0.7191, 0.7136, 0.7107, 0.7096, 0.7100, 0.7111, 0.7128, 0.7147,
     1.0000, 0.9957, 0.9386, 0.7953, 0.8307, 0.8398, 0.8393, 0.8345, 0.8297, 0.8256, 0.8217, 0.8184, 0.8154, 0.8130, 0.8109, 0.8093);
-
 const float MX_DFG_C2[256] = float[](
     0.0075, 0.5866, 0.6189, 0.6477, 0.6741, 0.6982, 0.7203, 0.7405, 0.7590, 0.7757, 0.7907, 0.8042, 0.8162, 0.8270, 0.8365, 0.8450,
     0.0055, 0.5778, 0.6147, 0.6453, 0.6723, 0.6967, 0.7191, 0.7394, 0.7581, 0.7750, 0.7902, 0.8038, 0.8160, 0.8269, 0.8365, 0.8451,
@@ -504,7 +456,6 @@ const float MX_DFG_C2[256] = float[](
     0.7512, 0.7567, 0.7683, 0.7832, 0.8009, 0.8211, 0.8408, 0.8588, 0.8747, 0.8881, 0.8991, 0.9080, 0.9150, 0.9205, 0.9248, 0.9280,
     0.8711, 0.8739, 0.8761, 0.8802, 0.8884, 0.8964, 0.9045, 0.9120, 0.9184, 0.9236, 0.9278, 0.9311, 0.9336, 0.9354, 0.9368, 0.9378,
     1.0000, 1.0000, 0.9994, 0.9973, 0.9943, 0.9902, 0.9854, 0.9801, 0.9748, 0.9699, 0.9655, 0.9618, 0.9588, 0.9565, 0.9548, 0.9537);
-
 const float MX_DFG_W1[256] = float[](
     0.9913, 0.9435, 0.9355, 0.8891, 0.8320, 0.7714, 0.7111, 0.6536, 0.6002, 0.5517, 0.5083, 0.4701, 0.4367, 0.4077, 0.3828, 0.3614,
     0.9665, 0.8848, 0.9073, 0.8780, 0.8267, 0.7681, 0.7084, 0.6508, 0.5971, 0.5483, 0.5045, 0.4658, 0.4318, 0.4024, 0.3771, 0.3553,
@@ -522,7 +473,6 @@ const float MX_DFG_W1[256] = float[](
     0.5007, 0.5258, 0.4265, 0.4195, 0.4215, 0.4334, 0.4285, 0.4082, 0.3747, 0.3325, 0.2870, 0.2425, 0.2015, 0.1653, 0.1344, 0.1085,
     0.5000, 0.3488, 0.1168, 0.1262, 0.1927, 0.2334, 0.2647, 0.2803, 0.2794, 0.2643, 0.2391, 0.2085, 0.1768, 0.1467, 0.1198, 0.0968,
     0.5000, 0.0063, 0.0067, 0.0085, 0.0244, 0.0535, 0.0915, 0.1315, 0.1669, 0.1917, 0.2019, 0.1978, 0.1828, 0.1613, 0.1375, 0.1142);
-
 const float MX_DFG_W2[256] = float[](
     0.0029, 0.0133, 0.0530, 0.1057, 0.1650, 0.2264, 0.2869, 0.3444, 0.3976, 0.4457, 0.4885, 0.5262, 0.5589, 0.5870, 0.6111, 0.6314,
     0.0334, 0.0073, 0.0453, 0.0992, 0.1596, 0.2219, 0.2829, 0.3404, 0.3935, 0.4413, 0.4836, 0.5204, 0.5520, 0.5790, 0.6018, 0.6207,
@@ -541,7 +491,6 @@ const float MX_DFG_W2[256] = float[](
     0.5000, 0.6512, 0.8832, 0.8726, 0.8011, 0.7496, 0.6973, 0.6475, 0.5980, 0.5473, 0.4949, 0.4410, 0.3866, 0.3334, 0.2832, 0.2372,
     0.5000, 0.9937, 0.9933, 0.9913, 0.9709, 0.9323, 0.8760, 0.8056, 0.7230, 0.6328, 0.5411, 0.4529, 0.3724, 0.3017, 0.2419, 0.1926);
 
-
 // (c1, c2, w1, w2) at NdotV and alpha, interpolated bilinearly.
 vec4 mx_environment_dfg_rule(float NdotV, float alpha)
 {
@@ -554,15 +503,12 @@ vec4 mx_environment_dfg_rule(float NdotV, float alpha)
     return mix(low, high, f.x);
 }
 
-
 // Image-based lighting from a prefiltered environment, by the split sum (Karis 2013, "Real Shading
 // in Unreal Engine 4"): the radiance map convolved with the GGX lobe per roughness (computed by the
 // renderer, shadergen/render/prefilter.py, with N = V = R), times the BRDF's directional albedo
 // from our DFG table (mx_environment_dfg.glsl, tools/fit_dfg.py). One lookup instead of
 // u_envRadianceSamples; used when the shader is compiled with MX_ENV_PREFILTER defined, and then
 // u_envRadiance must hold the prefiltered chain.
-
-
 
 // Mip level of the prefiltered chain holding the GGX lobe of `alpha`: level 0 is the unfiltered
 // map, level l >= 1 the lobe of alpha = 2^(l + 4 - u_envRadianceMips) up to alpha 1 (texels about
@@ -573,7 +519,6 @@ float mx_prefiltered_lod(float alpha)
     float firstAlpha = exp2(1.0 - roughest);
     return alpha < firstAlpha ? alpha / firstAlpha : min(log2(alpha) + roughest, roughest);
 }
-
 
 // Light leaving a point with normal N towards V after one GGX bounce of roughness alpha, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x; `albedo` as
@@ -595,7 +540,6 @@ vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData
     return mx_envmap_fetch(u_envRadiance, L, mx_prefiltered_lod(avgAlpha)) * albedo * u_envLightIntensity;
 }
 
-
 // Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
 // & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
 // sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
@@ -605,8 +549,6 @@ vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
 // in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
 
-
-
 // Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
 // with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
 float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
@@ -615,7 +557,6 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
     float stretch = sqrt(1.0 - dir.y * dir.y);
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
-
 
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
@@ -675,13 +616,11 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
 #endif
 }
 
-
 // The environment seen through the lobe (see mx_environment_samples).
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
     return mx_environment_samples(N, V, X, alpha, fd, true, albedo);
 }
-
 
 // The GGX reflection lobe shared by the specular closures (dielectric, conductor, generalized
 // Schlick, and the environment term of hair).
@@ -695,7 +634,6 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
 //   INDIRECT      the environment, sampled once by filtered importance sampling, compensated there.
 //   TRANSMISSION  no light of its own: what is seen through a layer loses exactly the albedo its
 //                 environment term has (the same samples).
-
 
 struct SpecularLobe
 {
@@ -717,7 +655,6 @@ struct SpecularLobe
     vec3 environmentAlbedo;  // the fraction of the environment it reflects, from the same samples
 };
 
-
 // The fraction of light arriving with `cosine` that the lobe reflects, multiple scattering
 // included, from its single-scattering albedo there (the caller's table value).
 vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleScatteringAlbedo)
@@ -725,7 +662,6 @@ vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleSca
     float c = clamp(cosine, MX_EPS, 1.0);
     return singleScatteringAlbedo * mx_ggx_energy_compensation(c, mx_ggx_isotropic_alpha(alpha), mx_fresnel_eval(c, fd));
 }
-
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
@@ -757,7 +693,6 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     return lobe;
 }
 
-
 // The lobe towards closureData.L (REFLECTION), multiple scattering included.
 vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
 {
@@ -772,7 +707,6 @@ vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
            (DG * closureData.occlusion / (4.0 * lobe.Vt.z));
 }
 
-
 // What the lobe reflects of the environment as seen through it along the real view direction:
 // the prepared samples, or new ones where retro-reflection prepared them along the mirrored view.
 vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
@@ -785,13 +719,11 @@ vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
     return albedo;
 }
 
-
 // What the layers below receive of light from one direction, given what the lobe reflects of it.
 vec3 mx_specular_throughput(vec3 reflected, float weight)
 {
     return max(vec3(1.0) - reflected * weight, 0.0);
 }
-
 
 // True for the contexts a scattering closure answers (emission and the default context get nothing).
 bool mx_is_scattering_context(int closureType)
@@ -799,7 +731,6 @@ bool mx_is_scattering_context(int closureType)
     return closureType == CLOSURE_TYPE_REFLECTION || closureType == CLOSURE_TYPE_TRANSMISSION ||
            closureType == CLOSURE_TYPE_INDIRECT;
 }
-
 
 // Generated by tools/fit_albedo.py from numerical integration of the models' formulas; do not
 // edit: change the script and run it again. GGX dielectric reflection albedo.
@@ -935,13 +866,11 @@ const float MX_ALBEDO_DIELECTRIC_ENTERING[1024] = float[1024](
     0.274494, 0.268620, 0.254055, 0.236320, 0.217466, 0.198708, 0.180763, 0.163993,
     0.148596, 0.134630, 0.122074, 0.110846, 0.100830, 0.091926, 0.083989, 0.076933);
 
-
 float mx_albedo_dielectric_entering(vec4 c, ivec2 i, int slab)
 {
     return mix(mix(MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(0, 0), 16)], MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(1, 0), 16)], c.z),
                mix(MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(0, 1), 16)], MX_ALBEDO_DIELECTRIC_ENTERING[slab * 128 + mx_albedo_index(i + ivec2(1, 1), 16)], c.z), c.w);
 }
-
 
 // Reflection albedo of a GGX dielectric interface at view cosine mu, isotropic alpha and relative
 // index eta (transmitted side over incident side), eta clamped to [1/3, 3]. The table of the dense
@@ -958,11 +887,8 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
     return mix(mx_albedo_dielectric_entering(c, i, slab), mx_albedo_dielectric_entering(c, i, slab + 1), t - float(slab));
 }
 
-
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
-
-
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
@@ -977,7 +903,6 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
     float tableAlbedo = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.ior.x);
     lobe.albedo = mx_specular_albedo(NdotV, lobe.alpha, fd, vec3(tableAlbedo));
 }
-
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
 // layers below.
@@ -1008,12 +933,8 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     }
 }
 
-
 // <oren_nayar_diffuse_bsdf>: opaque rough diffuse reflection (lib/mx_diffuse.glsl), Lambert at
 // roughness 0; energy_compensation selects EON, the energy-preserving model of OpenPBR.
-
-
-
 
 void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, float roughness, vec3 N,
                                 bool energy_compensation, inout BSDF bsdf)
@@ -1044,7 +965,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     }
 }
 
-
 // <layer>: vertical layering. The base is lit by what the top layer lets through.
 
 void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result)
@@ -1052,7 +972,6 @@ void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result
     result.response = top.response + base.response * top.throughput;
     result.throughput = top.throughput * base.throughput;
 }
-
 
 // <point_light>: light from `light.position`, falling off as (distance + 1)^-decay_rate.
 void mx_point_light(LightData light, vec3 position, out lightshader result)
@@ -1063,14 +982,12 @@ void mx_point_light(LightData light, vec3 position, out lightshader result)
     result.intensity = light.color * light.intensity / pow(dist + 1.0, light.decay_rate + 1.0e-8);
 }
 
-
 // <directional_light>: parallel light travelling along `light.direction`.
 void mx_directional_light(LightData light, vec3 position, out lightshader result)
 {
     result.direction = -light.direction;
     result.intensity = light.color * light.intensity;
 }
-
 
 // <spot_light>: a point light restricted to a cone about `light.direction`. As in MaterialX's
 // hardware lights, inner_angle and outer_angle are compared with the cosine between the cone axis
@@ -1089,12 +1006,10 @@ void mx_spot_light(LightData light, vec3 position, out lightshader result)
     result.intensity *= (low < high) ? smoothstep(low, high, cosAxis) : step(high, cosAxis);
 }
 
-
 int numActiveLightSources()
 {
     return min(u_numActiveLightSources, MAX_LIGHT_SOURCES);
 }
-
 
 void sampleLightSource(LightData light, vec3 position, out lightshader result)
 {
@@ -1107,7 +1022,6 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
     else if (light.type == 3)
         mx_spot_light(light, position, result);
 }
-
 
 void main()
 {
