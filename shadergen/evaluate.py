@@ -88,6 +88,45 @@ def _switch(inputs):
     return None
 
 
+# The PBR library's parameter conversions, as libraries/pbrlib/genglsl/mx_pbr_utility.glsl computes
+# them, each step rounded to float32.
+PBR_EPS = f32(1.0e-8)  # MX_EPS
+
+
+def _clamp(x: float, low: float, high: float) -> float:
+    return min(max(x, low), high)
+
+
+def _roughness_anisotropy(roughness: float, anisotropy: float) -> tuple:
+    alpha = _clamp(f32(roughness * roughness), PBR_EPS, 1.0)
+    if anisotropy > 0.0:
+        aspect = f32(math.sqrt(f32(1.0 - _clamp(anisotropy, 0.0, 0.98))))
+        return (min(f32(alpha / aspect), 1.0), f32(alpha * aspect))
+    return (alpha, alpha)
+
+
+def _roughness_dual(roughness: tuple) -> tuple:
+    x, y = roughness
+    return tuple(_clamp(f32(r * r), PBR_EPS, 1.0) for r in (x, x if y < 0.0 else y))
+
+
+def _artistic_ior(reflectivity: tuple, edge_color: tuple) -> dict:
+    """(n, k) per channel (Gulbrandsen 2014), as mx_artistic_ior() computes them."""
+    ior, extinction = [], []
+    for reflect, edge in zip(reflectivity, edge_color, strict=True):
+        r = _clamp(reflect, 0.0, 0.99)
+        sr = f32(math.sqrt(r))
+        from_edge = f32(f32(1.0 - r) / f32(1.0 + r))
+        from_facing = f32(f32(1.0 + sr) / f32(1.0 - sr))
+        n = f32(from_facing * f32(1.0 - edge) + from_edge * edge)
+        k2 = f32(f32(f32(f32(n + 1.0) * f32(n + 1.0)) * r - f32(f32(n - 1.0) * f32(n - 1.0))) / f32(1.0 - r))
+        ior.append(n)
+        extinction.append(f32(math.sqrt(max(k2, 0.0))))
+    return {"ior": tuple(ior), "extinction": tuple(extinction)}
+
+
+MULTIPLE_OUTPUTS = {"artistic_ior": lambda i: _artistic_ior(i["reflectivity"], i["edge_color"])}
+
 CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
 
 UNARY = {
@@ -156,6 +195,10 @@ def _evaluate(category: str, i: dict, out_type: str):
         return _components(i["in"])[int(i["index"])]
     if category in ("combine2", "combine3", "combine4"):
         return tuple(c for k in range(1, int(category[-1]) + 1) for c in _components(i[f"in{k}"]))
+    if category == "roughness_anisotropy":
+        return _roughness_anisotropy(i["roughness"], i["anisotropy"])
+    if category == "roughness_dual":
+        return _roughness_dual(i["roughness"])
     if category == "luminance":
         rgb = _components(i["in"])
         y = _dot(rgb[:3], i["lumacoeffs"])
@@ -187,6 +230,9 @@ def evaluate_outputs(category: str, inputs: dict, outputs: list[tuple[str, str]]
         if category in ("separate2", "separate3", "separate4"):
             comps = _components(inputs["in"])
             return {name: _typed(comps[k], t) for k, (name, t) in enumerate(outputs)}
+        if category in MULTIPLE_OUTPUTS:
+            values = MULTIPLE_OUTPUTS[category](inputs)
+            return {name: _typed(values[name], t) for name, t in outputs}
         if len(outputs) != 1:
             raise NotFoldable
         (name, t), = outputs

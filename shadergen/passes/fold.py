@@ -86,6 +86,10 @@ def identity_source(node: Node):
         known, which = constant(node, "which")
         if known:
             return next((i[f"in{k}"] for k in range(1, 11) if which < k and f"in{k}" in i), "zero")
+    if c == "rotate3d":
+        known, amount = constant(node, "amount")
+        if known and amount == 0.0:
+            return i["in"]  # a turn by 0 degrees about any axis
     if c in ("add", "subtract", "multiply", "divide", "power") and "in2" in i:
         return _arithmetic_identity(node)
     return None

@@ -41,6 +41,21 @@ def test_evaluation_rounds_to_float32_and_gives_the_shortest_literal():
     assert evaluate_outputs("switch", {"which": 1.5, "in1": 1.0, "in2": 2.0}, [("out", "float")])["out"] == 2.0
 
 
+def test_the_pbr_parameter_conversions_evaluate_as_the_library_computes_them():
+    alpha = evaluate_outputs("roughness_anisotropy", {"roughness": 0.5, "anisotropy": 0.0}, [("out", "vector2")])["out"]
+    assert alpha == (0.25, 0.25)
+    stretched = evaluate_outputs("roughness_anisotropy", {"roughness": 0.5, "anisotropy": 0.5},
+                                 [("out", "vector2")])["out"]
+    assert stretched[0] == pytest.approx(0.25 / 0.5 ** 0.5, rel=1e-6) and stretched[1] == pytest.approx(0.25 * 0.5 ** 0.5, rel=1e-6)
+    assert evaluate_outputs("roughness_dual", {"roughness": (0.5, -1.0)}, [("out", "vector2")])["out"] == (0.25, 0.25)
+    reflectivity, edge = (0.9, 0.5, 0.2), (0.1, 0.6, 1.0)
+    nk = evaluate_outputs("artistic_ior", {"reflectivity": reflectivity, "edge_color": edge},
+                          [("ior", "color3"), ("extinction", "color3")])
+    for r, n, k in zip(reflectivity, nk["ior"], nk["extinction"]):
+        # Gulbrandsen's (n, k) reflect exactly the reflectivity at normal incidence, whatever the edge tint
+        assert ((n - 1) ** 2 + k ** 2) / ((n + 1) ** 2 + k ** 2) == pytest.approx(r, rel=1e-5)
+
+
 @pytest.mark.parametrize("category,inputs", [
     ("divide", {"in1": 1.0, "in2": 0.0}),  # infinity: no literal holds it
     ("sqrt", {"in": -1.0}),
@@ -76,6 +91,8 @@ def test_constant_math_folds_into_its_reader_in_specialized(gen):
      '<input name="in2" type="vector3" value="0, 0, 1"/></ifgreater>', "m_out"),
     ('<switch name="m" type="vector3"><input name="which" type="float" value="1"/>'
      '<input name="in1" type="vector3" value="0, 0, 1"/><input name="in2" type="vector3" nodename="p"/></switch>', "m_out"),
+    ('<rotate3d name="m" type="vector3"><input name="in" type="vector3" nodename="p"/>'
+     '<input name="amount" type="float" value="0"/><input name="axis" type="vector3" value="0, 1, 0"/></rotate3d>', "m_out"),
 ])
 def test_identities_let_the_live_input_stand_for_the_node(gen, node, gone):
     body = ('<position name="p" type="vector3"/>' + node

@@ -27,6 +27,32 @@ in VertexData
 
 out vec4 out1;
 
+// Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
+// function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
+// seen through the surface along the view direction), INDIRECT (the environment, sampled by the
+// closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
+#define CLOSURE_TYPE_DEFAULT 0
+#define CLOSURE_TYPE_REFLECTION 1
+#define CLOSURE_TYPE_TRANSMISSION 2
+#define CLOSURE_TYPE_INDIRECT 3
+
+// The shading point as a closure sees it: the context, the light direction (REFLECTION only), the
+// direction to the viewer, the interpolated normal, the world position and the light's visibility.
+struct ClosureData
+{
+    int closureType;
+    vec3 L;
+    vec3 V;
+    vec3 N;
+    vec3 P;
+    float occlusion;
+};
+
+ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
+{
+    return ClosureData(closureType, L, V, N, P, occlusion);
+}
+
 // Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
@@ -94,62 +120,6 @@ vec2 mx_fibonacci_point(int i, int count)
 {
     const float GOLDEN_RATIO = 1.6180339887498948;
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
-}
-
-// Parameter conversions of the PBR library.
-
-// <roughness_anisotropy>: GGX alpha along the tangent and bitangent from a perceptual roughness
-// (squared) and an anisotropy that stretches the lobe along the tangent.
-void mx_roughness_anisotropy(float roughness, float anisotropy, out vec2 result)
-{
-    float alpha = clamp(roughness * roughness, MX_EPS, 1.0);
-    if (anisotropy > 0.0)
-    {
-        float aspect = sqrt(1.0 - clamp(anisotropy, 0.0, 0.98));
-        result = vec2(min(alpha / aspect, 1.0), alpha * aspect);
-    }
-    else
-    {
-        result = vec2(alpha);
-    }
-}
-
-// rotate3d: turn a vector by `degrees` about `axis` (normalized here).
-// MaterialX multiplies row vectors (v' = v * M), so the sense of rotation is that of
-// Rodrigues' formula with the cross product taken as v x k.
-void mx_rotate3d_vector3(vec3 v, float degrees, vec3 axis, out vec3 result)
-{
-    vec3 k = normalize(axis);
-    float angle = radians(degrees);
-    float c = cos(angle);
-    float s = sin(angle);
-    result = v * c + cross(v, k) * s + k * (dot(k, v) * (1.0 - c));
-}
-
-// Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
-// function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
-// seen through the surface along the view direction), INDIRECT (the environment, sampled by the
-// closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
-#define CLOSURE_TYPE_DEFAULT 0
-#define CLOSURE_TYPE_REFLECTION 1
-#define CLOSURE_TYPE_TRANSMISSION 2
-#define CLOSURE_TYPE_INDIRECT 3
-
-// The shading point as a closure sees it: the context, the light direction (REFLECTION only), the
-// direction to the viewer, the interpolated normal, the world position and the light's visibility.
-struct ClosureData
-{
-    int closureType;
-    vec3 L;
-    vec3 V;
-    vec3 N;
-    vec3 P;
-    float occlusion;
-};
-
-ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
-{
-    return ClosureData(closureType, L, V, N, P, occlusion);
 }
 
 // Fresnel reflectance: Schlick and its generalisations, exact dielectric and conductor
@@ -1025,16 +995,8 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
 
 void main()
 {
-    vec2 SR_coated_coat_alpha_out;
-    mx_roughness_anisotropy(0.05, 0.0, SR_coated_coat_alpha_out);
     vec3 geomprop_Nworld_out = normalize(vd.normalWorld);
     vec3 geomprop_Tworld_out = normalize(vd.tangentWorld);
-    vec3 SR_coated_coat_tangent_out;
-    mx_rotate3d_vector3(geomprop_Tworld_out, 0.0, geomprop_Nworld_out, SR_coated_coat_tangent_out);
-    vec2 SR_coated_specular_alpha_out;
-    mx_roughness_anisotropy(0.35, 0.0, SR_coated_specular_alpha_out);
-    vec3 SR_coated_specular_tangent_out;
-    mx_rotate3d_vector3(geomprop_Tworld_out, 0.0, geomprop_Nworld_out, SR_coated_specular_tangent_out);
     surfaceshader SR_coated_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd.normalWorld);
@@ -1046,9 +1008,9 @@ void main()
         // lobes prepared once per shading point, before any light
         ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe SR_coated_coat_brdf_lobe;
-        mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.0025, 0.0025), false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_coat_brdf_lobe);
         SpecularLobe SR_coated_specular_brdf_lobe;
-        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, SR_coated_specular_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0, SR_coated_specular_brdf_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.1225, 0.1225), false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_specular_brdf_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); ++activeLightIndex)
         {
             lightshader lightShader;
