@@ -4,7 +4,7 @@ configured back end. PNGs are cached too, under a digest of the graph hash and t
 import base64
 import hashlib
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from .cache import GuardedStore
 from .cache.entries import is_png
@@ -33,7 +33,9 @@ class ThumbnailService:
         self.retry_after_s = retry_after_s
 
     async def _render_request(self, order: ThumbnailOrder) -> dict:
-        record = json.loads(await self.generation.generate(order.document, order.params))
+        # the shader holds only the environment lighting it is drawn with
+        params = replace(order.params, environment=order.env_method)
+        record = json.loads(await self.generation.generate(order.document, params))
         request = {"record": record, "size": order.size, "mesh": order.mesh, "env_method": order.env_method}
         if order.params.document_format == "usdz":
             # the record's textures are members of the package (the translation refuses any that

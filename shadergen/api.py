@@ -17,6 +17,7 @@ from pathlib import Path
 from .document import Document, parse_document, read_document
 from .element import Element
 from .errors import ShaderGenError
+from .features import ENVIRONMENTS
 from .generator import EmitContext, emit_shader, listing_value
 from .graph import GraphBuilder, Output
 from .passes import Options, prepare
@@ -101,7 +102,8 @@ class Prepared:
             "stages": stages if source else {k: None for k in stages},
             "blocks": blocks,
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
-        } | ({"layout": layout} if layout is not None else {})
+        } | ({"layout": layout} if layout is not None else {}) \
+          | ({"environment": self.graph.environment} if self.graph.environment is not None else {})
 
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,
@@ -146,17 +148,22 @@ class Generator:
         return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
-                    interface: str = "complete", keep=(), values: str = "listing", base_dir: str | None = None,
-                    allow_includes: bool = True, document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
+                    interface: str = "complete", keep=(), values: str = "listing", environment: str | None = None,
+                    base_dir: str | None = None, allow_includes: bool = True,
+                    document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
         that stay live uniforms in the `specialized` interface. `values`: "listing" (uniforms initialised
         to nodedef values, the document's values only in the listing) or "source" (written into the
-        initializers too)."""
+        initializers too). `environment`: "fis" or "prefilter" writes only that way of lighting by
+        the environment (a renderer then needs no MX_ENV_PREFILTER of its own); None writes both."""
         target_for(target)  # unknown targets fail before any work
         if values not in VALUES:
             raise ShaderGenError("unsupported_values", f"unknown values '{values}'; supported: " + ", ".join(VALUES),
                                  "values")
+        if environment is not None and environment not in ENVIRONMENTS:
+            raise ShaderGenError("unsupported_environment", f"unknown environment '{environment}'; supported: "
+                                 + ", ".join(ENVIRONMENTS), "environment")
         if interface not in INTERFACES:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
                                  + ", ".join(INTERFACES), interface)
@@ -173,7 +180,7 @@ class Generator:
             try:
                 if e.path in doc.failures:
                     raise doc.failures[e.path]
-                out.append(self._prepare(doc, scope, e, target, Options(interface, frozenset(keep), values)))
+                out.append(self._prepare(doc, scope, e, target, Options(interface, frozenset(keep), values, environment)))
             except ELEMENT_FAILURES as exc:
                 out.append(element_error(exc, doc.label(e.path), doc))
         return out
@@ -271,7 +278,7 @@ def default_generator() -> Generator:
 
 
 def generate_file(path: str, *, target: str = "glsl", element: str | None = None, all: bool = False,
-                  interface: str = "complete", keep=()) -> list[dict]:
+                  interface: str = "complete", keep=(), environment: str | None = None) -> list[dict]:
     """Records for a document file (used by the renderer's CLI)."""
     return list(default_generator().records(Path(path), target=target, element=element, all=all,
-                                            interface=interface, keep=keep))
+                                            interface=interface, keep=keep, environment=environment))

@@ -4,6 +4,8 @@ import os
 import sys
 from pathlib import Path
 
+from .features import ENVIRONMENTS
+
 STAGE_SUFFIX = {"vertex": "vert", "pixel": "frag"}
 EXAMPLES = """examples:
   shadergen generate examples/marble_checker.mtlx                 # first renderable element, GLSL
@@ -30,6 +32,9 @@ def add_arguments(p) -> None:
                    help="listing (default: uniforms initialised to the nodedef's values, so materials that differ "
                         "only in values share one source; the document's values are in the listing) or source "
                         "(the document's values written into the initializers too)")
+    p.add_argument("--env-method", choices=ENVIRONMENTS, default=None,
+                   help="write only this way of lighting by the environment: fis (filtered importance sampling) or "
+                        "prefilter (a prefiltered map); default both, chosen by a renderer's MX_ENV_PREFILTER")
     p.add_argument("--out", metavar="DIR", help="also write stage files and listings under DIR (see below)")
     p.add_argument("--no-source", action="store_true", help="records without stage source (listings only)")
 
@@ -81,7 +86,7 @@ def run(args) -> int:
     out = OutputFiles(args.out) if args.out else None
     for doc in args.documents:
         options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface,
-                       keep=keep_list(args.keep), values=args.values)
+                       keep=keep_list(args.keep), values=args.values, environment=args.env_method)
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:

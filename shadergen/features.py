@@ -20,7 +20,9 @@ whose value satisfies the comparison; the second whenever the node is in the sha
 features are those of all its nodes (dynamic implementations may add their own); the generator
 resolves the sections before a target sees the text: a needed section stays (its directives go),
 any other is dropped, with an `#else` side taking its place. `#pragma shadergen` lines are removed.
-Other preprocessor conditionals (MX_ENV_PREFILTER, GL_ES) are left to the compiler.
+Other preprocessor conditionals are left to the compiler, except a compiler macro the caller has
+decided: a shader generated for one way of environment lighting (ENVIRONMENTS) has the
+MX_ENV_PREFILTER conditional resolved too, so the other way's code is not in it at all.
 """
 import operator
 import re
@@ -34,6 +36,8 @@ DECLARATION = re.compile(r"^\s*#\s*pragma\s+shadergen\s+feature\s+(\w+)(?:\s+unl
                          re.M)
 PRAGMA = re.compile(r"^\s*#\s*pragma\s+shadergen\b")
 CONDITIONAL = re.compile(r"^\s*#\s*(ifdef|ifndef|if|else|elif|endif)\b\s*(\w*)")
+ENVIRONMENTS = ("fis", "prefilter")  # filtered importance sampling, or a prefiltered map
+ENVIRONMENT_MACRO = "MX_ENV_PREFILTER"  # what a renderer defines to light by the prefiltered map
 COMPARE = {"==": operator.eq, "!=": operator.ne, "<=": operator.le, ">=": operator.ge, "<": operator.lt, ">": operator.gt}
 
 
@@ -88,17 +92,25 @@ def graph_features(graph: Graph) -> set[str]:
     return needed
 
 
+def environment_macros(environment: str | None) -> frozenset[tuple[str, bool]]:
+    """The compiler macros a shader for `environment` (ENVIRONMENTS, None: either) has decided."""
+    return frozenset() if environment is None else frozenset({(ENVIRONMENT_MACRO, environment == "prefilter")})
+
+
 @lru_cache(maxsize=4096)
-def resolve(text: str, features: frozenset[str] | None) -> str:
+def resolve(text: str, features: frozenset[str] | None, macros: frozenset[tuple[str, bool]] = frozenset()) -> str:
     """The text with its feature sections resolved for `features` (see the module's doc); None
-    keeps every section (a stage whose nodes were not asked)."""
+    keeps every section (a stage whose nodes were not asked). `macros`: (compiler macro, defined)
+    pairs resolved like features."""
+    decided = dict(macros)
     out: list[str] = []
     # one entry per open conditional: None for the compiler's own, else whether its side is kept
     stack: list[bool | None] = []
     for line in text.split("\n"):
         m = CONDITIONAL.match(line)
-        if m and m.group(1) in ("ifdef", "ifndef") and m.group(2).startswith(PREFIX):
-            defined = features is None or m.group(2)[len(PREFIX):] in features
+        if m and m.group(1) in ("ifdef", "ifndef") and (m.group(2).startswith(PREFIX) or m.group(2) in decided):
+            macro = m.group(2)
+            defined = decided[macro] if macro in decided else features is None or macro[len(PREFIX):] in features
             stack.append(defined == (m.group(1) == "ifdef"))
             continue
         if m and m.group(1) in ("if", "ifdef", "ifndef"):

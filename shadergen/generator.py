@@ -9,7 +9,7 @@ blocks, functions, main. The graph arrives finished (passes/): emission only wal
 import re
 
 from .errors import ShaderGenError
-from .features import graph_features, resolve
+from .features import environment_macros, graph_features, resolve
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .nodes.lobes import closure_nodes, emit_lobes
@@ -60,6 +60,7 @@ class EmitContext:
         self.lobe_weights: dict[int, str] = {}  # id(lobe's weight Input) -> its weight at this point
         self.prepared_lobes: dict[int, str] = {}  # id(lobe Node) -> its prepared state, in this surface
         self.features: frozenset[str] | None = None  # library features the nodes need (None: all)
+        self.macros: frozenset[tuple[str, bool]] = frozenset()  # compiler macros decided at generation
 
     @property
     def pixel(self) -> Stage:
@@ -147,7 +148,8 @@ class EmitContext:
         """A library source file with its includes ((path, text), dependencies first), each once."""
         for dep_path, text in files:
             if self.pixel.once(("file", dep_path)):
-                self.pixel.functions.extend(self.target.library_source(dep_path, resolve(text, self.features)))
+                resolved = resolve(text, self.features, self.macros)
+                self.pixel.functions.extend(self.target.library_source(dep_path, resolved))
                 self.pixel.functions.line()
 
     def emit_graph_function(self, function: Function) -> None:
@@ -266,6 +268,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     for port in graph.interface:
         ctx.publish(port)
     ctx.features = frozenset(graph_features(graph))
+    ctx.macros = environment_macros(graph.environment)
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)

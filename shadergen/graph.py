@@ -146,6 +146,7 @@ class Graph:
     passes: dict[str, int] = field(default_factory=dict)  # edits each pass made, in pass order
     interface_mode: str = "complete"
     values_in_source: bool = False  # uniform initializers hold the document's values, not the nodedef's
+    environment: str | None = None  # the environment lighting it is generated for (features.ENVIRONMENTS), or either
 
 
 def input_meta(decl: Element) -> dict:

@@ -48,7 +48,8 @@ class GenerateHandler:
         try:
             prepared = self.generator.prepare(
                 document, target=message["target"], element=message["element"], interface=message["interface"],
-                keep=message.get("keep", ()), values=message.get("values", "listing"), base_dir=None,
+                keep=message.get("keep", ()), values=message.get("values", "listing"),
+                environment=message.get("environment"), base_dir=None,
                 allow_includes=False, document_format=document_format,
             )
             key = "rec:" + prepared.hash

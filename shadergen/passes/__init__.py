@@ -21,6 +21,7 @@ class Options:
     interface: str = "complete"  # complete | reduced | specialized
     keep: frozenset[str] = frozenset()  # document inputs that stay live in `specialized`
     values: str = "listing"  # listing: uniforms initialised to nodedef values; source: to the document's
+    environment: str | None = None  # fis | prefilter: only that way of environment lighting is written
 
     @property
     def values_in_source(self) -> bool:
@@ -31,7 +32,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
             options: Options = Options()) -> Graph:
     """`target`: the Target the shader is for (the closure pass reads its closure convention)."""
     graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface,
-                  values_in_source=options.values_in_source)
+                  values_in_source=options.values_in_source, environment=options.environment)
 
     def run(name: str, edit) -> None:
         graph.passes[name] = edit()

@@ -23,6 +23,7 @@ from .textures import GL_CLAMP_TO_EDGE, Sampling, bind, upload
 # How the generated code lights with the environment: by filtered importance sampling of the
 # radiance map (u_envRadianceSamples), or from its GGX-prefiltered chain, which the pixel stage
 # reads when compiled with PREFILTER_DEFINE (libraries/pbrlib/genglsl/lib/mx_environment_prefilter.glsl).
+# A record generated for one of them (its "environment", shadergen/features.py) has only that one.
 ENV_METHODS = ("fis", "prefilter")
 PREFILTER_DEFINE = "MX_ENV_PREFILTER"
 # Lat-long maps wrap around in longitude and stop at the poles.
@@ -53,6 +54,9 @@ class Renderer(SceneRenderer):
         if env_method not in ENV_METHODS:
             raise RenderError("invalid_request", f"unknown env_method {env_method!r}; supported: "
                               + ", ".join(ENV_METHODS), element)
+        if record.get("environment", env_method) != env_method:
+            raise RenderError("invalid_request", f"the record was generated for env_method {record['environment']!r} "
+                              f"only, not {env_method!r}", element)
         if env_method == "prefilter":
             pixel = _with_define(pixel, PREFILTER_DEFINE)
         ctx = gl_context(self.lp_threads)

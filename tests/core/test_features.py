@@ -99,3 +99,24 @@ def test_smooth_diffuse_is_lambert_and_rough_diffuse_brings_its_models(gen):
     assert "mx_oren_nayar(" not in smooth and "MX_ALBEDO_OREN_NAYAR" not in smooth and "mx_eon" not in smooth
     rough = pixel(gen, material(diffuse.format(r=0.5)), interface="specialized")
     assert "mx_oren_nayar(" in rough and "mx_eon(" in rough
+
+
+def test_an_environment_method_resolves_the_compilers_own_conditional(gen):
+    document = material('<conductor_bsdf name="b" type="BSDF"/>')
+    both = gen.prepare(document, interface="specialized").emit()
+    fis = gen.prepare(document, interface="specialized", environment="fis").emit()
+    prefilter = gen.prepare(document, interface="specialized", environment="prefilter").emit()
+    assert "#ifdef MX_ENV_PREFILTER" in both["stages"]["pixel"] and "environment" not in both
+    assert "#ifdef MX_ENV_PREFILTER" not in fis["stages"]["pixel"] and "MX_DFG_C1" not in fis["stages"]["pixel"]
+    assert "mx_ggx_sample_visible_normal" in fis["stages"]["pixel"] and fis["environment"] == "fis"
+    assert "MX_DFG_C1" in prefilter["stages"]["pixel"] and "mx_ggx_sample_visible_normal" not in prefilter["stages"]["pixel"]
+    assert len({both["hash"], fis["hash"], prefilter["hash"]}) == 3
+    with pytest.raises(ShaderGenError) as error:
+        gen.prepare(document, environment="pathtrace")
+    assert error.value.code == "unsupported_environment"
+
+
+def test_decided_macros_resolve_like_features():
+    text = "#ifdef MX_ENV_PREFILTER\nprefiltered();\n#else\nsampled();\n#endif"
+    assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", False)})) == "sampled();"
+    assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", True)})) == "prefiltered();"

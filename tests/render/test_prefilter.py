@@ -91,12 +91,12 @@ MATERIALS = {
 }
 
 
-def standard_surface(inputs: str) -> dict:
+def standard_surface(inputs: str, **options) -> dict:
     return Generator().prepare('<?xml version="1.0"?><materialx version="1.39">'
                                f'<standard_surface name="sr" type="surfaceshader">{inputs}</standard_surface>'
                                '<surfacematerial name="mat" type="material">'
                                '<input name="surfaceshader" type="surfaceshader" nodename="sr"/>'
-                               '</surfacematerial></materialx>').emit()
+                               '</surfacematerial></materialx>', **options).emit()
 
 
 @pytest.mark.parametrize("name", sorted(MATERIALS))
@@ -115,3 +115,20 @@ def test_unknown_env_method_is_refused(renderer):
     with pytest.raises(RenderError) as error:
         renderer.render(record, size=8, env_method="pathtrace")
     assert error.value.code == "invalid_request"
+
+
+def test_a_shader_generated_for_one_env_method_draws_as_the_one_with_both(renderer):
+    inputs = MATERIALS["rough copper"]
+    both = standard_surface(inputs, interface="specialized")
+    for method in ("fis", "prefilter"):
+        only = standard_surface(inputs, interface="specialized", environment=method)
+        assert only["stages"]["pixel"].count("\n") < both["stages"]["pixel"].count("\n")
+        same = renderer.render(only, size=32, env_method=method).rgba
+        assert np.array_equal(same, renderer.render(both, size=32, env_method=method).rgba)
+
+
+def test_a_shader_generated_for_fis_is_not_drawn_with_the_prefiltered_map(renderer):
+    record = standard_surface("", interface="specialized", environment="fis")
+    with pytest.raises(RenderError) as error:
+        renderer.render(record, size=8, env_method="prefilter")
+    assert error.value.code == "invalid_request" and "fis" in error.value.message
