@@ -120,3 +120,4 @@ def test_decided_macros_resolve_like_features():
     text = "#ifdef MX_ENV_PREFILTER\nprefiltered();\n#else\nsampled();\n#endif"
     assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", False)})) == "sampled();"
     assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", True)})) == "prefiltered();"
+

@@ -153,3 +153,16 @@ def test_an_out_argument_into_a_member_goes_through_a_copy():
                     "vec3 f() { P p; g(p.a); return p.a; }")
     assert "var written_0: vec3f = p.a;" in out and "g(&written_0);" in out and "p.a = written_0;" in out
     assert out.index("g(&written_0);") < out.index("p.a = written_0;") < out.index("return p.a;")
+
+
+def test_a_library_file_translated_again_for_other_features_validates(gen, validator):
+    """A file met again with its feature sections resolved otherwise (shadergen/features.py) keeps
+    one signature per function and its own #ifndef-guarded constants."""
+    surface = ('<standard_surface name="ss" type="surfaceshader"><input name="coat" type="float" value="0.5"/>'
+               '<input name="transmission" type="float" value="{t}"/></standard_surface>'
+               '<surfacematerial name="m" type="material"><input name="surfaceshader" type="surfaceshader" '
+               'nodename="ss"/></surfacematerial>')
+    smooth = gen.prepare(doc(surface.format(t=0)), target="wgsl", interface="specialized").emit()["stages"]
+    every = gen.prepare(doc(surface.format(t=0.2)), target="wgsl").emit()["stages"]
+    assert "mx_surface_transmission" not in smooth["pixel"] and "mx_surface_transmission" in every["pixel"]
+    assert not validator({"smooth": smooth["pixel"], "every": every["pixel"]})

@@ -863,7 +863,8 @@ class Translator:
         self.lib.globals.update(uniforms or {})
         self.done: dict[tuple[str, str], str] = {}
         self.defined = {"GL_ES"}
-        self.prelude = {name: self._file(text) for name, text in prelude.items()}
+        self.defined_before: dict[str, set[str]] = {}  # file -> the macros defined when it was first met
+        self.prelude = {name: self._file(text, self.defined) for name, text in prelude.items()}
 
     def structs(self, used: set[str]) -> list[str]:
         return [text.strip() for name, text in self.prelude.items() if name in used]
@@ -871,11 +872,14 @@ class Translator:
     def file(self, key: str, text: str) -> str:
         """A file translated once per text: shaders resolve its feature sections differently."""
         if (key, text) not in self.done:
-            self.done[key, text] = self._file(text)
+            # a file met again sees the macros of its first time, not its own #define guards
+            defined = set(self.defined_before.setdefault(key, set(self.defined)))
+            self.done[key, text] = self._file(text, defined)
+            self.defined |= defined
         return self.done[key, text]
 
-    def _file(self, text: str) -> str:
-        items = Parser(tokenize(preprocess(text, self.defined)), set(self.lib.structs)).top_level()
+    def _file(self, text: str, defined: set[str]) -> str:
+        items = Parser(tokenize(preprocess(text, defined)), set(self.lib.structs)).top_level()
         names = [it[2] for it in items if it[0] == "function"]
         out: list[str] = []
         for it in items:
@@ -922,7 +926,9 @@ class Translator:
         declared = {n: t for _, t, n in params}  # array parameters keep their size here
         params = [(q, self.lib.canon(t), n) for q, t, n in params]
         ret = self.lib.canon(ret)
-        self.lib.functions.setdefault(name, []).append(Signature(wgsl_name, ret, params))
+        # a file translated again (its feature sections resolved otherwise) declares the same function
+        family = self.lib.functions.setdefault(name, [])
+        family[:] = [s for s in family if s.name != wgsl_name] + [Signature(wgsl_name, ret, params)]
         emitter = FunctionEmitter(self.lib, params, ret)
         assigned = assigned_names(body)
         copies = []
