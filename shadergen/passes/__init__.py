@@ -14,6 +14,7 @@ from .fold import fold_constants
 from .functions import share_functions
 from .interface import bind_interface, choose_implementations, publish_textures
 from .order import assign_scopes, topological_order
+from .thin_film import push_thin_films
 
 
 @dataclass(frozen=True)
@@ -42,6 +43,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     choose_implementations(graph.nodes, builder.scope.library)
     run("interface", lambda: bind_interface(graph, options.interface, options.keep))
     run("expand", lambda: expand_nodegraphs(graph, builder))
+    run("thin_film", lambda: push_thin_films(graph))
     run("fold", lambda: fold_constants(graph))
     choose_implementations(graph.nodes, builder.scope.library)
     run("prune_closures", lambda: prune_closures(graph, target.closures))

@@ -80,12 +80,13 @@ def _at_most_zero(value, exact: bool = False) -> bool:
     return all(v == 0 if exact else v <= 0 for v in values)
 
 
-def closure_tree(inp: Input) -> list[Node]:
-    """The closure nodes an input reads, directly or through other closure nodes."""
+def closure_tree(inp: Input, stop=lambda node: False) -> list[Node]:
+    """The closure nodes an input reads, directly or through other closure nodes; a node for
+    which `stop` is true is neither listed nor walked through."""
     found, stack, seen = [], [inp], set()
     while stack:
         conn = stack.pop().connection
-        if conn is None or id(conn.node) in seen or not is_closure_node(conn.node):
+        if conn is None or id(conn.node) in seen or not is_closure_node(conn.node) or stop(conn.node):
             continue
         seen.add(id(conn.node))
         found.append(conn.node)

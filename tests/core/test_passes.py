@@ -213,6 +213,53 @@ def _source(name: str) -> str:
     return str(Path(__file__).resolve().parents[2] / "libraries" / "pbrlib" / "genglsl" / name)
 
 
+# -- thin_film -------------------------------------------------------------------------------------
+def film(name: str, base: str | None, thickness: str = "400") -> str:
+    link = f'<input name="base" type="BSDF" nodename="{base}"/>' if base else ""
+    return (f'<thinfilmbxdf name="{name}" type="BSDF"><input name="thickness" type="float" value="{thickness}"/>'
+            f'<input name="ior" type="float" value="1.3"/>{link}</thinfilmbxdf>')
+
+
+def lobe_calls(rec, function: str) -> list[str]:
+    return re.findall(rf"{function}\(closureData, [^;]*;", main_of(rec))
+
+
+def test_a_film_reaches_every_microfacet_lobe_under_it_and_disappears(gen):
+    coat, metal = lobe("coat", "dielectric_bsdf", "1"), lobe("metal", "conductor_bsdf", "1")
+    under = ('<mix name="under" type="BSDF"><input name="fg" type="BSDF" nodename="metal"/>'
+             '<input name="bg" type="BSDF" nodename="diffuse"/><input name="mix" type="float" value="0.5"/></mix>'
+             '<layer name="stack" type="BSDF"><input name="top" type="BSDF" nodename="coat"/>'
+             '<input name="base" type="BSDF" nodename="under"/></layer>')
+    rec = record(gen, surface(coat + metal + DIFFUSE + under + film("top", "stack")))
+    assert "error" not in rec, rec.get("error")
+    assert rec["passes"]["thin_film"] == 2 and not rec["warnings"]
+    # complete: the film's thickness is one uniform both lobes read; theirs are no uniforms any more
+    assert {"top/thickness", "top/ior"} <= public_paths(rec)
+    assert not {"coat/thinfilm_thickness", "metal/thinfilm_thickness"} & public_paths(rec)
+    for function in ("mx_dielectric_bsdf", "mx_conductor_bsdf"):
+        assert all("top_thickness, top_ior" in call for call in lobe_calls(rec, function))
+    specialized = record(gen, surface(coat + metal + DIFFUSE + under + film("top", "stack")), interface="specialized")
+    assert all(", 400.0, 1.3, " in call for call in lobe_calls(specialized, "mx_dielectric_bsdf"))
+
+
+def test_the_film_nearest_a_lobe_wins(gen):
+    own = lobe("coat", "dielectric_bsdf", "1", '<input name="thinfilm_thickness" type="float" value="250"/>')
+    body = (own + lobe("metal", "conductor_bsdf", "1") + film("inner", "metal", "700")
+            + '<add name="both" type="BSDF"><input name="in1" type="BSDF" nodename="coat"/>'
+              '<input name="in2" type="BSDF" nodename="inner"/></add>' + film("top", "both"))
+    rec = record(gen, surface(body), interface="specialized")
+    assert rec["passes"]["thin_film"] == 1  # the conductor, from the inner film; the coat keeps its own
+    assert all(", 250.0, 1.5, " in call for call in lobe_calls(rec, "mx_dielectric_bsdf"))
+    assert all(", 700.0, 1.3, " in call for call in lobe_calls(rec, "mx_conductor_bsdf"))
+    assert any("top" in w and "no microfacet lobe" in w for w in rec["warnings"])
+
+
+def test_a_film_without_a_base_scatters_nothing(gen):
+    rec = record(gen, surface(film("top", None)), interface="specialized")
+    assert "error" not in rec and "CLOSURE_TYPE" not in main_of(rec)
+    assert any("no base BSDF" in w for w in rec["warnings"])
+
+
 # -- specialized, keep ---------------------------------------------------------------------------------
 STANDARD = ('<standard_surface name="SR" type="surfaceshader"><input name="base_color" type="color3" value="0.2, 0.4, 0.8"/>'
             '<input name="coat" type="float" value="0"/></standard_surface>'

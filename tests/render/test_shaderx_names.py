@@ -30,6 +30,8 @@ DIFFUSE_MODERN = ('<oren_nayar_diffuse_bsdf name="under" type="BSDF"><input name
                   '<input name="roughness" type="float" value="0.4"/></oren_nayar_diffuse_bsdf>')
 ROUGH = '<input name="roughness" type="vector2" value="0.2, 0.35"/>'
 GLASS = '<input name="ior" type="float" value="1.45"/><input name="tint" type="color3" value="0.9, 0.8, 1.0"/>'
+FILM = '<input name="thickness" type="float" value="400"/><input name="ior" type="float" value="1.3"/>'
+MODERN_FILM = '<input name="thinfilm_thickness" type="float" value="400"/><input name="thinfilm_ior" type="float" value="1.3"/>'
 
 # name: (seed document, 1.39 document)
 PAIRS = {
@@ -74,6 +76,24 @@ PAIRS = {
                  f'<dielectric_bsdf name="t" type="BSDF">{GLASS}<input name="roughness" type="vector2" value="0, 0"/>'
                  '<input name="scatter_mode" type="string" value="T"/></dielectric_bsdf>'
                  '<layer name="b" type="BSDF"><input name="top" type="BSDF" nodename="t"/><input name="base" type="VDF" nodename="m"/></layer>', "b")),
+    # the film reaches the lobes inside dielectricbrdf (not the diffuse base) ...
+    "thinfilmbxdf+dielectricbrdf": (
+        material(DIFFUSE_SEED + f'<dielectricbrdf name="coat" type="BSDF">{ROUGH}{GLASS}'
+                 '<input name="base" type="BSDF" nodename="under"/></dielectricbrdf>'
+                 f'<thinfilmbxdf name="b" type="BSDF">{FILM}<input name="base" type="BSDF" nodename="coat"/></thinfilmbxdf>', "b"),
+        material(DIFFUSE_MODERN + f'<dielectric_bsdf name="top" type="BSDF">{ROUGH}{GLASS}{MODERN_FILM}</dielectric_bsdf>'
+                 '<layer name="b" type="BSDF"><input name="top" type="BSDF" nodename="top"/>'
+                 '<input name="base" type="BSDF" nodename="under"/></layer>', "b")),
+    # ... and a conductor's, with the seed's default film (550 nm, ior 1.5)
+    "thinfilmbxdf+conductorbrdf": (
+        material(f'<conductorbrdf name="metal" type="BSDF">{ROUGH}</conductorbrdf>'
+                 '<thinfilmbxdf name="b" type="BSDF"><input name="base" type="BSDF" nodename="metal"/></thinfilmbxdf>', "b"),
+        material('<artistic_ior name="c" type="multioutput"><input name="reflectivity" type="color3" value="0.8, 0.8, 0.8"/>'
+                 '<input name="edge_color" type="color3" value="1, 1, 1"/></artistic_ior>'
+                 f'<conductor_bsdf name="b" type="BSDF">{ROUGH}<input name="ior" type="color3" nodename="c" output="ior"/>'
+                 '<input name="extinction" type="color3" nodename="c" output="extinction"/>'
+                 '<input name="thinfilm_thickness" type="float" value="550"/><input name="thinfilm_ior" type="float" value="1.5"/>'
+                 '</conductor_bsdf>', "b")),
     "subsurfacebrdf": (
         material('<subsurfacebrdf name="b" type="BSDF"><input name="color" type="color3" value="0.8, 0.4, 0.3"/>'
                  '<input name="radius" type="vector3" value="1, 0.5, 0.25"/></subsurfacebrdf>', "b"),
