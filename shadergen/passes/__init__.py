@@ -15,6 +15,7 @@ from .functions import share_functions
 from .interface import bind_interface, choose_implementations, publish_textures
 from .order import assign_scopes, topological_order
 from .thin_film import push_thin_films
+from .thin_surface import share_one_sided_bsdf
 
 
 @dataclass(frozen=True)
@@ -42,6 +43,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     graph.nodes = topological_order(graph.outputs)
     choose_implementations(graph.nodes, builder.scope.library)
     run("interface", lambda: bind_interface(graph, options.interface, options.keep))
+    run("thin_surface", lambda: share_one_sided_bsdf(graph))
     run("expand", lambda: expand_nodegraphs(graph, builder))
     run("thin_film", lambda: push_thin_films(graph))
     run("fold", lambda: fold_constants(graph))

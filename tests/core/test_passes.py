@@ -260,6 +260,17 @@ def test_a_film_without_a_base_scatters_nothing(gen):
     assert any("no base BSDF" in w for w in rec["warnings"])
 
 
+# -- thin_surface ----------------------------------------------------------------------------------
+@pytest.mark.parametrize("sides,shared", [(("frontbsdf",), 1), (("backbsdf",), 1), (("frontbsdf", "backbsdf"), 0)])
+def test_one_connected_bsdf_serves_both_sides_of_a_thin_surface(gen, sides, shared):
+    links = "".join(f'<input name="{s}" type="BSDF" nodename="diffuse"/>' for s in sides)
+    rec = record(gen, DIFFUSE + f'<thinsurface name="srf" type="surfaceshader">{links}</thinsurface>'
+                 '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" '
+                 'nodename="srf"/></surfacematerial>', interface="specialized")
+    assert rec["passes"]["thin_surface"] == shared
+    assert "mx_mix_bsdf(closureData, diffuse_out, diffuse_out, " in main_of(rec)  # back side, front side
+
+
 # -- specialized, keep ---------------------------------------------------------------------------------
 STANDARD = ('<standard_surface name="SR" type="surfaceshader"><input name="base_color" type="color3" value="0.2, 0.4, 0.8"/>'
             '<input name="coat" type="float" value="0"/></standard_surface>'

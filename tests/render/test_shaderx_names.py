@@ -1,6 +1,7 @@
 """The seed's own PBR node names (libraries/shaderx, seed section 4): a document written with them
 renders the same image as the same material written with the MaterialX 1.39 nodes."""
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -185,4 +186,65 @@ def test_seed_document_renders_as_its_modern_equivalent(renderer, name):
     ours, theirs = (renderer.render(r, size=32).rgba for r in (seed, modern))
     assert np.isfinite(ours).all()
     assert ours[..., :3].max() > 0.01  # something was drawn
+    assert psnr(ours, theirs) >= 60.0
+
+
+# thinsurface (seed 4.5): two-sided, a BSDF and an EDF per side. On this mesh the faces seen from
+# behind are exactly those right of x = 0, so the modern document picks the back side by position.
+TWO_SIDED = str(Path(__file__).parent / "data" / "two_sided.obj")
+FRONT = ('<diffusebrdf name="front" type="BSDF"><input name="color" type="color3" value="0.8, 0.2, 0.1"/></diffusebrdf>'
+         '<uniformedf name="glow" type="EDF"><input name="color" type="color3" value="0.05, 0.05, 0.02"/></uniformedf>')
+BACK = (f'<conductorbrdf name="back" type="BSDF">{ROUGH}<input name="reflectivity" type="color3" value="0.1, 0.3, 0.9"/>'
+        '</conductorbrdf>')
+BACK_MODERN = ('<artistic_ior name="c" type="multioutput"><input name="reflectivity" type="color3" value="0.1, 0.3, 0.9"/>'
+               '<input name="edge_color" type="color3" value="1, 1, 1"/></artistic_ior>'
+               f'<conductor_bsdf name="back" type="BSDF">{ROUGH}<input name="ior" type="color3" nodename="c" output="ior"/>'
+               '<input name="extinction" type="color3" nodename="c" output="extinction"/></conductor_bsdf>')
+SEEN_FROM_BEHIND = ('<position name="p" type="vector3"><input name="space" type="string" value="world"/></position>'
+                    '<extract name="px" type="float"><input name="in" type="vector3" nodename="p"/>'
+                    '<input name="index" type="integer" value="0"/></extract>'
+                    '<ifgreater name="behind" type="float"><input name="value1" type="float" nodename="px"/>'
+                    '<input name="value2" type="float" value="0"/><input name="in1" type="float" value="1"/>'
+                    '<input name="in2" type="float" value="0"/></ifgreater>')
+
+
+def by_side(kind: str, front: str | None, back: str | None) -> str:
+    sides = "".join(f'<input name="{n}" type="{kind}" nodename="{v}"/>' for n, v in (("bg", front), ("fg", back)) if v)
+    return f'<mix name="{kind.lower()}" type="{kind}">{sides}<input name="mix" type="float" nodename="behind"/></mix>'
+
+
+def thin(front: str | None, back: str | None, frontedf: str | None) -> str:
+    links = "".join(f'<input name="{n}" type="{t}" nodename="{v}"/>' for n, t, v in
+                    (("frontbsdf", "BSDF", front), ("backbsdf", "BSDF", back), ("frontedf", "EDF", frontedf)) if v)
+    return f'<thinsurface name="thin" type="surfaceshader">{links}</thinsurface>'
+
+
+def modern_thin(front: str | None, back: str | None, frontedf: str | None) -> str:
+    return (SEEN_FROM_BEHIND + by_side("BSDF", front, back) + by_side("EDF", frontedf, None)
+            + '<surface name="thin" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="bsdf"/>'
+              '<input name="edf" type="EDF" nodename="edf"/><input name="thin_walled" type="boolean" value="true"/></surface>')
+
+
+THIN_PAIRS = {
+    "front and back": (material(FRONT + BACK + thin("front", "back", "glow"), shader="thin"),
+                       material(FRONT + BACK_MODERN + modern_thin("front", "back", "glow"), shader="thin")),
+    # "If only one BSDF is connected the same BSDF will be used on both sides"
+    "front only": (material(FRONT + thin("front", None, "glow"), shader="thin"),
+                   material(FRONT + modern_thin("front", "front", "glow"), shader="thin")),
+    "back only": (material(BACK + thin(None, "back", None), shader="thin"),
+                  material(BACK_MODERN + modern_thin("back", "back", None), shader="thin")),
+}
+
+
+@pytest.mark.parametrize("name", sorted(THIN_PAIRS))
+def test_thinsurface_shows_each_side_its_own_bsdf(renderer, name):
+    seed, modern = (GEN.prepare(d).emit() for d in THIN_PAIRS[name])
+    assert "error" not in seed, seed.get("error")
+    assert "error" not in modern, modern.get("error")
+    ours, theirs = (renderer.render(r, size=48, mesh=TWO_SIDED).rgba for r in (seed, modern))
+    assert np.isfinite(ours).all()
+    row = ours[24]
+    front_face, back_face = row[8:20, :3], row[28:40, :3]  # the middle of each quad
+    assert (row[8:20, 3] > 0).all() and (row[28:40, 3] > 0).all()  # both faces drawn
+    assert front_face.max() > 0.01 and back_face.max() > 0.01  # and lit, the back one too
     assert psnr(ours, theirs) >= 60.0
