@@ -19,7 +19,8 @@ PSNR is over the linear RGBA framebuffers (peak 1.0); identical images print "in
 
   .venv/bin/python bench/accuracy.py renderer  [--corpus ../shared/corpus] [--out DIR] [--size 256]
   .venv/bin/python bench/accuracy.py generator [--corpus ../shared/corpus] [--filter math] [--json out.json]
-  .venv/bin/python bench/accuracy.py generator --documents 'resources/Materials/Examples/**/*.mtlx'
+  .venv/bin/python bench/accuracy.py generator --documents 'resources/Materials/Examples/**/*.mtlx' \
+      'resources/Materials/TestSuite/pbrlib/surfaceshader/chiang_hair*.mtlx'
   .venv/bin/python bench/accuracy.py interfaces --documents 'resources/Materials/**/*.mtlx'
 
 The oracle runs only as a subprocess of its own venv ($ORACLE_VENV, default ~/.cache/mx-oracle/venv).
@@ -154,7 +155,7 @@ def corpus_documents(args):
     from shadergen.render import Renderer
 
     corpus = os.path.abspath(args.corpus)
-    documents = sorted(glob.glob(os.path.join(corpus, args.documents), recursive=True))
+    documents = sorted({d for pattern in args.documents for d in glob.glob(os.path.join(corpus, pattern), recursive=True)})
     return corpus, [d for d in documents if not args.filter or args.filter in d], Renderer(search_paths=[corpus])
 
 
@@ -305,8 +306,8 @@ def main() -> int:
     parser.add_argument("--corpus", default=os.path.join(SHARED, "corpus"))
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--repeat", type=int, default=5, help="frames timed per render (renderer measurement)")
-    parser.add_argument("--documents", default="resources/Materials/TestSuite/stdlib/**/*.mtlx",
-                        help="glob of the documents below the corpus (generator and interfaces)")
+    parser.add_argument("--documents", nargs="+", default=["resources/Materials/TestSuite/stdlib/**/*.mtlx"],
+                        help="globs of the documents below the corpus (generator and interfaces)")
     parser.add_argument("--filter", help="only documents whose path contains this (generator measurement)")
     parser.add_argument("--out", help="keep records and images here (renderer measurement)")
     parser.add_argument("--json", help="also write the per-element results here")
