@@ -221,7 +221,10 @@ def film(name: str, base: str | None, thickness: str = "400") -> str:
 
 
 def lobe_calls(rec, function: str) -> list[str]:
-    return re.findall(rf"{function}\(closureData, [^;]*;", main_of(rec))
+    """The calls that set a lobe up: its parameters are passed once per shading point."""
+    calls = re.findall(rf"{function}_prepare\(\w+, [^;]*;", main_of(rec))
+    assert calls, f"no {function} in the shader"
+    return calls
 
 
 def test_a_film_reaches_every_microfacet_lobe_under_it_and_disappears(gen):
