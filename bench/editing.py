@@ -24,6 +24,10 @@ from load import percentile, start_server
 from topology import edits
 
 MODES = {"shared topology": {}, "no sharing": {"SHADERGEN_TOPOLOGY_SHARING": "false"}}
+# Mesa's own on-disk cache would hand the no-sharing server the program of an earlier edit of the
+# same source: what a compile costs is measured with it off, on both servers; and a loaded machine
+# may take longer than the service's default minute to compile and draw a thumbnail.
+SERVER_ENV = {"MESA_SHADER_CACHE_DISABLE": "true", "SHADERGEN_RENDER_TIMEOUT_S": "300"}
 
 
 class Client:
@@ -31,7 +35,7 @@ class Client:
 
     def __init__(self, url: str):
         parts = urlsplit(url)
-        self.connection = http.client.HTTPConnection(parts.hostname, parts.port, timeout=120)
+        self.connection = http.client.HTTPConnection(parts.hostname, parts.port, timeout=600)
 
     def post(self, path: str, body: dict) -> tuple[float, bytes]:
         for attempt in (1, 2):  # the server closes a connection idle past its keep-alive: open it again
@@ -76,7 +80,7 @@ def main() -> None:
     servers = {}
     try:
         for mode, env in MODES.items():
-            servers[mode] = start_server(1, 1, env)
+            servers[mode] = start_server(1, 1, {**SERVER_ENV, **env})
         clients = {mode: Client(url) for mode, (_, url, _) in servers.items()}
         for client in clients.values():  # not timed: a render worker's first job starts its GL context
             client.post("/v1/thumbnails", {"document": text, "size": args.size, "interface": "complete"})
