@@ -155,6 +155,48 @@ def cases() -> list[Case]:
              {"roughness_R": (r, r), "roughness_TT": (r, r), "roughness_TRT": (r, r)})
     out += layer_cases()
     out += shading_model_cases()
+    out += graph_value_cases()
+    return out
+
+
+# Values a graph computes at run time, which no document check can see: in1 / in2 of a divide node.
+GRAPH_VALUES = {"nan": (0.0, 0.0), "inf": (1.0, 0.0), "-inf": (-1.0, 0.0), "zero": (0.0, 1.0), "neg": (-1.0, 1.0)}
+# node -> its inputs that a graph may feed (name: type), and its other inputs
+GRAPH_FED = {
+    "dielectric_bsdf": ({"ior": "float", "roughness": "vector2", "thinfilm_thickness": "float", "thinfilm_ior": "float"},
+                        {"scatter_mode": "RT", "thinfilm_thickness": 500.0}),
+    "conductor_bsdf": ({"ior": "color3", "extinction": "color3", "roughness": "vector2"}, {}),
+    "generalized_schlick_bsdf": ({"roughness": "vector2", "exponent": "float"}, {"scatter_mode": "RT"}),
+    "oren_nayar_diffuse_bsdf": ({"roughness": "float"}, {"energy_compensation": True}),
+    "burley_diffuse_bsdf": ({"roughness": "float"}, {}),
+    "sheen_bsdf": ({"roughness": "float"}, {}),
+    "subsurface_bsdf": ({"radius": "color3", "anisotropy": "float"}, {}),
+    "chiang_hair_bsdf": ({"ior": "float", "roughness_R": "vector2"}, {}),
+    "standard_surface": ({"specular_roughness": "float", "specular_IOR": "float", "coat_IOR": "float",
+                          "thin_film_IOR": "float"}, {"coat": 1.0, "transmission": 0.5, "thin_film_thickness": 500.0}),
+    "open_pbr_surface": ({"specular_roughness": "float", "specular_ior": "float", "coat_ior": "float"},
+                         {"coat_weight": 1.0, "transmission_weight": 0.5}),
+}
+
+
+def graph_value_cases() -> list[Case]:
+    """Every input of GRAPH_FED read from a divide node that gives NaN, +-Inf, 0 or -1 at run time.
+    Not plausible (the furnace bound does not apply); no pixel may be NaN, Inf or negative."""
+    out = []
+    for (node, (fed, others)), label in itertools.product(GRAPH_FED.items(), GRAPH_VALUES):
+        numerator, denominator = GRAPH_VALUES[label]
+        shader = node in SHADING_MODELS
+        for name, type_name in fed.items():
+            divide = (f'<divide name="value" type="{type_name}"><input name="in1" type="{type_name}" '
+                      f'value="{", ".join([f"{numerator:g}"] * {"float": 1, "vector2": 2, "color3": 3}[type_name])}"/>'
+                      f'<input name="in2" type="float" value="{denominator:g}"/></divide>')
+            inputs = "".join(f'<input name="{k}" type="{value_xml(v)[0]}" value="{value_xml(v)[1]}"/>'
+                             for k, v in others.items() if k != name)
+            fed_input = f'<input name="{name}" type="{type_name}" nodename="value"/>'
+            element = (f'<{node} name="{"shader" if shader else "bsdf"}" type="{"surfaceshader" if shader else "BSDF"}">'
+                       f'{inputs}{fed_input}</{node}>')
+            out.append(Case("graph_values", f"graph_{node}_{name}_{label}", divide + element + ("" if shader else SURFACE),
+                            False))
     return out
 
 

@@ -90,6 +90,28 @@ float mx_power(float x, float y)
     return (y <= 0.0) ? 1.0 : pow(max(x, 0.0), y);
 }
 
+// Largest index of refraction (real or imaginary part) a lobe takes: far above any material's
+// (metals' extinction stays below ~10), low enough that its fourth power is a finite float.
+const float MX_MAX_IOR = 1000.0;
+
+// x clamped to [lo, hi], NaN taken as lo. A lobe's parameters may be computed by the graph (a
+// division by zero, the log of a negative): each lobe passes them through this once, so they
+// arrive finite and in range. GLSL leaves clamp() of a NaN undefined, hence the test.
+float mx_clamp_finite(float x, float lo, float hi)
+{
+    return isnan(x) ? lo : clamp(x, lo, hi);
+}
+
+vec2 mx_clamp_finite(vec2 x, float lo, float hi)
+{
+    return vec2(mx_clamp_finite(x.x, lo, hi), mx_clamp_finite(x.y, lo, hi));
+}
+
+vec3 mx_clamp_finite(vec3 x, float lo, float hi)
+{
+    return vec3(mx_clamp_finite(x.x, lo, hi), mx_clamp_finite(x.y, lo, hi), mx_clamp_finite(x.z, lo, hi));
+}
+
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
@@ -236,6 +258,9 @@ ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, flo
 #define FRESNEL_MODEL_CONDUCTOR 1
 #define FRESNEL_MODEL_SCHLICK 2
 
+// Thickest film taken (nanometres): interference has washed out long before.
+const float MX_MAX_FILM_NM = 1.0e5;
+
 // How a specular closure reflects: which model with its parameters, an optional thin film on top,
 // and whether the environment is to be sampled through the surface (refraction) instead of off it.
 struct FresnelData
@@ -255,7 +280,10 @@ struct FresnelData
 FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
                             float tf_thickness, float tf_ior)
 {
-    return FresnelData(model, ior, extinction, F0, F82, F90, exponent, tf_thickness, tf_ior, false);
+    // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
+    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR), mx_clamp_finite(extinction, 0.0, MX_MAX_IOR),
+                       F0, F82, F90, exponent, mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 bool mx_fresnel_has_thinfilm(FresnelData fd)
@@ -550,7 +578,7 @@ const float MX_GGX_MIN_ALPHA = 1.0e-4;
 
 vec2 mx_ggx_clamp_alpha(vec2 alpha)
 {
-    return clamp(alpha, MX_GGX_MIN_ALPHA, 1.0);
+    return mx_clamp_finite(alpha, MX_GGX_MIN_ALPHA, 1.0);
 }
 
 // Normal distribution D(H) (Walter et al. 2007, eq. 33, in its anisotropic form).
@@ -1299,8 +1327,8 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                 int distribution, int scatter_mode, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(max(ior, 0.0)), vec3(0.0), vec3(0.0), vec3(0.0),
-                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution,
                                     scatter_mode);
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
@@ -1514,7 +1542,7 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
     N = mx_shading_normal(N, closureData.N, V);
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     bool ltc = mode != 0;
-    float r = clamp(roughness, ltc ? 0.01 : 0.0, 1.0);  // the LTC fits hold on [0.01, 1]
+    float r = mx_clamp_finite(roughness, ltc ? 0.01 : 0.0, 1.0);  // the LTC fits hold on [0.01, 1]
     float albedo = clamp(ltc ? mx_sheen_ltc_albedo(NdotV, r) : mx_sheen_albedo_renormalised(NdotV, r), 0.0, 1.0);
     vec3 tint = max(color, 0.0);
     // What the fibres reflect (a colourless albedo, as the model's) does not reach the base; light
@@ -1547,8 +1575,8 @@ void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n
                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                int distribution, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, max(ior_n, 0.0), max(ior_k, 0.0), vec3(0.0), vec3(0.0),
-                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, ior_n, ior_k, vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
+                                     thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, vec3(1.0), roughness, retroreflective, fd, N, X, distribution, 0);
 }
 
@@ -1877,7 +1905,7 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     vec3 V = closureData.V;
     N = mx_shading_normal(N, closureData.N, V);
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    float sigma = clamp(roughness, 0.0, 1.0);
+    float sigma = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
     if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
@@ -1918,6 +1946,9 @@ void mx_uniform_edf(ClosureData closureData, vec3 color, inout EDF result)
 // <generalized_schlick_edf>: the base EDF weighted by a Schlick curve over the view angle, color0
 // along the normal and color90 at grazing angles.
 
+// Largest weight the curve takes: any real use is far below (the coat's transmittance is <= 1).
+const float MX_MAX_EDF_WEIGHT = 1.0e6;
+
 void mx_generalized_schlick_edf(ClosureData closureData, vec3 color0, vec3 color90, float exponent, EDF base,
                                 inout EDF result)
 {
@@ -1925,7 +1956,11 @@ void mx_generalized_schlick_edf(ClosureData closureData, vec3 color0, vec3 color
         return;
     vec3 V = closureData.V;
     float NdotV = clamp(dot(mx_facing_normal(closureData.N, V), V), MX_EPS, 1.0);
-    result = base * mx_fresnel_schlick_exp(NdotV, color0, color90, exponent);
+    // the colours may be computed by the graph (a shading model's coat transmittance): finite, >= 0
+    vec3 weight = mx_fresnel_schlick_exp(NdotV, mx_clamp_finite(color0, 0.0, MX_MAX_EDF_WEIGHT),
+                                         mx_clamp_finite(color90, 0.0, MX_MAX_EDF_WEIGHT),
+                                         mx_clamp_finite(exponent, 0.0, MX_MAX_EDF_WEIGHT));
+    result = base * weight;
 }
 
 // <point_light>: light from `light.position`, falling off as (distance + 1)^-decay_rate.

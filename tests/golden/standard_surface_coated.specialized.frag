@@ -63,6 +63,28 @@ float mx_sqr(float x) { return x * x; }
 vec2 mx_sqr(vec2 x) { return x * x; }
 vec3 mx_sqr(vec3 x) { return x * x; }
 
+// Largest index of refraction (real or imaginary part) a lobe takes: far above any material's
+// (metals' extinction stays below ~10), low enough that its fourth power is a finite float.
+const float MX_MAX_IOR = 1000.0;
+
+// x clamped to [lo, hi], NaN taken as lo. A lobe's parameters may be computed by the graph (a
+// division by zero, the log of a negative): each lobe passes them through this once, so they
+// arrive finite and in range. GLSL leaves clamp() of a NaN undefined, hence the test.
+float mx_clamp_finite(float x, float lo, float hi)
+{
+    return isnan(x) ? lo : clamp(x, lo, hi);
+}
+
+vec2 mx_clamp_finite(vec2 x, float lo, float hi)
+{
+    return vec2(mx_clamp_finite(x.x, lo, hi), mx_clamp_finite(x.y, lo, hi));
+}
+
+vec3 mx_clamp_finite(vec3 x, float lo, float hi)
+{
+    return vec3(mx_clamp_finite(x.x, lo, hi), mx_clamp_finite(x.y, lo, hi), mx_clamp_finite(x.z, lo, hi));
+}
+
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
@@ -131,6 +153,9 @@ vec2 mx_fibonacci_point(int i, int count)
 
 #define FRESNEL_MODEL_DIELECTRIC 0
 
+// Thickest film taken (nanometres): interference has washed out long before.
+const float MX_MAX_FILM_NM = 1.0e5;
+
 // How a specular closure reflects: which model with its parameters, an optional thin film on top,
 // and whether the environment is to be sampled through the surface (refraction) instead of off it.
 struct FresnelData
@@ -150,7 +175,10 @@ struct FresnelData
 FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
                             float tf_thickness, float tf_ior)
 {
-    return FresnelData(model, ior, extinction, F0, F82, F90, exponent, tf_thickness, tf_ior, false);
+    // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
+    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR), mx_clamp_finite(extinction, 0.0, MX_MAX_IOR),
+                       F0, F82, F90, exponent, mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 // --- Dielectric ------------------------------------------------------------------------------
@@ -287,7 +315,7 @@ const float MX_GGX_MIN_ALPHA = 1.0e-4;
 
 vec2 mx_ggx_clamp_alpha(vec2 alpha)
 {
-    return clamp(alpha, MX_GGX_MIN_ALPHA, 1.0);
+    return mx_clamp_finite(alpha, MX_GGX_MIN_ALPHA, 1.0);
 }
 
 // Normal distribution D(H) (Walter et al. 2007, eq. 33, in its anisotropic form).
@@ -865,8 +893,8 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                 int distribution, int scatter_mode, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(max(ior, 0.0)), vec3(0.0), vec3(0.0), vec3(0.0),
-                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution,
                                     scatter_mode);
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
@@ -916,7 +944,7 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     vec3 V = closureData.V;
     N = mx_shading_normal(N, closureData.N, V);
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    float sigma = clamp(roughness, 0.0, 1.0);
+    float sigma = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
     if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {

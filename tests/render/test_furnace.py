@@ -18,6 +18,13 @@ FURNACE_CASES = (
     "ss_m1_r1_t0_c1_ior1.5", "ss_film500_aniso0.8_sheen1", "opbr_m0_r1_t1_c1_ior3",
 )
 EDGE_WEIGHTS = ("dielectric_w10", "conductor_w-1", "sheen_w10")
+# an ior or roughness a graph computes (a divide node giving NaN, +-Inf or -1 at run time)
+GRAPH_VALUES = (
+    "graph_dielectric_bsdf_ior_nan", "graph_dielectric_bsdf_roughness_inf", "graph_dielectric_bsdf_thinfilm_ior_-inf",
+    "graph_conductor_bsdf_ior_inf", "graph_conductor_bsdf_extinction_nan", "graph_chiang_hair_bsdf_ior_inf",
+    "graph_sheen_bsdf_roughness_nan", "graph_oren_nayar_diffuse_bsdf_roughness_-inf",
+    "graph_standard_surface_specular_IOR_inf", "graph_standard_surface_coat_IOR_neg", "graph_open_pbr_surface_coat_ior_nan",
+)
 
 
 RIG = Path(__file__).parent / "data" / "rig.mtlx"
@@ -25,7 +32,7 @@ RIG = Path(__file__).parent / "data" / "rig.mtlx"
 
 @pytest.fixture(scope="module")
 def records():
-    wanted = set(FURNACE_CASES) | set(EDGE_WEIGHTS)
+    wanted = set(FURNACE_CASES) | set(EDGE_WEIGHTS) | set(GRAPH_VALUES)
     chosen = [c for c in stress.cases() if c.name in wanted]
     assert {c.name for c in chosen} == wanted
     return chosen, stress.our_records(chosen)

@@ -13,7 +13,7 @@ void mx_burley_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, f
     vec3 V = closureData.V;
     N = mx_shading_normal(N, closureData.N, V);
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
-    float r = clamp(roughness, 0.0, 1.0);
+    float r = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
     if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {

@@ -16,16 +16,17 @@ void mx_chiang_hair_bsdf(ClosureData closureData, vec3 tint_R, vec3 tint_TT, vec
     if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         vec3 tints[3] = vec3[3](tint_R, tint_TT, tint_TRT);
-        vec2 roughness[3] = vec2[3](clamp(roughness_R, 0.001, 1.0), clamp(roughness_TT, 0.001, 1.0),
-                                    clamp(roughness_TRT, 0.001, 1.0));
+        vec2 roughness[3] = vec2[3](mx_clamp_finite(roughness_R, 0.001, 1.0), mx_clamp_finite(roughness_TT, 0.001, 1.0),
+                                    mx_clamp_finite(roughness_TRT, 0.001, 1.0));
         float alpha = (clamp(cuticle_angle, 0.0, 1.0) - 0.5) * MX_PI;  // [0, 1] -> [-pi/2, pi/2]
         bsdf.response = mx_hair_scattering(closureData.L, V, N, X, tints, roughness, ior, alpha, absorption_coefficient) *
                         closureData.occlusion;
     }
     else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
     {
-        FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(max(ior, 1.0)), vec3(0.0), vec3(0.0), vec3(0.0),
-                                         vec3(0.0), 0.0, 0.0, 1.0);
+        float eta = mx_clamp_finite(ior, 1.0, MX_MAX_IOR);
+        FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(eta), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
+                                         0.0, 0.0, 1.0);
         vec2 alpha = mx_ggx_clamp_alpha((roughness_R + roughness_TT + roughness_TRT) / vec2(3.0));
         vec3 tint = max((tint_R + tint_TT + tint_TRT) / vec3(3.0), 0.0);
         vec3 reflected;

@@ -9,8 +9,8 @@ void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n
                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                int distribution, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, max(ior_n, 0.0), max(ior_k, 0.0), vec3(0.0), vec3(0.0),
-                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_CONDUCTOR, ior_n, ior_k, vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
+                                     thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, vec3(1.0), roughness, retroreflective, fd, N, X, distribution, 0);
 }
 

@@ -12,8 +12,8 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                 int distribution, int scatter_mode, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(max(ior, 0.0)), vec3(0.0), vec3(0.0), vec3(0.0),
-                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution,
                                     scatter_mode);
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);

@@ -14,7 +14,7 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
     N = mx_shading_normal(N, closureData.N, V);
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     bool ltc = mode != 0;
-    float r = clamp(roughness, ltc ? 0.01 : 0.0, 1.0);  // the LTC fits hold on [0.01, 1]
+    float r = mx_clamp_finite(roughness, ltc ? 0.01 : 0.0, 1.0);  // the LTC fits hold on [0.01, 1]
     float albedo = clamp(ltc ? mx_sheen_ltc_albedo(NdotV, r) : mx_sheen_albedo_renormalised(NdotV, r), 0.0, 1.0);
     vec3 tint = max(color, 0.0);
     // What the fibres reflect (a colourless albedo, as the model's) does not reach the base; light

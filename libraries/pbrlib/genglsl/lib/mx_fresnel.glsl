@@ -10,6 +10,9 @@
 #define FRESNEL_MODEL_CONDUCTOR 1
 #define FRESNEL_MODEL_SCHLICK 2
 
+// Thickest film taken (nanometres): interference has washed out long before.
+const float MX_MAX_FILM_NM = 1.0e5;
+
 // How a specular closure reflects: which model with its parameters, an optional thin film on top,
 // and whether the environment is to be sampled through the surface (refraction) instead of off it.
 struct FresnelData
@@ -29,7 +32,10 @@ struct FresnelData
 FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
                             float tf_thickness, float tf_ior)
 {
-    return FresnelData(model, ior, extinction, F0, F82, F90, exponent, tf_thickness, tf_ior, false);
+    // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
+    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR), mx_clamp_finite(extinction, 0.0, MX_MAX_IOR),
+                       F0, F82, F90, exponent, mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 bool mx_fresnel_has_thinfilm(FresnelData fd)

@@ -11,7 +11,7 @@ const float MX_GGX_MIN_ALPHA = 1.0e-4;
 
 vec2 mx_ggx_clamp_alpha(vec2 alpha)
 {
-    return clamp(alpha, MX_GGX_MIN_ALPHA, 1.0);
+    return mx_clamp_finite(alpha, MX_GGX_MIN_ALPHA, 1.0);
 }
 
 // Normal distribution D(H) (Walter et al. 2007, eq. 33, in its anisotropic form).

@@ -75,7 +75,7 @@ vec3 mx_hair_scattering(vec3 L, vec3 V, vec3 N, vec3 X, vec3 tint[3], vec2 rough
     // Bravais' modified index in the normal plane.
     vec2 across = normalize(vec2(Vt.y, Vt.z) + vec2(0.0, MX_EPS));
     float gammaO = asin(clamp(-across.x, -1.0, 1.0));
-    float eta = max(ior, 1.0);
+    float eta = mx_clamp_finite(ior, 1.0, MX_MAX_IOR);
     float etaPerp = sqrt(max(eta * eta - sinO * sinO, 0.0)) / max(cosO, MX_EPS);
     float gammaT = asin(clamp(sin(gammaO) / etaPerp, -1.0, 1.0));
     float cosThetaT = mx_hair_cos_from_sin(sinO / eta);

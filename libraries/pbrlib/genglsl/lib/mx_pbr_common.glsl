@@ -27,6 +27,28 @@ float mx_pow_6(float x)
     return x2 * x2 * x2;
 }
 
+// Largest index of refraction (real or imaginary part) a lobe takes: far above any material's
+// (metals' extinction stays below ~10), low enough that its fourth power is a finite float.
+const float MX_MAX_IOR = 1000.0;
+
+// x clamped to [lo, hi], NaN taken as lo. A lobe's parameters may be computed by the graph (a
+// division by zero, the log of a negative): each lobe passes them through this once, so they
+// arrive finite and in range. GLSL leaves clamp() of a NaN undefined, hence the test.
+float mx_clamp_finite(float x, float lo, float hi)
+{
+    return isnan(x) ? lo : clamp(x, lo, hi);
+}
+
+vec2 mx_clamp_finite(vec2 x, float lo, float hi)
+{
+    return vec2(mx_clamp_finite(x.x, lo, hi), mx_clamp_finite(x.y, lo, hi));
+}
+
+vec3 mx_clamp_finite(vec3 x, float lo, float hi)
+{
+    return vec3(mx_clamp_finite(x.x, lo, hi), mx_clamp_finite(x.y, lo, hi), mx_clamp_finite(x.z, lo, hi));
+}
+
 // The normal flipped, where needed, to the side of the surface that `V` sees.
 vec3 mx_facing_normal(vec3 N, vec3 V)
 {
