@@ -82,6 +82,8 @@ def main() -> int:
     args = ap.parse_args()
     documents = sorted(d for d in glob.glob(os.path.join(os.path.abspath(args.examples), "**", "*.mtlx"), recursive=True)
                        if args.filter in d)
+    if not documents:
+        ap.error(f"no .mtlx documents under {args.examples!r}" + (f" matching {args.filter!r}" if args.filter else ""))
     # the corpus root: documents name textures relative to it (resources/Images/...)
     args.corpus_root = os.path.abspath(os.path.join(args.examples, *([".."] * 3))) \
         if "resources" in os.path.abspath(args.examples) else os.path.dirname(os.path.abspath(args.examples))
