@@ -99,6 +99,9 @@ class Variable(BaseModel):
     unit: str | None = None
     colorspace: str | None = None
     ui: UiHints | None = None
+    fallback: Any = Field(None, description="filename variables only: the value of the image node's `default` input, "
+                                            "what it gives when the file is missing or unreadable (absent when that "
+                                            "input is not a constant)")
 
 
 class ShaderRecord(BaseModel):

@@ -92,7 +92,8 @@ class EmitContext:
         name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}")
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
-            ui=port.meta.get("ui"), initializer=initializer))
+            ui=port.meta.get("ui"), initializer=initializer,
+            fallback=image_fallback(port) if port.type == "filename" else None))
         return name
 
     def output_name(self, out: Output) -> str:
@@ -246,6 +247,18 @@ def listing_value(port: Input | Socket, value, syntax):
         if value == "":
             return None
     return value
+
+
+def image_fallback(file: Input | Socket):
+    """The value of the image node's `default` input beside a filename, when it is fixed (it may be
+    folded into the code, so a renderer could not find it among the uniforms): what the node gives
+    when its file is missing or unreadable. None when the node has no constant default."""
+    default = file.owner.inputs.get("default")
+    while default is not None and default.socket is not None:  # a body's input bound to its node's
+        default = default.socket.origin
+    if default is None or default.connection is not None:
+        return None
+    return default.value
 
 
 def is_closure_node(node: Node) -> bool:

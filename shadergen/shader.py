@@ -23,12 +23,15 @@ class Variable:
     colorspace: str | None = None
     ui: dict | None = None
     initializer: object = None  # what the source initialises the uniform to (the listing carries `value`)
+    fallback: object = None  # a filename's: what its image node gives for a missing or unreadable file
 
     def to_json(self) -> dict:
         d = {"name": self.name, "type": self.type, "value": value_to_json(self.value), "path": self.path,
              "semantic": self.semantic, "unit": self.unit, "colorspace": self.colorspace}
         if self.ui:
             d["ui"] = dict(self.ui)  # its own: the ui a nodedef input gives is shared by every node of it
+        if self.fallback is not None:
+            d["fallback"] = value_to_json(self.fallback)
         return d
 
 

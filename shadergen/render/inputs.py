@@ -80,7 +80,11 @@ def texture_requests(record: dict, document_dir: str | None, search_paths: list[
         filename = variable.get("value")
         if isinstance(filename, str) and filename:
             path, problem = resolve_file(filename, document_dir, search_paths, texture_roots, confined)
-        yield TextureRequest(variable["name"], sampling_from(siblings(variable, variables)), path, problem)
+        node_inputs = siblings(variable, variables)
+        # A `default` folded into the code (reduced, specialized) is not a uniform: the listing
+        # gives it with the filename, so every interface shows the same colour for a missing file.
+        node_inputs.setdefault("default", variable.get("fallback"))
+        yield TextureRequest(variable["name"], sampling_from(node_inputs), path, problem)
 
 
 def siblings(variable: dict, variables: list[dict]) -> dict[str, object]:
