@@ -1,7 +1,9 @@
 """Load test of the HTTP service on this machine: concurrent clients against a live
 `shadergen serve` on 127.0.0.1, cached and uncached, for /v1/generate and /v1/thumbnails.
-Prints requests/s, p50/p99 latency and errors per scenario, and each p50 as a ratio of the
-/healthz p50 measured in the same run (these machines are noisy; ratios travel better).
+Prints requests/s, p50/p99 latency, errors and record cache hits (of the answers that are shader
+records, those that say "cached": true) per scenario, and each p50 as a ratio of the /healthz p50
+measured in the same run (these machines are noisy; ratios travel better). Uncached scenarios send
+a document no earlier request of the run sent, every time: their hits must be 0.
 
     .venv/bin/python bench/load.py                     # starts its own server (2 API workers)
     .venv/bin/python bench/load.py --url http://127.0.0.1:8000 --seconds 5
@@ -18,6 +20,7 @@ clients connect from another loopback address (127.0.0.2), as another machine wo
 again as soon as they are answered, Retry-After or not."""
 import argparse
 import asyncio
+import itertools
 import json
 import multiprocessing
 import os
@@ -27,6 +30,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -34,6 +38,8 @@ from urllib.parse import urlsplit
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "tests" / "service" / "documents"
 MAX_REQUESTS = 200_000
+# how a record (compact JSON) says whether it came from the cache; thumbnails and others say neither
+CACHED, NOT_CACHED = b'"cached":true', b'"cached":false'
 BAD_CLIENT_ADDRESS = "127.0.0.2"
 
 
@@ -85,13 +91,16 @@ class Result:
     seconds: float = 0.0
     statuses: dict[int, int] = field(default_factory=dict)
     refusals_expected: bool = False  # bad documents: a 4xx is the right answer, not an error
+    records: int = 0  # answers that are shader records (JSON), which say whether they came from the cache
+    hits: int = 0  # records with "cached": true
 
     def failed(self, status: int) -> bool:
         return status >= 300 and not (self.refusals_expected and 400 <= status < 500)
 
 
-async def one_request(reader, writer, data: bytes) -> tuple[int, bool]:
-    """(the status, whether the server closes the connection after this answer)."""
+async def one_request(reader, writer, data: bytes) -> tuple[int, bool, bool | None]:
+    """(the status, whether the server closes the connection after this answer, whether the answer
+    is a record served from the cache: None when it is no record)."""
     writer.write(data)
     head = await reader.readuntil(b"\r\n\r\n")
     status = int(head[9:12])
@@ -103,22 +112,38 @@ async def one_request(reader, writer, data: bytes) -> tuple[int, bool]:
             length = int(value)
         elif name == b"connection":
             closes = b"close" in value.lower()
-    await reader.readexactly(length)
-    return status, closes
+    body = await reader.readexactly(length)
+    return status, closes, True if CACHED in body else False if NOT_CACHED in body else None
 
 
-async def client(host: str, port: int, requests: list[bytes], offset: int, stride: int, deadline: float,
+class Fresh:
+    """Requests no earlier request of the run has sent, made as they are sent, from a counter all
+    Fresh series share: an uncached scenario misses the cache however many requests its window
+    holds (a fixed list, cycled, would come round to documents it had already sent)."""
+    counter = itertools.count()
+
+    def __init__(self, make: Callable[[int], bytes]):
+        self.make = make
+
+    def __next__(self) -> bytes:
+        return self.make(next(self.counter))
+
+
+Requests = list[bytes] | Fresh
+
+
+async def client(host: str, port: int, requests: Requests, offset: int, stride: int, deadline: float,
                  result: Result, budget: list[int], local_addr: tuple[str, int] | None = None) -> None:
     reader, writer = await asyncio.open_connection(host, port, local_addr=local_addr)
     i = offset
     try:
         while time.perf_counter() < deadline and budget[0] > 0:
             budget[0] -= 1
-            data = requests[i % len(requests)]
+            data = next(requests) if isinstance(requests, Fresh) else requests[i % len(requests)]
             i += stride
             started = time.perf_counter()
             try:
-                status, closes = await one_request(reader, writer, data)
+                status, closes, cached = await one_request(reader, writer, data)
             except (asyncio.IncompleteReadError, ConnectionError):
                 result.errors += 1
                 writer.close()
@@ -126,6 +151,9 @@ async def client(host: str, port: int, requests: list[bytes], offset: int, strid
                 continue
             result.latencies.append(time.perf_counter() - started)
             result.statuses[status] = result.statuses.get(status, 0) + 1
+            if cached is not None:
+                result.records += 1
+                result.hits += cached
             if result.failed(status):
                 result.errors += 1
             if closes:  # as any HTTP client does: the next request goes on a new connection
@@ -135,7 +163,7 @@ async def client(host: str, port: int, requests: list[bytes], offset: int, strid
         writer.close()
 
 
-async def mixed(host: str, port: int, groups: list[tuple[Result, list[bytes]]], seconds: float,
+async def mixed(host: str, port: int, groups: list[tuple[Result, Requests]], seconds: float,
                 max_requests: int = MAX_REQUESTS, local_addr: tuple[str, int] | None = None) -> list[Result]:
     """Groups of clients at once, each group with its own requests and its own Result."""
     budget = [max_requests]
@@ -148,7 +176,7 @@ async def mixed(host: str, port: int, groups: list[tuple[Result, list[bytes]]], 
     return [result for result, _ in groups]
 
 
-async def scenario(name: str, host: str, port: int, requests: list[bytes], clients: int, seconds: float) -> Result:
+async def scenario(name: str, host: str, port: int, requests: Requests, clients: int, seconds: float) -> Result:
     return (await mixed(host, port, [(Result(name, clients), requests)], seconds))[0]
 
 
@@ -159,6 +187,8 @@ def merged(name: str, parts: list[Result]) -> Result:
         result.latencies += part.latencies
         result.errors += part.errors
         result.seconds += part.seconds
+        result.records += part.records
+        result.hits += part.hits
         for status, count in part.statuses.items():
             result.statuses[status] = result.statuses.get(status, 0) + count
     return result
@@ -168,7 +198,7 @@ async def warm(host: str, port: int, requests: list[bytes]) -> None:
     reader, writer = await asyncio.open_connection(host, port)
     try:
         for data in requests:
-            status, _ = await one_request(reader, writer, data)
+            status, _, _ = await one_request(reader, writer, data)
             if status >= 300:
                 raise SystemExit(f"warm-up request failed with {status}")
     finally:
@@ -225,26 +255,28 @@ async def run(args) -> list[Result]:
     def thumb(doc: str, size: int) -> bytes:
         return request_bytes(hostport, "POST", "/v1/thumbnails", {"document": doc, "size": size})
 
-    tag = time.time_ns()  # fresh values each run: "uncached" must miss even on a reused server
-    unique = [ramp(0.5 + (tag % 10**9) * 1e-12 + i * 1e-6) for i in range(MAX_REQUESTS // 20)]
+    # fresh values each run ("uncached" must miss even on a reused server): the run's tag lies below
+    # the step between values, so two runs cannot meet
+    tag = (time.time_ns() % 10**6) * 1e-13
+
+    def fresh(n: int) -> str:
+        return ramp(0.25 + n * 1e-7 + tag)
+
     cached_gen, cached_thumb = [gen(ramp(0.5))], [thumb(ramp(0.5), args.size)]
     await warm(host, port, cached_gen + cached_thumb)
     healthz = [request_bytes(hostport, "GET", "/healthz")]
     plan = [
         ("GET /healthz (baseline)", healthz, args.clients),
         ("generate cached", cached_gen, args.clients),
-        ("generate uncached", [gen(d) for d in unique], args.clients),
+        ("generate uncached", Fresh(lambda n: gen(fresh(n))), args.clients),
         ("thumbnails cached", cached_thumb, args.clients),
-        (f"thumbnails uncached ({args.size} px)", [thumb(d, args.size) for d in unique[len(unique) // 2:]],
-         args.render_clients),
+        (f"thumbnails uncached ({args.size} px)", Fresh(lambda n: thumb(fresh(n), args.size)), args.render_clients),
     ]
     results = []
     for name, requests, clients in plan:
         results.append(await scenario(name, host, port, requests, clients, args.seconds))
         await asyncio.sleep(0.5)
-    # documents no scenario above has sent: each of the four runs below gets its own quarter
-    spare = [gen(ramp(0.25 + (tag % 10**9) * 1e-12 + i * 1e-7)) for i in range(4 * len(unique))]
-    return results + await beside_bad_clients(host, port, args.clients, args.seconds, spare)
+    return results + await beside_bad_clients(host, port, args.clients, args.seconds, Fresh(lambda n: gen(fresh(n))))
 
 
 def bad_clients_process(host: str, port: int, clients: int, seconds: float) -> tuple:
@@ -256,17 +288,17 @@ def bad_clients_process(host: str, port: int, clients: int, seconds: float) -> t
     return result.latencies, result.errors, result.seconds, result.statuses
 
 
-async def beside_bad_clients(host: str, port: int, clients: int, seconds: float, fresh: list[bytes]) -> list[Result]:
+async def beside_bad_clients(host: str, port: int, clients: int, seconds: float, fresh: Fresh) -> list[Result]:
     bad_clients = max(1, clients // 4)
     good_clients = clients - bad_clients
     alone, beside, refused = [], [], []
     loop = asyncio.get_running_loop()
     with multiprocessing.get_context("spawn").Pool(1) as pool:
         for repeat in range(2):  # interleaved: alone, beside, alone, beside
-            alone += await mixed(host, port, [(Result("", good_clients), fresh[2 * repeat::4])], seconds)
+            alone += await mixed(host, port, [(Result("", good_clients), fresh)], seconds)
             await asyncio.sleep(0.5)
             bad_run = loop.run_in_executor(None, pool.apply, bad_clients_process, (host, port, bad_clients, seconds))
-            beside += await mixed(host, port, [(Result("", good_clients), fresh[2 * repeat + 1::4])], seconds)
+            beside += await mixed(host, port, [(Result("", good_clients), fresh)], seconds)
             latencies, errors, ran_s, statuses = await bad_run
             refused.append(Result("", bad_clients, latencies, errors, ran_s, statuses, refusals_expected=True))
             await asyncio.sleep(0.5)
@@ -277,10 +309,11 @@ async def beside_bad_clients(host: str, port: int, clients: int, seconds: float,
 
 def table(results: list[Result]) -> str:
     base = percentile(results[0].latencies, 0.5)
-    rows = [("scenario", "clients", "requests", "errors", "req/s", "p50 ms", "p99 ms", "p50 / baseline")]
+    rows = [("scenario", "clients", "requests", "record hits", "errors", "req/s", "p50 ms", "p99 ms", "p50 / baseline")]
     for r in results:
         p50, p99 = percentile(r.latencies, 0.5), percentile(r.latencies, 0.99)
-        rows.append((r.name, str(r.clients), str(len(r.latencies)), str(r.errors),
+        rows.append((r.name, str(r.clients), str(len(r.latencies)), f"{r.hits}/{r.records}" if r.records else "-",
+                     str(r.errors),
                      f"{len(r.latencies) / r.seconds:.0f}", f"{p50 * 1e3:.2f}", f"{p99 * 1e3:.2f}",
                      f"{p50 / base:.1f}x"))
     widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
