@@ -62,12 +62,13 @@ def reference(document: str, args, out_dir: str) -> dict:
 
 
 def fragment_lines(document: str, interface: str) -> int | None:
-    """Lines of the fragment shader `shadergen render` compiled: generated for the environment
-    lighting it draws with (fis). Newlines are counted, as the reference's count is, comments and
-    blank lines included."""
+    """Lines of the fragment shader `shadergen render` compiled: generated for the lighting it draws
+    with (fis, no light rig). Newlines are counted, as the reference's count is, comments and blank
+    lines included."""
     sys.path.insert(0, ROOT)
     from shadergen.api import generate_file
-    records = [r for r in generate_file(document, interface=interface, environment="fis") if "stages" in r]
+    records = [r for r in generate_file(document, interface=interface, environment="fis", lights=False)
+               if "stages" in r]
     return records[0]["stages"]["pixel"].count("\n") if records else None
 
 

@@ -33,13 +33,15 @@ class GenerateParams:
     keep: tuple[str, ...] = ()  # inputs left live by `specialized`
     values: str = "listing"  # or "source": the document's values written into the initializers
     environment: str | None = None  # the environment lighting only (fis | prefilter), for a thumbnail
+    lights: bool = True  # False for a thumbnail, which draws no light rig: no light loop is written
 
 
 def request_digest(output_key: str, params: GenerateParams, document: bytes) -> str:
     """`output_key`: fingerprint.output_key of the generator that answers (its `library_hash`)."""
     h = hashlib.sha256()
     for part in (output_key, params.target, params.element or "", params.interface, params.document_format,
-                 params.values, params.environment or "", *sorted(set(params.keep))):
+                 params.values, params.environment or "", "lights" if params.lights else "unlit",
+                 *sorted(set(params.keep))):
         h.update(part.encode() + b"\0")
     h.update(document)
     return h.hexdigest()
@@ -104,7 +106,7 @@ class GenerationService:
         # JSON escaping of a large XML text on either side
         request = {"op": "generate", "format": params.document_format, "target": params.target,
                    "element": params.element, "interface": params.interface, "keep": list(params.keep),
-                   "values": params.values, "environment": params.environment,
+                   "values": params.values, "environment": params.environment, "lights": params.lights,
                    "digest": digest}
         context = {"element": params.element, "target": params.target}
         try:

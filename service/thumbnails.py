@@ -33,8 +33,8 @@ class ThumbnailService:
         self.retry_after_s = retry_after_s
 
     async def _render_request(self, order: ThumbnailOrder) -> dict:
-        # the shader holds only the environment lighting it is drawn with
-        params = replace(order.params, environment=order.env_method)
+        # the shader holds only the lighting it is drawn with: this environment method, no light rig
+        params = replace(order.params, environment=order.env_method, lights=False)
         record = json.loads(await self.generation.generate(order.document, params))
         request = {"record": record, "size": order.size, "mesh": order.mesh, "env_method": order.env_method}
         if order.params.document_format == "usdz":

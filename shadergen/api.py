@@ -103,7 +103,8 @@ class Prepared:
             "blocks": blocks,
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
         } | ({"layout": layout} if layout is not None else {}) \
-          | ({"environment": self.graph.environment} if self.graph.environment is not None else {})
+          | ({"environment": self.graph.environment} if self.graph.environment is not None else {}) \
+          | ({"lights": False} if not self.graph.lights else {})
 
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,
@@ -149,6 +150,7 @@ class Generator:
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
                     interface: str = "complete", keep=(), values: str = "listing", environment: str | None = None,
+                    lights: bool = True,
                     base_dir: str | None = None, allow_includes: bool = True,
                     document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
@@ -156,7 +158,9 @@ class Generator:
         that stay live uniforms in the `specialized` interface. `values`: "listing" (uniforms initialised
         to nodedef values, the document's values only in the listing) or "source" (written into the
         initializers too). `environment`: "fis" or "prefilter" writes only that way of lighting by
-        the environment (a renderer then needs no MX_ENV_PREFILTER of its own); None writes both."""
+        the environment (a renderer then needs no MX_ENV_PREFILTER of its own); None writes both.
+        `lights`: False for a renderer that draws no light rig (thumbnails): no light loop is written,
+        and the record says `"lights": false`."""
         target_for(target)  # unknown targets fail before any work
         if values not in VALUES:
             raise ShaderGenError("unsupported_values", f"unknown values '{values}'; supported: " + ", ".join(VALUES),
@@ -175,12 +179,13 @@ class Generator:
             elems = [e for e in elems if element in (e.path, e.name, doc.label(e.path))] or self._named(doc, element)
         elif not all:
             elems = elems[:1]
+        options = Options(interface, frozenset(keep), values, environment, bool(lights))
         out = []
         for e in elems:
             try:
                 if e.path in doc.failures:
                     raise doc.failures[e.path]
-                out.append(self._prepare(doc, scope, e, target, Options(interface, frozenset(keep), values, environment)))
+                out.append(self._prepare(doc, scope, e, target, options))
             except ELEMENT_FAILURES as exc:
                 out.append(element_error(exc, doc.label(e.path), doc))
         return out
@@ -278,7 +283,9 @@ def default_generator() -> Generator:
 
 
 def generate_file(path: str, *, target: str = "glsl", element: str | None = None, all: bool = False,
-                  interface: str = "complete", keep=(), environment: str | None = None) -> list[dict]:
+                  interface: str = "complete", keep=(), environment: str | None = None,
+                  lights: bool = True) -> list[dict]:
     """Records for a document file (used by the renderer's CLI)."""
     return list(default_generator().records(Path(path), target=target, element=element, all=all,
-                                            interface=interface, keep=keep, environment=environment))
+                                            interface=interface, keep=keep, environment=environment,
+                                            lights=lights))

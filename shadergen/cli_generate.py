@@ -35,6 +35,9 @@ def add_arguments(p) -> None:
     p.add_argument("--env-method", choices=ENVIRONMENTS, default=None,
                    help="write only this way of lighting by the environment: fis (filtered importance sampling) or "
                         "prefilter (a prefiltered map); default both, chosen by a renderer's MX_ENV_PREFILTER")
+    p.add_argument("--no-lights", action="store_true",
+                   help="for a renderer that draws no light rig (thumbnails): no light loop is written (less code "
+                        "to compile); the record says \"lights\": false")
     p.add_argument("--out", metavar="DIR", help="also write stage files and listings under DIR (see below)")
     p.add_argument("--no-source", action="store_true", help="records without stage source (listings only)")
 
@@ -86,7 +89,8 @@ def run(args) -> int:
     out = OutputFiles(args.out) if args.out else None
     for doc in args.documents:
         options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface,
-                       keep=keep_list(args.keep), values=args.values, environment=args.env_method)
+                       keep=keep_list(args.keep), values=args.values, environment=args.env_method,
+                       lights=not args.no_lights)
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:

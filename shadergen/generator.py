@@ -61,6 +61,7 @@ class EmitContext:
         self.prepared_lobes: dict[int, str] = {}  # id(lobe Node) -> its prepared state, in this surface
         self.features: frozenset[str] | None = None  # library features the nodes need (None: all)
         self.macros: frozenset[tuple[str, bool]] = frozenset()  # compiler macros decided at generation
+        self.lights = True  # whether the shader is drawn with a light rig (Graph.lights)
 
     @property
     def pixel(self) -> Stage:
@@ -282,6 +283,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
         ctx.publish(port)
     ctx.features = frozenset(graph_features(graph))
     ctx.macros = environment_macros(graph.environment)
+    ctx.lights = graph.lights
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)

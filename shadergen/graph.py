@@ -147,6 +147,7 @@ class Graph:
     interface_mode: str = "complete"
     values_in_source: bool = False  # uniform initializers hold the document's values, not the nodedef's
     environment: str | None = None  # the environment lighting it is generated for (features.ENVIRONMENTS), or either
+    lights: bool = True  # lit by a light rig too; False: by the environment alone (no light loop)
 
 
 def input_meta(decl: Element) -> dict:

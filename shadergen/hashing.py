@@ -45,7 +45,7 @@ def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str
     outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
     structure = _canonical(
         {"target": target, "interface": interface, "library": library_hash, "values_in_source": graph.values_in_source,
-         "environment": graph.environment,
+         "environment": graph.environment, "lights": graph.lights,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
          "nodes": nodes, "outputs": outputs, "uniforms": uniforms})
     values = _canonical([_jsonable(p.value) for p in graph.interface])

@@ -54,13 +54,14 @@ def _emit_light_support(ctx) -> bool:
 @register("IM_surface")
 class Surface(NodeImpl):
     """Which shading contexts a surface needs is decided here, from the finished graph: the light
-    loop and the environment when a BSDF is connected, transmission only when a lobe under it
+    loop (unless the shader is generated for a scene without lights: Graph.lights) and the
+    environment when a BSDF is connected, transmission only when a lobe under it
     transmits (passes/closures.py), emission when an EDF is connected. The target writes them."""
 
     def emit_function_definition(self, node, ctx):
         for name, type_name in ENVIRONMENT_UNIFORMS:
             ctx.private_uniform(name, type_name)
-        self.lit = node.inputs["bsdf"].connection is not None and emit_light_support(ctx)
+        self.lit = node.inputs["bsdf"].connection is not None and ctx.lights and emit_light_support(ctx)
 
     def emit_function_call(self, node, ctx):
         bsdf, edf = node.inputs["bsdf"], node.inputs["edf"]

@@ -24,6 +24,7 @@ class Options:
     keep: frozenset[str] = frozenset()  # document inputs that stay live in `specialized`
     values: str = "listing"  # listing: uniforms initialised to nodedef values; source: to the document's
     environment: str | None = None  # fis | prefilter: only that way of environment lighting is written
+    lights: bool = True  # False: drawn without a light rig (a thumbnail), so no light loop is written
 
     @property
     def values_in_source(self) -> bool:
@@ -34,7 +35,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
             options: Options = Options()) -> Graph:
     """`target`: the Target the shader is for (the closure pass reads its closure convention)."""
     graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface,
-                  values_in_source=options.values_in_source, environment=options.environment)
+                  values_in_source=options.values_in_source, environment=options.environment, lights=options.lights)
 
     def run(name: str, edit) -> None:
         graph.passes[name] = edit()

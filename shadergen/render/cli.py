@@ -89,7 +89,7 @@ def _run(args) -> int:
         raise RenderError("invalid_request", "give either a document or --record REC.json")
     record = _record_from_file(args.record, args.element) if args.record \
         else _record_from_document(args.document, args.element, args.interface, BACKENDS[args.backend],
-                                   args.env_method)
+                                   args.env_method, bool(args.lights))
     if args.irr and not args.env:
         raise RenderError("invalid_request", "--irr needs --env (the procedural sky computes its own)")
     env = Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
@@ -133,15 +133,17 @@ def _record_from_file(path: str, element: str | None) -> dict:
     return _choose(records, element, path)
 
 
-def _record_from_document(path: str, element: str | None, interface: str, target: str, env_method: str) -> dict:
-    """The document's record, generated for the environment lighting it is drawn with."""
+def _record_from_document(path: str, element: str | None, interface: str, target: str, env_method: str,
+                          lights: bool) -> dict:
+    """The document's record, generated for the environment lighting it is drawn with, and with a
+    light loop only when a light rig is drawn."""
     try:
         from shadergen.api import generate_file
     except ImportError as exc:
         raise RenderError("unavailable", "this build has no generator (shadergen.api); render a record "
                           "with --record REC.json instead") from exc
-    return _choose(generate_file(path, target=target, element=element, interface=interface, environment=env_method),
-                   element, path)
+    return _choose(generate_file(path, target=target, element=element, interface=interface, environment=env_method,
+                                 lights=lights), element, path)
 
 
 def _choose(records: list, element: str | None, source: str) -> dict:

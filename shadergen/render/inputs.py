@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .environment import ENV_MATRIX, Environment
+from .errors import RenderError
 from .lights import Light, light_type_ids, light_uniforms, load_lights
 from .record import uniform_variables
 from .scene import matrix_bytes, scene_uniforms
@@ -35,7 +36,11 @@ def fixed_uniforms(environment: Environment, env_samples: int = ENV_SAMPLES,
 
 
 def light_rig(record: dict, lights) -> list[Light]:
-    """`lights` (None, a light-rig .mtlx path, or a list of Light) as the record's shader numbers them."""
+    """`lights` (None, a light-rig .mtlx path, or a list of Light) as the record's shader numbers them.
+    A record generated without lights (`"lights": false`) has no light loop to draw them with."""
+    if lights and record.get("lights", True) is False:
+        raise RenderError("invalid_request", "the record was generated without lights (\"lights\": false): "
+                          "generate it with lights to draw a light rig", record.get("element"))
     if isinstance(lights, (str, os.PathLike)):
         return load_lights(lights, type_ids=light_type_ids(record))
     return list(lights or [])

@@ -121,3 +121,13 @@ def test_decided_macros_resolve_like_features():
     assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", False)})) == "sampled();"
     assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", True)})) == "prefiltered();"
 
+
+
+def test_a_shader_for_a_scene_without_lights_has_no_light_loop(gen):
+    document = material('<conductor_bsdf name="b" type="BSDF"/>')
+    lit = gen.prepare(document).emit()
+    unlit = gen.prepare(document, lights=False).emit()
+    assert "numActiveLightSources" in lit["stages"]["pixel"] and "lights" not in lit
+    assert "numActiveLightSources" not in unlit["stages"]["pixel"] and "u_lightData" not in unlit["stages"]["pixel"]
+    assert unlit["lights"] is False and "CLOSURE_TYPE_INDIRECT, L" in unlit["stages"]["pixel"]
+    assert lit["topology_hash"] != unlit["topology_hash"]

@@ -1,8 +1,10 @@
 """Our generator's lit shaders drawn by our renderer: the light ids the record lists decide which
 light function runs, whatever order the rig lists its lights in."""
 import numpy as np
+import pytest
 
 from shadergen.api import Generator
+from shadergen.render.errors import RenderError
 
 DIFFUSE = '''<?xml version="1.0"?>
 <materialx version="1.39">
@@ -35,3 +37,15 @@ def test_light_ids_come_from_the_record(renderer, tmp_path):
     # Lambert at normal incidence: albedo 0.18 (the nodedef's default) x intensity 3 / pi
     np.testing.assert_allclose(sun_only[centre][:3] - dark[centre][:3], 0.18 * 3 / np.pi, rtol=0.03)
     np.testing.assert_allclose(bulb_first, sun_only, atol=1e-5)
+
+
+def test_a_shader_generated_without_lights_draws_the_unlit_scene_alike_and_refuses_a_rig(renderer, tmp_path):
+    lit = Generator().prepare(DIFFUSE, environment="fis").emit()
+    unlit = Generator().prepare(DIFFUSE, environment="fis", lights=False).emit()
+    assert unlit["lights"] is False and "lights" not in lit
+    assert "sampleLightSource" in lit["stages"]["pixel"] and "sampleLightSource" not in unlit["stages"]["pixel"]
+    assert not unlit["blocks"]["pixel"]["LightData"]
+    np.testing.assert_allclose(renderer.render(unlit, size=32).rgba, renderer.render(lit, size=32).rgba, atol=1e-6)
+    with pytest.raises(RenderError) as refused:
+        renderer.render(unlit, size=32, lights=rig(tmp_path, "a.mtlx", SUN))
+    assert refused.value.code == "invalid_request"
