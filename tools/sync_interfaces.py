@@ -23,6 +23,9 @@ FILES = {  # reference file (relative to its libraries folder) -> ours (relative
     "bxdf/gltf_pbr.mtlx": "bxdf/gltf_pbr_defs.mtlx",
     "bxdf/open_pbr_surface.mtlx": "bxdf/open_pbr_surface_defs.mtlx",
     "bxdf/disney_principled.mtlx": "bxdf/disney_principled_defs.mtlx",
+    **{f"bxdf/lama/lama_{name}.mtlx": "bxdf/lama_defs.mtlx"  # Pixar's Lama nodes, one file each there
+       for name in ("add", "conductor", "dielectric", "diffuse", "emission", "generalized_schlick",
+                    "iridescence", "layer", "mix", "sheen", "sss", "surface", "translucent")},
 }
 KEEP = {"typedef", "unittypedef", "unitdef", "unit", "geompropdef", "nodedef", "input", "output", "token",
         "member", "attributedef"}
@@ -44,9 +47,13 @@ def strip(elem: ET.Element) -> ET.Element:
 
 def main() -> int:
     ref = reference_libraries()
+    sources_of: dict[str, list[str]] = {}
     for src, dst in FILES.items():
-        tree = ET.parse(ref / src)
-        root = strip(tree.getroot())
+        sources_of.setdefault(dst, []).append(src)
+    for dst, sources in sources_of.items():
+        root = strip(ET.parse(ref / sources[0]).getroot())
+        for src in sources[1:]:
+            root.extend(strip(ET.parse(ref / src).getroot()))
         ET.indent(root, "  ")
         path = ROOT / "libraries" / dst
         path.parent.mkdir(parents=True, exist_ok=True)
