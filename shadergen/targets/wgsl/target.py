@@ -19,7 +19,7 @@ from ..glsl import LIGHT_DATA_MEMBERS, STRUCTS, TYPE_NAMES, ClosureConvention, S
 from ..glsl_target import PLACEHOLDER, GlslTarget
 from .builtins import HELPERS, WGSL_RESERVED, WGSL_TYPES
 from .layout import uniform_layout
-from .translate import Translator, Untranslatable
+from .translate import FRAGMENT_BUILTINS, Translator, Untranslatable
 
 _TRANSLATOR: Translator | None = None
 HELPER_LINES = HELPERS.splitlines() + [""]  # the same str objects each request, as the libraries' lines
@@ -199,15 +199,30 @@ class WgslTarget(GlslTarget):
         outputs = list(ctx.pixel.blocks["Outputs"])
         if len(outputs) != 1:
             raise ShaderGenError("unsupported_output", "wgsl shaders have exactly one output", "wgsl")
+        builtins = self._fragment_builtins(ctx.pixel.functions.lines + ctx.pixel.main.lines)
+        for name, wgsl_type in builtins:
+            w.line(f"var<private> {name}: {wgsl_type};")
+        if builtins:
+            w.line()
         w.lines.extend(ctx.pixel.functions.lines)
         w.line("@fragment")
-        with _braces(w, f"fn fragmentMain({'vertexData: VertexData' if interpolated else ''}) -> @location(0) vec4f"):
+        parameters = (["vertexData: VertexData"] if interpolated else []) + \
+            [f"@builtin({name}) {name}_in: {wgsl_type}" for name, wgsl_type in builtins]
+        with _braces(w, f"fn fragmentMain({', '.join(parameters)}) -> @location(0) vec4f"):
             if interpolated:
                 w.line("vd = vertexData;")
+            for name, _ in builtins:
+                w.line(f"{name} = {name}_in;")
             w.line(f"var {outputs[0].name}: vec4f;")
             w.lines.extend("    " + ln if ln else "" for ln in ctx.pixel.main.lines)
             w.line(f"return {outputs[0].name};")
         return _read_through(w.text(), reads)
+
+    def _fragment_builtins(self, lines: list[str]) -> list[tuple[str, str]]:
+        """The fragment built-ins (WGSL name, type) the code reads: the entry point receives them."""
+        text = "\n".join(lines)
+        return [(name, self.syntax.type_name("boolean" if t == "bool" else t)) for name, t in FRAGMENT_BUILTINS.values()
+                if re.search(rf"\b{name}\b", text)]
 
     def assemble_vertex(self, ctx) -> str:
         w = Writer()

@@ -469,6 +469,8 @@ class FunctionEmitter:
                 return scope[name]
         if name in self.lib.globals:
             return self.lib.globals[name]
+        if name in FRAGMENT_BUILTINS:
+            return FRAGMENT_BUILTINS[name][1]
         raise Untranslatable(f"unknown name '{name}'")
 
     def line(self, text: str) -> None:
@@ -848,7 +850,14 @@ def strip_parens(text: str) -> str:
     return text
 
 
+# GLSL's fragment built-in variables: WGSL passes them to the entry point, which copies them into
+# private variables of these names (target.py) so library code reads them anywhere.
+FRAGMENT_BUILTINS = {"gl_FrontFacing": ("front_facing", "bool")}
+
+
 def safe_name(name: str) -> str:
+    if name in FRAGMENT_BUILTINS:
+        return FRAGMENT_BUILTINS[name][0]
     return f"{name}_" if name in WGSL_RESERVED else name
 
 
