@@ -96,7 +96,10 @@ def closure_tree(inp: Input, stop=lambda node: False) -> list[Node]:
 
 def transmits(node: Node, convention) -> bool:
     """Whether a closure node can answer the transmission context: its source handles it (and its
-    scatter_mode, when a constant, is not reflection only). Other kinds are assumed to."""
+    scatter_mode, when a constant, is not reflection only). Other kinds are assumed to. An operator
+    (layer, mix, add, ...) only passes on what its lobes answer: they decide."""
+    if closure_inputs(node):
+        return False
     known, mode = constant(node, "scatter_mode")
     if known and mode == "R":
         return False
