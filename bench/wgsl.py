@@ -6,7 +6,8 @@ generated for wgsl (and glsl, for the size ratio), each WGSL module validated by
         ../shared/corpus/resources/Materials/TestSuite/pbrlib [--interface specialized] [--failures N]
 
 Prints, per folder and in all: elements, generated %, validated % (of generated), and the median
-and worst ratio of WGSL fragment lines to our GLSL fragment lines for the same element.
+and worst ratio of WGSL fragment lines to our GLSL fragment lines for the same element. A document
+with no renderable element has no element to count (conformance.py skips those too).
 """
 import argparse
 import collections
@@ -34,6 +35,10 @@ def measure(folder: Path, interface: str, reasons: collections.Counter) -> dict:
         glsl = {r["element"]: r for r in generate_file(str(doc), target="glsl", all=True, interface=interface)
                 if "error" not in r}
         for rec in generate_file(str(doc), target="wgsl", all=True, interface=interface):
+            if rec.get("error", {}).get("code") == "no_renderable_element":
+                # nothing to count: as in conformance.py, which counts what the reference renders
+                reasons[f"not counted: no renderable element in {doc.name}"] += 1
+                continue
             row = {"generated": "error" not in rec, "valid": False, "ratio": None}
             if not row["generated"]:
                 reasons[rec["error"]["message"][:90]] += 1
