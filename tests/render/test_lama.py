@@ -125,11 +125,17 @@ def test_a_lama_material_returns_at_most_what_a_white_furnace_sends(renderer, na
 
 
 def test_lama_iridescence_colours_the_reflection_by_the_film(renderer):
-    """A free-standing film reflects a few per cent, coloured by interference: its colour changes
-    with the film's thickness, where a film-less reflection of white light stays grey."""
-    thin, thick = (renderer.render(record_of(IRIDESCENCE.replace(
-        '</LamaIridescence>', f'<input name="relativeFilmThickness" type="float" value="{t}"/></LamaIridescence>')), size=32,
-        env=stress.white_furnace()).rgba for t in (0.1, 0.9))
+    """A free-standing film over a black base, in white light: what it reflects, a few per cent, is
+    coloured by interference, and the colour changes with the film's thickness (a film-less
+    reflection of white light would stay grey)."""
+    def over_black(thickness: float) -> str:
+        return material('<LamaDiffuse name="black" type="BSDF"><input name="color" type="color3" value="0, 0, 0"/></LamaDiffuse>'
+                        '<LamaIridescence name="f" type="BSDF"><input name="roughness" type="float" value="0.2"/>'
+                        f'<input name="relativeFilmThickness" type="float" value="{thickness}"/></LamaIridescence>'
+                        '<LamaLayer name="b" type="BSDF"><input name="materialTop" type="BSDF" nodename="f"/>'
+                        '<input name="materialBase" type="BSDF" nodename="black"/></LamaLayer>', "b")
+
+    thin, thick = (renderer.render(record_of(over_black(t)), size=32, env=stress.white_furnace()).rgba for t in (0.1, 0.9))
     covered = thin[..., 3] > 0
     mean_thin, mean_thick = thin[covered, :3].mean(axis=0), thick[covered, :3].mean(axis=0)
     assert 0.005 < mean_thin.max() < 0.5 and 0.005 < mean_thick.max() < 0.5
