@@ -57,12 +57,17 @@ def install_hint(error: str) -> str:
 
 class _GL:
     """The few GL entry points moderngl does not wrap: per-axis wrap modes (mirrored repeat, clamp
-    to border) and the border colour, which MaterialX's address modes need."""
+    to border) and the border colour, which MaterialX's address modes need, and mip levels given
+    as images (moderngl writes only into levels its own mipmap generation made)."""
 
     TEXTURE_2D = 0x0DE1
     TEXTURE_WRAP_S = 0x2802
     TEXTURE_WRAP_T = 0x2803
     TEXTURE_BORDER_COLOR = 0x1004
+    TEXTURE_MAX_LEVEL = 0x813D
+    FLOAT = 0x1406
+    # float32 textures of 1-4 channels: (internal format, format)
+    FLOAT_FORMATS = {1: (0x822E, 0x1903), 2: (0x8230, 0x8227), 3: (0x8815, 0x1907), 4: (0x8814, 0x1908)}
 
     def __init__(self):
         egl = ctypes.CDLL("libEGL.so.1")
@@ -73,12 +78,25 @@ class _GL:
             egl.eglGetProcAddress(b"glTexParameteri"))
         self.tex_parameter_fv = ctypes.CFUNCTYPE(None, enum, enum, vptr)(
             egl.eglGetProcAddress(b"glTexParameterfv"))
+        self.tex_image_2d = ctypes.CFUNCTYPE(None, enum, ctypes.c_int, ctypes.c_int, ctypes.c_int, ctypes.c_int,
+                                             ctypes.c_int, enum, enum, ctypes.c_void_p)(
+            egl.eglGetProcAddress(b"glTexImage2D"))
 
     def set_wrap(self, wrap_s: int, wrap_t: int, border: tuple[float, float, float, float]):
         """Wrap modes and border colour of the texture bound to the active unit."""
         self.tex_parameter_i(self.TEXTURE_2D, self.TEXTURE_WRAP_S, wrap_s)
         self.tex_parameter_i(self.TEXTURE_2D, self.TEXTURE_WRAP_T, wrap_t)
         self.tex_parameter_fv(self.TEXTURE_2D, self.TEXTURE_BORDER_COLOR, (ctypes.c_float * 4)(*border))
+
+    def define_levels(self, channels: int, levels: list) -> None:
+        """Levels 1, 2, ... of the float32 texture bound to the active unit from (h, w, channels)
+        float32 images, and its last level set to the last of them."""
+        internal, layout = self.FLOAT_FORMATS[channels]
+        for level, image in enumerate(levels, start=1):
+            data = image.astype("f4", copy=False).tobytes()
+            self.tex_image_2d(self.TEXTURE_2D, level, internal, image.shape[1], image.shape[0], 0, layout,
+                              self.FLOAT, data)
+        self.tex_parameter_i(self.TEXTURE_2D, self.TEXTURE_MAX_LEVEL, len(levels))
 
 
 _gl_extras: _GL | None = None

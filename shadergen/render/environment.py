@@ -6,9 +6,14 @@ radiance arriving along map direction m = (cos(lat) sin(lon), sin(lat), -cos(lat
 lat = (0.5 - v) pi and lon = (u - 0.5) 2 pi; the shader turns a world direction into a map
 direction with u_envMatrix. The irradiance map holds irradiance / pi, so that a Lambert lobe of
 albedo a reflects a * texel.
+
+The procedural sky and computed irradiance maps are kept on disk (the cache folder), named by what
+they are computed from, so that a thumbnail process reads them instead of computing them.
 """
+import hashlib
 import os
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -31,22 +36,48 @@ class Environment:
 
     @classmethod
     def procedural(cls, intensity: float = 1.0) -> "Environment":
-        radiance = procedural_sky()
-        return cls(radiance, sh_irradiance(radiance), "procedural-sky", intensity)
+        radiance = computed("procedural-sky", procedural_sky)
+        irradiance = computed("procedural-sky-irradiance", lambda: sh_irradiance(radiance))
+        return cls(radiance, irradiance, "procedural-sky", intensity)
 
     @classmethod
     def load(cls, radiance_path: str, irradiance_path: str | None = None, intensity: float = 1.0) -> "Environment":
         """From lat-long files (.hdr, .exr, anything OpenImageIO reads); the irradiance map is
         computed from the radiance map when not given."""
         radiance = _read_map(radiance_path)
-        irradiance = _read_map(irradiance_path) if irradiance_path else sh_irradiance(radiance)
         stamp = [f"{os.path.abspath(p)}@{os.stat(p).st_mtime_ns}" for p in (radiance_path, irradiance_path) if p]
+        irradiance = _read_map(irradiance_path) if irradiance_path \
+            else computed(f"irradiance of {stamp[0]}", lambda: sh_irradiance(radiance))
         return cls(radiance, irradiance, "|".join(stamp), intensity)
 
     @property
     def radiance_mips(self) -> int:
         """u_envRadianceMips: the number of levels of the radiance map's full mip chain."""
         return int(np.floor(np.log2(max(self.radiance.shape[:2])))) + 1
+
+
+def computed(name: str, compute) -> np.ndarray:
+    """The float32 map `compute()` returns, read from the cache folder when an earlier process kept
+    it: the file is named by `name` and this module's source (a change to how maps are computed
+    is never served from an old file). A cache that cannot be read or written is computed past."""
+    from shadergen.library import cache_dir  # the generator's cache folder, imported only here
+
+    digest = hashlib.sha256(Path(__file__).read_bytes() + name.encode()).hexdigest()[:24]
+    path = cache_dir() / "environments" / f"{digest}.npy"
+    try:
+        return np.load(path)
+    except (OSError, ValueError):
+        pass  # missing or corrupt: computed again
+    image = np.ascontiguousarray(compute(), "f4")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        with open(tmp, "wb") as f:
+            np.save(f, image)
+        os.replace(tmp, path)  # atomic: concurrent processes never read half a file
+    except OSError:
+        pass
+    return image
 
 
 def _read_map(path: str) -> np.ndarray:

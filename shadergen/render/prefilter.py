@@ -93,7 +93,7 @@ def prefiltered_chain(ctx, radiance: np.ndarray, source, sampling: Sampling, sam
     import moderngl
 
     rows, columns = radiance.shape[:2]
-    chain = upload(ctx, radiance)
+    levels = []
     mips = int(np.floor(np.log2(max(rows, columns)))) + 1
     program = ctx.program(vertex_shader=_VERTEX, fragment_shader=_FRAGMENT)
     vao = ctx.vertex_array(program, [])
@@ -112,10 +112,10 @@ def prefiltered_chain(ctx, radiance: np.ndarray, source, sampling: Sampling, sam
             program["u_size"].value = (float(size[0]), float(size[1]))
             program["u_alpha"].value = alpha
             vao.render(moderngl.TRIANGLES, vertices=3)
-            chain.write(framebuffer.read(components=3, dtype="f4"), level=level)
+            levels.append(np.frombuffer(framebuffer.read(components=3, dtype="f4"), "f4").reshape(size[1], size[0], 3))
             framebuffer.release()
             target.release()
     finally:
         vao.release()
         program.release()
-    return chain
+    return upload(ctx, radiance, levels)

@@ -19,7 +19,7 @@ from .base import RenderResult, SceneRenderer
 from .errors import RenderError
 from .inputs import ENV_SAMPLERS, ENV_SAMPLES, lighting_values, light_rig, record_values, texture_requests
 from .record import check_record, source_digest
-from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling
+from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling, mip_chain
 from .wgpu_device import wgpu_device
 from .wgpu_program import COLOR_FORMAT, DEPTH_FORMAT, STAGES, WgslPipeline
 
@@ -182,30 +182,3 @@ def _rgba(image: np.ndarray) -> np.ndarray:
     if channels == 3:
         return np.concatenate([image, np.ones_like(image[..., :1])], axis=2)
     return image[..., :4]
-
-
-def mip_chain(image: np.ndarray) -> list[np.ndarray]:
-    """Level 0 and every smaller level down to 1 x 1, each side halved (rounded down), each texel
-    the bilinear sample of the level above at its centre: the 2 x 2 average where the side is
-    even, as GL's mipmap generation gives."""
-    levels = [image]
-    while max(levels[-1].shape[:2]) > 1:
-        above = levels[-1]
-        h, w = (max(1, n // 2) for n in above.shape[:2])
-        levels.append(_resample(_resample(above, h, 0), w, 1))
-    return levels
-
-
-def _resample(image: np.ndarray, size: int, axis: int) -> np.ndarray:
-    """Linear interpolation along `axis` at the centres of `size` texels spanning the same extent."""
-    n = image.shape[axis]
-    if n == size:
-        return image
-    centre = (np.arange(size) + 0.5) * n / size - 0.5
-    low = np.clip(np.floor(centre).astype(int), 0, n - 1)
-    high = np.clip(low + 1, 0, n - 1)
-    weight = (centre - np.floor(centre)).astype("f4")
-    shape = [1] * image.ndim
-    shape[axis] = size
-    weight = weight.reshape(shape)
-    return np.take(image, low, axis=axis) * (1 - weight) + np.take(image, high, axis=axis) * weight
