@@ -23,6 +23,12 @@ any other is dropped, with an `#else` side taking its place. `#pragma shadergen`
 Other preprocessor conditionals are left to the compiler, except a compiler macro the caller has
 decided: a shader generated for one way of environment lighting (ENVIRONMENTS) has the
 MX_ENV_PREFILTER conditional resolved too, so the other way's code is not in it at all.
+
+Two features are the shading contexts' rather than a closure node's: LIGHTS (MX_FEATURE_LIGHTS, the
+closures' code for the REFLECTION context of a light) is in every shader generated with a light
+loop, and in none generated for scenes without lights (Graph.lights), such as thumbnails lit by
+the environment; TRANSMISSION (the code for the TRANSMISSION context) is needed by a surface that
+writes that context (one with a transmitting lobe, passes/closures.py).
 """
 import operator
 import re
@@ -38,6 +44,8 @@ PRAGMA = re.compile(r"^\s*#\s*pragma\s+shadergen\b")
 CONDITIONAL = re.compile(r"^\s*#\s*(ifdef|ifndef|if|else|elif|endif)\b\s*(\w*)")
 ENVIRONMENTS = ("fis", "prefilter")  # filtered importance sampling, or a prefiltered map
 ENVIRONMENT_MACRO = "MX_ENV_PREFILTER"  # what a renderer defines to light by the prefiltered map
+LIGHTS_FEATURE = "LIGHTS"  # closure code for lights: needed by shaders with a light loop
+TRANSMISSION_FEATURE = "TRANSMISSION"  # closure code for the transmission context: needed by surfaces writing it
 COMPARE = {"==": operator.eq, "!=": operator.ne, "<=": operator.le, ">=": operator.ge, "<": operator.lt, ">": operator.gt}
 
 

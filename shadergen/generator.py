@@ -9,7 +9,7 @@ blocks, functions, main. The graph arrives finished (passes/): emission only wal
 import re
 
 from .errors import ShaderGenError
-from .features import environment_macros, graph_features, resolve
+from .features import LIGHTS_FEATURE, environment_macros, graph_features, resolve
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .nodes.lobes import closure_nodes, emit_lobes
@@ -281,7 +281,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.app_data("i_position", "vector3")
     for port in graph.interface:
         ctx.publish(port)
-    ctx.features = frozenset(graph_features(graph))
+    ctx.features = frozenset(graph_features(graph) | ({LIGHTS_FEATURE} if graph.lights else set()))
     ctx.macros = environment_macros(graph.environment)
     ctx.lights = graph.lights
     ctx.define_functions(graph)

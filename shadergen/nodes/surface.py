@@ -6,6 +6,7 @@ The BSDF graph connected to a surface is evaluated once per shading context, eac
 nodes feeding the closures are computed once, before. A context whose closure input is
 unconnected is not written at all.
 """
+from ..features import TRANSMISSION_FEATURE
 from ..shader import PIXEL, Variable
 from .base import NodeImpl, implementation_for, register
 from .geometric import Normal, Position
@@ -58,6 +59,15 @@ class Surface(NodeImpl):
     environment when a BSDF is connected, transmission only when a lobe under it
     transmits (passes/closures.py), emission when an EDF is connected. The target writes them."""
 
+    def features(self, node) -> set[str]:
+        """TRANSMISSION (the closures' code for the transmission context) where this surface writes
+        that context."""
+        return {TRANSMISSION_FEATURE} if self._transmits(node) else set()
+
+    @staticmethod
+    def _transmits(node) -> bool:
+        return node.inputs["bsdf"].connection is not None and node.facts.get("transmission", True)
+
     def emit_function_definition(self, node, ctx):
         for name, type_name in ENVIRONMENT_UNIFORMS:
             ctx.private_uniform(name, type_name)
@@ -71,7 +81,7 @@ class Surface(NodeImpl):
             contexts.append(("indirect", bsdf))
         if edf.connection is not None:
             contexts.append(("emission", edf))
-        if bsdf.connection is not None and node.facts.get("transmission", True):
+        if self._transmits(node):
             contexts.append(("transmission", bsdf))
         ctx.target.emit_surface(ctx, ctx.output_name(next(iter(node.outputs.values()))),
                                 ctx.value(node.inputs["opacity"]), Position.varying(ctx, "world"),

@@ -122,7 +122,6 @@ def test_decided_macros_resolve_like_features():
     assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", True)})) == "prefiltered();"
 
 
-
 def test_a_shader_for_a_scene_without_lights_has_no_light_loop(gen):
     document = material('<conductor_bsdf name="b" type="BSDF"/>')
     lit = gen.prepare(document).emit()
@@ -131,3 +130,38 @@ def test_a_shader_for_a_scene_without_lights_has_no_light_loop(gen):
     assert "numActiveLightSources" not in unlit["stages"]["pixel"] and "u_lightData" not in unlit["stages"]["pixel"]
     assert unlit["lights"] is False and "CLOSURE_TYPE_INDIRECT, L" in unlit["stages"]["pixel"]
     assert lit["topology_hash"] != unlit["topology_hash"]
+
+
+BSDFS = ('<sheen_bsdf name="sheen" type="BSDF"/><conductor_bsdf name="metal" type="BSDF"/>'
+         '<generalized_schlick_bsdf name="schlick" type="BSDF"/><oren_nayar_diffuse_bsdf name="diffuse" type="BSDF"/>'
+         '<layer name="top" type="BSDF"><input name="top" type="BSDF" nodename="sheen"/>'
+         '<input name="base" type="BSDF" nodename="schlick"/></layer>'
+         '<mix name="m1" type="BSDF"><input name="fg" type="BSDF" nodename="top"/>'
+         '<input name="bg" type="BSDF" nodename="metal"/><input name="mix" type="float" value="0.5"/></mix>'
+         '<layer name="b" type="BSDF"><input name="top" type="BSDF" nodename="m1"/>'
+         '<input name="base" type="BSDF" nodename="diffuse"/></layer>')
+
+
+@needs_glslang
+def test_a_shader_for_a_scene_without_lights_has_none_of_the_closures_code_for_lights(gen):
+    lit = gen.prepare(material(BSDFS), interface="complete").emit()
+    unlit = gen.prepare(material(BSDFS), interface="complete", lights=False).emit()
+    source = unlit["stages"]["pixel"]
+    assert "u_numActiveLightSources" in lit["stages"]["pixel"] and "lights" not in lit
+    assert unlit["lights"] is False and unlit["hash"] != lit["hash"]
+    for light_code in ("u_numActiveLightSources", "u_lightData", "sampleLightSource", "LightData",
+                       "mx_specular_reflection", "mx_sheen_microfiber", "CLOSURE_TYPE_REFLECTION)\n",
+                       "MX_FEATURE_LIGHTS"):
+        assert light_code not in source, light_code
+    names = {v["name"] for block in unlit["blocks"]["pixel"].values() for v in block}
+    assert not {"u_numActiveLightSources", "u_lightData"} & names
+    assert source.count("\n") < lit["stages"]["pixel"].count("\n")
+    ok, log = glslang(source, "pixel")
+    assert ok, log
+
+
+def test_the_transmission_context_code_is_kept_only_for_surfaces_that_write_that_context(gen):
+    opaque = pixel(gen, material(DIELECTRIC.format(t=0, ior=1.5, mode="R")), interface="specialized")
+    clear = pixel(gen, material(DIELECTRIC.format(t=0, ior=1.5, mode="RT")), interface="specialized")
+    assert "CLOSURE_TYPE_TRANSMISSION, L, V, N, P" not in opaque and "mx_specular_transmission_albedo" not in opaque
+    assert "CLOSURE_TYPE_TRANSMISSION, L, V, N, P" in clear and "mx_specular_transmission_albedo(closureData" in clear

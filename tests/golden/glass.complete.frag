@@ -1206,7 +1206,7 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 
-// Once per shading point (lib/mx_specular.glsl).
+// Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                 int distribution, int scatter_mode, out SpecularLobe lobe)
@@ -1229,7 +1229,19 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     if (lobe.weight == 0.0 || (lobe.scatterMode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
-    if (context == CLOSURE_TYPE_REFLECTION)
+    if (context == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
+        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
+    }
+    else if (transmission)
+    {
+        bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
+        if (lobe.scatterMode != 0)
+            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
+                                                    lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
+    }
+    else  // REFLECTION
     {
         // the light crosses the interface on its way in too
         float NdotL = dot(lobe.N, closureData.L);
@@ -1237,18 +1249,6 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         vec3 reflectedL = mx_specular_albedo(NdotL, lobe.alpha, lobe.fd, vec3(tableAlbedoL));
         bsdf.throughput = mx_specular_throughput(lobe.albedo, lobe.weight) * mx_specular_throughput(reflectedL, lobe.weight);
         bsdf.response = mx_specular_reflection(closureData, lobe) * lobe.tint * lobe.weight;
-    }
-    else if (context == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
-        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
-    }
-    else
-    {
-        bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
-        if (lobe.scatterMode != 0)
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
-                                                    lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
     }
 }
 

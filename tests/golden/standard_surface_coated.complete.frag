@@ -1322,7 +1322,7 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 
-// Once per shading point (lib/mx_specular.glsl).
+// Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                 int distribution, int scatter_mode, out SpecularLobe lobe)
@@ -1345,7 +1345,19 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     if (lobe.weight == 0.0 || (lobe.scatterMode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
-    if (context == CLOSURE_TYPE_REFLECTION)
+    if (context == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
+        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
+    }
+    else if (transmission)
+    {
+        bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
+        if (lobe.scatterMode != 0)
+            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
+                                                    lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
+    }
+    else  // REFLECTION
     {
         // the light crosses the interface on its way in too
         float NdotL = dot(lobe.N, closureData.L);
@@ -1353,18 +1365,6 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         vec3 reflectedL = mx_specular_albedo(NdotL, lobe.alpha, lobe.fd, vec3(tableAlbedoL));
         bsdf.throughput = mx_specular_throughput(lobe.albedo, lobe.weight) * mx_specular_throughput(reflectedL, lobe.weight);
         bsdf.response = mx_specular_reflection(closureData, lobe) * lobe.tint * lobe.weight;
-    }
-    else if (context == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
-        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
-    }
-    else
-    {
-        bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
-        if (lobe.scatterMode != 0)
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
-                                                    lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
     }
 }
 
@@ -1549,7 +1549,11 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
     // from a lamp crosses them on its way in too.
     bsdf.throughput = vec3(max(1.0 - albedo * weight, 0.0));
 
-    if (context == CLOSURE_TYPE_REFLECTION)
+    if (context == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(N) * tint * (albedo * weight);
+    }
+    else  // REFLECTION
     {
         vec3 L = closureData.L;
         float NdotL = dot(N, L);
@@ -1560,10 +1564,6 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
         float f = ltc ? albedo * mx_sheen_ltc(L, V, N, NdotV, r)  // the LTC lobe carries the cosine
                       : mx_sheen_microfiber(NdotL, NdotV, clamp(dot(N, normalize(L + V)), 0.0, 1.0), r);
         bsdf.response = tint * (f * closureData.occlusion * weight);
-    }
-    else
-    {
-        bsdf.response = mx_environment_irradiance(N) * tint * (albedo * weight);
     }
 }
 
@@ -1648,14 +1648,14 @@ void mx_translucent_bsdf(ClosureData closureData, float weight, vec3 color, vec3
         return;
 
     vec3 back = -mx_usable_normal(N, closureData.N);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(back) * max(color, 0.0) * weight;
+    }
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         float cosine = clamp(dot(back, closureData.L), 0.0, 1.0);
         bsdf.response = max(color, 0.0) * (weight * cosine * MX_INV_PI);
-    }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.response = mx_environment_irradiance(back) * max(color, 0.0) * weight;
     }
 }
 
@@ -1718,16 +1718,16 @@ void mx_subsurface_bsdf(ClosureData closureData, float weight, vec3 color, vec3 
 
     N = mx_shading_normal(N, closureData.N, closureData.V);
     vec3 albedo = clamp(color, 0.0, 1.0);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
+    }
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         // Occlusion hides the light that arrives directly, not the light diffused from around.
         float direct = clamp(dot(N, closureData.L), 0.0, 1.0);
         float visible = 1.0 - direct * (1.0 - closureData.occlusion);
         bsdf.response = mx_subsurface_scatter(N, closureData.L, closureData.P, albedo, max(radius, 0.0)) * (visible * weight);
-    }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
     }
 }
 
@@ -1911,7 +1911,13 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     float sigma = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        vec3 albedo = energy_compensation ? mx_eon_albedo(NdotV, sigma, rho)
+                                          : rho * mx_oren_nayar_albedo_renormalised(NdotV, sigma);
+        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
+    }
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         vec3 L = closureData.L;
         float NdotL = dot(N, L);
@@ -1921,12 +1927,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
         vec3 f = energy_compensation ? mx_eon(NdotV, NdotL, LdotV, sigma, rho)
                                      : rho * mx_oren_nayar(NdotV, NdotL, LdotV, sigma);
         bsdf.response = f * (closureData.occlusion * weight * NdotL * MX_INV_PI);
-    }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        vec3 albedo = energy_compensation ? mx_eon_albedo(NdotV, sigma, rho)
-                                          : rho * mx_oren_nayar_albedo_renormalised(NdotV, sigma);
-        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
     }
 }
 

@@ -705,18 +705,6 @@ vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
            (DG * closureData.occlusion / (4.0 * lobe.Vt.z));
 }
 
-// What the lobe reflects of the environment as seen through it along the real view direction:
-// the prepared samples, or new ones where retro-reflection prepared them along the mirrored view.
-vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
-{
-    if (!lobe.retroreflective)
-        return lobe.environmentAlbedo;
-    vec3 albedo;
-    mx_environment_samples(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X, lobe.alpha, lobe.fd,
-                           false, albedo);
-    return albedo;
-}
-
 // What the layers below receive of light from one direction, given what the lobe reflects of it.
 vec3 mx_specular_throughput(vec3 reflected, float weight)
 {
@@ -888,7 +876,7 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
 // <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
 // dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 
-// Once per shading point (lib/mx_specular.glsl).
+// Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
                                 int distribution, int scatter_mode, out SpecularLobe lobe)
@@ -911,7 +899,12 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     if (lobe.weight == 0.0 || (lobe.scatterMode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
-    if (context == CLOSURE_TYPE_REFLECTION)
+    if (context == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
+        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
+    }
+    else  // REFLECTION
     {
         // the light crosses the interface on its way in too
         float NdotL = dot(lobe.N, closureData.L);
@@ -919,15 +912,6 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         vec3 reflectedL = mx_specular_albedo(NdotL, lobe.alpha, lobe.fd, vec3(tableAlbedoL));
         bsdf.throughput = mx_specular_throughput(lobe.albedo, lobe.weight) * mx_specular_throughput(reflectedL, lobe.weight);
         bsdf.response = mx_specular_reflection(closureData, lobe) * lobe.tint * lobe.weight;
-    }
-    else if (context == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
-        bsdf.response = lobe.environment * lobe.tint * lobe.weight;
-    }
-    else
-    {
-        bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
     }
 }
 
@@ -946,7 +930,12 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     float sigma = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        vec3 albedo = rho;
+        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
+    }
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         vec3 L = closureData.L;
         float NdotL = dot(N, L);
@@ -956,11 +945,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
         vec3 f = rho;  // every diffuse lobe of this shader is smooth: both models are Lambert at sigma 0
         bsdf.response = f * (closureData.occlusion * weight * NdotL * MX_INV_PI);
     }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        vec3 albedo = rho;
-        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
-    }
 }
 
 // <layer>: vertical layering. The base is lit by what the top layer lets through.
@@ -969,10 +953,6 @@ void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result
 {
     result.response = top.response + base.response * top.throughput;
     result.throughput = top.throughput * base.throughput;
-    // What a transmitting top lets through enters the base, so what is seen through the layers is
-    // the base's view through the top, not the top's own view through itself.
-    if (closureData.closureType == CLOSURE_TYPE_TRANSMISSION)
-        result.response = base.response * top.throughput;
 }
 
 // <point_light>: light from `light.position`, falling off as (distance + 1)^-decay_rate.

@@ -15,7 +15,12 @@ void mx_burley_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, f
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     float r = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(N) * rho * (mx_burley_albedo_renormalised(NdotV, r) * weight);
+    }
+#ifdef MX_FEATURE_LIGHTS
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         vec3 L = closureData.L;
         float NdotL = dot(N, L);
@@ -24,8 +29,5 @@ void mx_burley_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, f
         float LdotH = clamp(dot(L, normalize(L + V)), 0.0, 1.0);
         bsdf.response = rho * (mx_burley(NdotV, NdotL, LdotH, r) * closureData.occlusion * weight * NdotL * MX_INV_PI);
     }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.response = mx_environment_irradiance(N) * rho * (mx_burley_albedo_renormalised(NdotV, r) * weight);
-    }
+#endif
 }

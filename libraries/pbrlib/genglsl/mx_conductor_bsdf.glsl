@@ -21,6 +21,10 @@ void mx_conductor_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF bs
     int context = closureData.closureType;
     if (lobe.weight == 0.0 || (context != CLOSURE_TYPE_REFLECTION && context != CLOSURE_TYPE_INDIRECT))
         return;
+#ifdef MX_FEATURE_LIGHTS
     vec3 reflected = context == CLOSURE_TYPE_REFLECTION ? mx_specular_reflection(closureData, lobe) : lobe.environment;
+#else
+    vec3 reflected = lobe.environment;
+#endif
     bsdf.response = reflected * lobe.weight;
 }

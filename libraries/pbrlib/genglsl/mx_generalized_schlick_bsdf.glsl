@@ -5,7 +5,7 @@
 #pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
 #pragma shadergen feature REFRACTION unless scatter_mode == R
 
-// Once per shading point (lib/mx_specular.glsl).
+// Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_generalized_schlick_bsdf_prepare(ClosureData closureData, float weight, vec3 color0, vec3 color82, vec3 color90,
                                          float exponent, vec2 roughness, bool retroreflective, float thinfilm_thickness,
                                          float thinfilm_ior, vec3 N, vec3 X, int distribution, int scatter_mode,
@@ -15,9 +15,11 @@ void mx_generalized_schlick_bsdf_prepare(ClosureData closureData, float weight, 
                                      max(color90, 0.0), exponent, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, vec3(1.0), roughness, retroreflective, fd, N, X, distribution,
                                     scatter_mode);
+#ifdef MX_FEATURE_LIGHTS
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
     vec3 tableAlbedo = mx_ggx_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.F0, fd.F90);
     lobe.albedo = mx_specular_albedo(NdotV, lobe.alpha, fd, tableAlbedo);
+#endif
 }
 
 // In each context. Each channel passes to the layers below what this lobe does not reflect in
@@ -29,21 +31,13 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, SpecularLobe lobe, ino
     if (lobe.weight == 0.0 || (lobe.scatterMode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
 
-    if (context == CLOSURE_TYPE_REFLECTION)
-    {
-        // the light crosses the interface on its way in too
-        float NdotL = dot(lobe.N, closureData.L);
-        vec3 tableAlbedoL = mx_ggx_albedo(NdotL, mx_ggx_isotropic_alpha(lobe.alpha), lobe.fd.F0, lobe.fd.F90);
-        vec3 reflectedL = mx_specular_albedo(NdotL, lobe.alpha, lobe.fd, tableAlbedoL);
-        bsdf.throughput = mx_specular_throughput(lobe.albedo, lobe.weight) * mx_specular_throughput(reflectedL, lobe.weight);
-        bsdf.response = mx_specular_reflection(closureData, lobe) * lobe.weight;
-    }
-    else if (context == CLOSURE_TYPE_INDIRECT)
+    if (context == CLOSURE_TYPE_INDIRECT)
     {
         bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
         bsdf.response = lobe.environment * lobe.weight;
     }
-    else
+#ifdef MX_FEATURE_TRANSMISSION
+    else if (transmission)
     {
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
 #ifdef MX_FEATURE_REFRACTION
@@ -57,4 +51,16 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, SpecularLobe lobe, ino
         }
 #endif
     }
+#endif
+#ifdef MX_FEATURE_LIGHTS
+    else  // REFLECTION
+    {
+        // the light crosses the interface on its way in too
+        float NdotL = dot(lobe.N, closureData.L);
+        vec3 tableAlbedoL = mx_ggx_albedo(NdotL, mx_ggx_isotropic_alpha(lobe.alpha), lobe.fd.F0, lobe.fd.F90);
+        vec3 reflectedL = mx_specular_albedo(NdotL, lobe.alpha, lobe.fd, tableAlbedoL);
+        bsdf.throughput = mx_specular_throughput(lobe.albedo, lobe.weight) * mx_specular_throughput(reflectedL, lobe.weight);
+        bsdf.response = mx_specular_reflection(closureData, lobe) * lobe.weight;
+    }
+#endif
 }

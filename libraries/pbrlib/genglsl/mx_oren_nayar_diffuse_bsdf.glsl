@@ -17,7 +17,18 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     float sigma = mx_clamp_finite(roughness, 0.0, 1.0);
     vec3 rho = max(color, 0.0);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+#ifdef MX_FEATURE_ROUGH_DIFFUSE
+        vec3 albedo = energy_compensation ? mx_eon_albedo(NdotV, sigma, rho)
+                                          : rho * mx_oren_nayar_albedo_renormalised(NdotV, sigma);
+#else
+        vec3 albedo = rho;
+#endif
+        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
+    }
+#ifdef MX_FEATURE_LIGHTS
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         vec3 L = closureData.L;
         float NdotL = dot(N, L);
@@ -32,14 +43,5 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
 #endif
         bsdf.response = f * (closureData.occlusion * weight * NdotL * MX_INV_PI);
     }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-#ifdef MX_FEATURE_ROUGH_DIFFUSE
-        vec3 albedo = energy_compensation ? mx_eon_albedo(NdotV, sigma, rho)
-                                          : rho * mx_oren_nayar_albedo_renormalised(NdotV, sigma);
-#else
-        vec3 albedo = rho;
 #endif
-        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
-    }
 }

@@ -21,7 +21,12 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
     // from a lamp crosses them on its way in too.
     bsdf.throughput = vec3(max(1.0 - albedo * weight, 0.0));
 
-    if (context == CLOSURE_TYPE_REFLECTION)
+    if (context == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(N) * tint * (albedo * weight);
+    }
+#ifdef MX_FEATURE_LIGHTS
+    else  // REFLECTION
     {
         vec3 L = closureData.L;
         float NdotL = dot(N, L);
@@ -33,8 +38,5 @@ void mx_sheen_bsdf(ClosureData closureData, float weight, vec3 color, float roug
                       : mx_sheen_microfiber(NdotL, NdotV, clamp(dot(N, normalize(L + V)), 0.0, 1.0), r);
         bsdf.response = tint * (f * closureData.occlusion * weight);
     }
-    else
-    {
-        bsdf.response = mx_environment_irradiance(N) * tint * (albedo * weight);
-    }
+#endif
 }

@@ -13,15 +13,17 @@ void mx_subsurface_bsdf(ClosureData closureData, float weight, vec3 color, vec3 
 
     N = mx_shading_normal(N, closureData.N, closureData.V);
     vec3 albedo = clamp(color, 0.0, 1.0);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
+    }
+#ifdef MX_FEATURE_LIGHTS
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         // Occlusion hides the light that arrives directly, not the light diffused from around.
         float direct = clamp(dot(N, closureData.L), 0.0, 1.0);
         float visible = 1.0 - direct * (1.0 - closureData.occlusion);
         bsdf.response = mx_subsurface_scatter(N, closureData.L, closureData.P, albedo, max(radius, 0.0)) * (visible * weight);
     }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.response = mx_environment_irradiance(N) * albedo * weight;
-    }
+#endif
 }

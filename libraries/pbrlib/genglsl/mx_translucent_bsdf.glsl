@@ -10,13 +10,15 @@ void mx_translucent_bsdf(ClosureData closureData, float weight, vec3 color, vec3
         return;
 
     vec3 back = -mx_usable_normal(N, closureData.N);
-    if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
+    if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
+    {
+        bsdf.response = mx_environment_irradiance(back) * max(color, 0.0) * weight;
+    }
+#ifdef MX_FEATURE_LIGHTS
+    else if (closureData.closureType == CLOSURE_TYPE_REFLECTION)
     {
         float cosine = clamp(dot(back, closureData.L), 0.0, 1.0);
         bsdf.response = max(color, 0.0) * (weight * cosine * MX_INV_PI);
     }
-    else if (closureData.closureType == CLOSURE_TYPE_INDIRECT)
-    {
-        bsdf.response = mx_environment_irradiance(back) * max(color, 0.0) * weight;
-    }
+#endif
 }
