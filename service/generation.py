@@ -32,7 +32,7 @@ class GenerateParams:
     document_format: str = "mtlx"  # or a USD upload: usda (text) or usdz (a package)
     keep: tuple[str, ...] = ()  # inputs left live by `specialized`
     values: str = "listing"  # or "source": the document's values written into the initializers
-    environment: str | None = None  # the environment lighting only (fis | prefilter), for a thumbnail
+    environment: str | None = None  # the environment lighting only (fis | prefilter | hybrid), for a thumbnail
     lights: bool = True  # False for a thumbnail, which draws no light rig: no light loop is written
 
 

@@ -11,7 +11,7 @@ VALUES_DOC = ("listing: uniforms initialised to the nodedef's values, so materia
               "one source (the document's values are in the listing); source: the document's values written into "
               "the initializers too")
 Mesh = Literal["sphere", "plane"]
-EnvMethod = Literal["fis", "prefilter"]
+EnvMethod = Literal["fis", "prefilter", "hybrid"]
 INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
                  "specialized: values folded into the code and whatever cannot contribute removed (zero-weight "
                  "lobes, untaken branches, unused functions, uniforms and vertex data), inputs in `keep` left live")
@@ -52,8 +52,9 @@ class ThumbnailRequest(BaseModel):
                                                             "complete from the smallest shader")
     size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
     mesh: Mesh = "sphere"
-    env_method: EnvMethod = Field("fis", description="environment lighting: fis (16 importance samples per pixel) "
-                                  "or prefilter (a GGX-prefiltered map and a DFG table: one lookup)")
+    env_method: EnvMethod = Field("fis", description="environment lighting: fis (16 importance samples per pixel), "
+                                  "prefilter (a GGX-prefiltered map and a DFG table: one lookup) or hybrid (that "
+                                  "lookup corrected by 4 samples of the prefiltered map)")
 
 
 # -- responses ---------------------------------------------------------------------------------

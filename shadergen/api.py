@@ -157,8 +157,8 @@ class Generator:
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
         that stay live uniforms in the `specialized` interface. `values`: "listing" (uniforms initialised
         to nodedef values, the document's values only in the listing) or "source" (written into the
-        initializers too). `environment`: "fis" or "prefilter" writes only that way of lighting by
-        the environment (a renderer then needs no MX_ENV_PREFILTER of its own); None writes both.
+        initializers too). `environment`: "fis", "prefilter" or "hybrid" writes only that way of
+        lighting by the environment (a renderer then needs no MX_ENV_* macros of its own); None writes all.
         `lights`: False for a renderer that draws no light rig (thumbnails): no light loop is written,
         and the record says `"lights": false`."""
         target_for(target)  # unknown targets fail before any work

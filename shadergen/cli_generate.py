@@ -33,8 +33,9 @@ def add_arguments(p) -> None:
                         "only in values share one source; the document's values are in the listing) or source "
                         "(the document's values written into the initializers too)")
     p.add_argument("--env-method", choices=ENVIRONMENTS, default=None,
-                   help="write only this way of lighting by the environment: fis (filtered importance sampling) or "
-                        "prefilter (a prefiltered map); default both, chosen by a renderer's MX_ENV_PREFILTER")
+                   help="write only this way of lighting by the environment: fis (filtered importance sampling), "
+                        "prefilter (a prefiltered map) or hybrid (that map corrected by a few samples); default all, "
+                        "chosen by a renderer's MX_ENV_PREFILTER and MX_ENV_HYBRID")
     p.add_argument("--no-lights", action="store_true",
                    help="for a renderer that draws no light rig (thumbnails): no light loop is written (less code "
                         "to compile); the record says \"lights\": false")

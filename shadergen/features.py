@@ -22,7 +22,8 @@ resolves the sections before a target sees the text: a needed section stays (its
 any other is dropped, with an `#else` side taking its place. `#pragma shadergen` lines are removed.
 Other preprocessor conditionals are left to the compiler, except a compiler macro the caller has
 decided: a shader generated for one way of environment lighting (ENVIRONMENTS) has the
-MX_ENV_PREFILTER conditional resolved too, so the other way's code is not in it at all.
+MX_ENV_PREFILTER and MX_ENV_HYBRID conditionals resolved too, so the other ways' code is not in it
+at all.
 
 Two features are the shading contexts' rather than a closure node's: LIGHTS (MX_FEATURE_LIGHTS, the
 closures' code for the REFLECTION context of a light) is in every shader generated with a light
@@ -42,8 +43,10 @@ DECLARATION = re.compile(r"^\s*#\s*pragma\s+shadergen\s+feature\s+(\w+)(?:\s+unl
                          re.M)
 PRAGMA = re.compile(r"^\s*#\s*pragma\s+shadergen\b")
 CONDITIONAL = re.compile(r"^\s*#\s*(ifdef|ifndef|if|else|elif|endif)\b\s*(\w*)")
-ENVIRONMENTS = ("fis", "prefilter")  # filtered importance sampling, or a prefiltered map
-ENVIRONMENT_MACRO = "MX_ENV_PREFILTER"  # what a renderer defines to light by the prefiltered map
+# Ways of environment lighting, each with the compiler macros a renderer defines for it: filtered
+# importance sampling; a prefiltered map, one lookup; that lookup corrected by a few samples.
+ENVIRONMENT_MACROS = {"fis": (), "prefilter": ("MX_ENV_PREFILTER",), "hybrid": ("MX_ENV_PREFILTER", "MX_ENV_HYBRID")}
+ENVIRONMENTS = tuple(ENVIRONMENT_MACROS)
 LIGHTS_FEATURE = "LIGHTS"  # closure code for lights: needed by shaders with a light loop
 TRANSMISSION_FEATURE = "TRANSMISSION"  # closure code for the transmission context: needed by surfaces writing it
 COMPARE = {"==": operator.eq, "!=": operator.ne, "<=": operator.le, ">=": operator.ge, "<": operator.lt, ">": operator.gt}
@@ -102,7 +105,10 @@ def graph_features(graph: Graph) -> set[str]:
 
 def environment_macros(environment: str | None) -> frozenset[tuple[str, bool]]:
     """The compiler macros a shader for `environment` (ENVIRONMENTS, None: either) has decided."""
-    return frozenset() if environment is None else frozenset({(ENVIRONMENT_MACRO, environment == "prefilter")})
+    if environment is None:
+        return frozenset()
+    defined = ENVIRONMENT_MACROS[environment]
+    return frozenset((macro, macro in defined) for macros in ENVIRONMENT_MACROS.values() for macro in macros)
 
 
 @lru_cache(maxsize=4096)

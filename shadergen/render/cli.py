@@ -48,10 +48,12 @@ def add_arguments(parser) -> None:
     parser.add_argument("--env", metavar="LATLONG", help="lat-long radiance map (.hdr/.exr); default: procedural sky")
     parser.add_argument("--irr", metavar="LATLONG", help="lat-long irradiance map; default: computed from --env")
     parser.add_argument("--env-intensity", type=float, default=1.0, help="u_envLightIntensity")
-    parser.add_argument("--env-samples", type=int, default=16, help="u_envRadianceSamples (with --env-method fis)")
+    parser.add_argument("--env-samples", type=int, help="u_envRadianceSamples (with --env-method fis or hybrid; "
+                                                        "default 16 and 4)")
     parser.add_argument("--env-method", choices=ENV_METHODS, default="fis",
-                        help="environment lighting: fis (filtered importance sampling, --env-samples per pixel) or "
-                             "prefilter (a GGX-prefiltered map and a DFG table: one lookup)")
+                        help="environment lighting: fis (filtered importance sampling, --env-samples per pixel), "
+                             "prefilter (a GGX-prefiltered map and a DFG table: one lookup) or hybrid (that lookup "
+                             "corrected by --env-samples samples of the prefiltered map)")
     parser.add_argument("--lights", metavar="LIGHTS.mtlx", help="light rig: a document of lightshader nodes")
     parser.add_argument("--search-path", action="append", default=[], metavar="DIR",
                         help="folder to resolve texture names in after the document's own (repeatable)")

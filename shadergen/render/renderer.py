@@ -11,21 +11,23 @@ import time
 
 import numpy as np
 
+from shadergen.features import ENVIRONMENT_MACROS, ENVIRONMENTS
+
 from .base import EnvironmentTextures, RenderResult, SceneRenderer
 from .context import gl_context
 from .errors import RenderError
-from .inputs import ENV_SAMPLERS, ENV_SAMPLES, lighting_values, light_rig, record_values, texture_requests
+from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, record_values, texture_requests
 from .prefilter import prefiltered_chain
 from .program import Program
 from .record import check_record, source_digest
 from .textures import GL_CLAMP_TO_EDGE, Sampling, bind, upload
 
-# How the generated code lights with the environment: by filtered importance sampling of the
-# radiance map (u_envRadianceSamples), or from its GGX-prefiltered chain, which the pixel stage
-# reads when compiled with PREFILTER_DEFINE (libraries/pbrlib/genglsl/lib/mx_environment_prefilter.glsl).
-# A record generated for one of them (its "environment", shadergen/features.py) has only that one.
-ENV_METHODS = ("fis", "prefilter")
-PREFILTER_DEFINE = "MX_ENV_PREFILTER"
+# How the generated code lights with the environment, and the macros its pixel stage is compiled
+# with (shadergen/features.py): by filtered importance sampling of the radiance map
+# (u_envRadianceSamples); from its GGX-prefiltered chain, one lookup; or that lookup corrected by
+# u_envRadianceSamples samples of the chain (libraries/pbrlib/genglsl/lib/mx_environment_prefilter.glsl).
+# A record generated for one of them (its "environment") has only that one.
+ENV_METHODS = ENVIRONMENTS
 # Lat-long maps wrap around in longitude and stop at the poles.
 ENV_SAMPLING = Sampling(wrap_v=GL_CLAMP_TO_EDGE)
 
@@ -40,13 +42,13 @@ class Renderer(SceneRenderer):
         super().__init__(*args, **kwargs)
         self._framebuffers: dict[int, object] = {}
 
-    def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int = ENV_SAMPLES,
+    def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int | None = None,
                env_method: str = "fis", lights=None, supersample: int = 1, document_dir: str | None = None,
                frames: int = 1) -> RenderResult:
         """Draw `record` on `mesh` ('sphere', 'plane' or an .obj path), lit by `env` (None: the
-        procedural sky; a lat-long file path; or an Environment) with `env_method` (ENV_METHODS),
-        and `lights` (None, a light-rig .mtlx path, or a list of Light). `frames` > 1 draws again
-        to time a steady frame."""
+        procedural sky; a lat-long file path; or an Environment) with `env_method` (ENV_METHODS) and
+        `env_samples` (None: the method's default, inputs.DEFAULT_ENV_SAMPLES), and `lights` (None, a
+        light-rig .mtlx path, or a list of Light). `frames` > 1 draws again to time a steady frame."""
         start = time.perf_counter()
         vertex, pixel = check_record(record)
         element = record.get("element")
@@ -57,8 +59,9 @@ class Renderer(SceneRenderer):
         if record.get("environment", env_method) != env_method:
             raise RenderError("invalid_request", f"the record was generated for env_method {record['environment']!r} "
                               f"only, not {env_method!r}", element)
-        if env_method == "prefilter":
-            pixel = _with_define(pixel, PREFILTER_DEFINE)
+        env_samples = env_samples_for(env_method, env_samples)
+        for macro in ENVIRONMENT_MACROS[env_method]:
+            pixel = _with_define(pixel, macro)
         ctx = gl_context(self.lp_threads)
         import moderngl
 
@@ -67,7 +70,7 @@ class Renderer(SceneRenderer):
                                                          lambda: Program(ctx, vertex, pixel, element))
         vao = program.vertex_array(ctx, *self._mesh(mesh))
         environment, textures = self._environment(env, functools.partial(upload, ctx))
-        radiance = self._prefiltered(ctx, textures) if env_method == "prefilter" else textures.radiance
+        radiance = textures.radiance if env_method == "fis" else self._prefiltered(ctx, textures)
         if document_dir is None and isinstance(record.get("document"), str):
             document_dir = os.path.dirname(os.path.abspath(record["document"]))
 

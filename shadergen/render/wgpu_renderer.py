@@ -17,7 +17,7 @@ import numpy as np
 
 from .base import RenderResult, SceneRenderer
 from .errors import RenderError
-from .inputs import ENV_SAMPLERS, ENV_SAMPLES, lighting_values, light_rig, record_values, texture_requests
+from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, record_values, texture_requests
 from .record import check_record, source_digest
 from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling, mip_chain
 from .wgpu_device import wgpu_device
@@ -48,7 +48,7 @@ class WgpuRenderer(SceneRenderer):
         self._targets: dict[int, tuple] = {}
         self._samplers: dict[Sampling, object] = {}
 
-    def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int = ENV_SAMPLES,
+    def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int | None = None,
                env_method: str = "fis", lights=None, supersample: int = 1, document_dir: str | None = None,
                frames: int = 1) -> RenderResult:
         """As Renderer.render; the environment is always importance-sampled (`env_method` fis)."""
@@ -70,7 +70,7 @@ class WgpuRenderer(SceneRenderer):
 
         warnings: list[str] = []
         rig = light_rig(record, lights)
-        values = lighting_values(environment, env_samples, rig, depth_zero_to_one=True)
+        values = lighting_values(environment, env_samples_for(env_method, env_samples), rig, depth_zero_to_one=True)
         if rig and not any(m["type"] == "LightData" for m in program.layout["pixel"]["members"]):
             warnings.append("the shader reads no u_lightData (generated without lights?): the light rig has no effect")
         values.update(record_values(record, set(values) | set(ENV_SAMPLERS)))

@@ -110,7 +110,12 @@ def test_an_environment_method_resolves_the_compilers_own_conditional(gen):
     assert "#ifdef MX_ENV_PREFILTER" not in fis["stages"]["pixel"] and "MX_DFG_C1" not in fis["stages"]["pixel"]
     assert "mx_ggx_sample_visible_normal" in fis["stages"]["pixel"] and fis["environment"] == "fis"
     assert "MX_DFG_C1" in prefilter["stages"]["pixel"] and "mx_ggx_sample_visible_normal" not in prefilter["stages"]["pixel"]
-    assert len({both["hash"], fis["hash"], prefilter["hash"]}) == 3
+    hybrid = gen.prepare(document, interface="specialized", environment="hybrid").emit()
+    assert "#ifdef MX_ENV_" not in hybrid["stages"]["pixel"] + prefilter["stages"]["pixel"]
+    assert "mx_environment_corrected_radiance(" in hybrid["stages"]["pixel"] and "MX_DFG_C1" in hybrid["stages"]["pixel"]
+    assert "mx_environment_corrected_radiance(" not in prefilter["stages"]["pixel"] + fis["stages"]["pixel"]
+    assert "#ifdef MX_ENV_HYBRID" in both["stages"]["pixel"] and hybrid["environment"] == "hybrid"
+    assert len({both["hash"], fis["hash"], prefilter["hash"], hybrid["hash"]}) == 4
     with pytest.raises(ShaderGenError) as error:
         gen.prepare(document, environment="pathtrace")
     assert error.value.code == "unsupported_environment"

@@ -508,7 +508,8 @@ vec4 mx_environment_dfg_rule(float NdotV, float alpha)
 // in Unreal Engine 4"): the radiance map convolved with the GGX lobe per roughness (computed by the
 // renderer, shadergen/render/prefilter.py, with N = V = R), times the BRDF's directional albedo
 // from our DFG table (mx_environment_dfg.glsl, tools/fit_dfg.py). One lookup instead of
-// u_envRadianceSamples; used when the shader is compiled with MX_ENV_PREFILTER defined, and then
+// u_envRadianceSamples, or, with MX_ENV_HYBRID defined too, that lookup corrected by a few samples
+// of the chain. Used when the shader is compiled with MX_ENV_PREFILTER defined, and then
 // u_envRadiance must hold the prefiltered chain.
 
 // Mip level of the prefiltered chain holding the GGX lobe of `alpha`: level 0 is the unfiltered
@@ -521,36 +522,150 @@ float mx_prefiltered_lod(float alpha)
     return alpha < firstAlpha ? alpha / firstAlpha : min(log2(alpha) + roughest, roughest);
 }
 
-// Light leaving a point with normal N towards V after one GGX bounce of roughness alpha, or, with
-// fd.refraction, after passing through a solid sphere of index fd.ior.x; `albedo` as
-// mx_environment_radiance() gives it. The lobe's directional albedo comes from the DFG table's
-// quadrature rule, with F (reflection, times Turquin's multiple-scattering factor 1 + F (1 - E) / E
-// as the sampled path applies it) or with 1 - F averaged over the lobe (refraction).
-vec3 mx_environment_prefiltered_radiance(vec3 N, vec3 V, vec2 alpha, FresnelData fd, out vec3 albedo)
+// The lobe's Fresnel as the DFG table's two-point quadrature rule in VdotH sees it
+// (mx_environment_dfg_rule: cosines x, y, weights z, w), evaluated once per shading point.
+struct LobeFresnel
+{
+    vec4 rule;
+    vec3 F1;  // the reflectance at rule.x
+    vec3 F2;  // and at rule.y
+};
+
+LobeFresnel mx_lobe_fresnel(float NdotV, float avgAlpha, FresnelData fd)
+{
+    vec4 rule = mx_environment_dfg_rule(NdotV, avgAlpha);
+    return LobeFresnel(rule, mx_fresnel_eval(rule.x, fd), mx_fresnel_eval(rule.y, fd));
+}
+
+// The reflectance at VdotH `cosine` on the line through the rule's two points: what weights a
+// sample of the lobe without evaluating the Fresnel model per sample.
+vec3 mx_lobe_fresnel_at(LobeFresnel lf, float cosine)
+{
+    float span = lf.rule.y - lf.rule.x;
+    vec3 slope = (lf.F2 - lf.F1) / (abs(span) < 1.0e-3 ? 1.0e-3 : span);
+    return clamp(lf.F1 + slope * (cosine - lf.rule.x), 0.0, 1.0);
+}
+
+// The fraction of the light arriving over the lobe that it reflects (or, with fd.refraction, lets
+// through) at NdotV, as mx_environment_radiance() gives it as `albedo`: the table's rule with F
+// (reflection, times Turquin's multiple-scattering factor 1 + F (1 - E) / E as the sampled path
+// applies it) or with 1 - F averaged over the lobe (refraction).
+vec3 mx_environment_table_albedo(LobeFresnel lf, float NdotV, FresnelData fd)
+{
+    vec3 reflected = lf.rule.z * lf.F1 + lf.rule.w * lf.F2;
+    float E = max(lf.rule.z + lf.rule.w, MX_EPS);  // the albedo with F = 1
+    if (fd.refraction)
+        return vec3(1.0) - reflected / E;
+    return reflected * (vec3(1.0) + mx_fresnel_eval(NdotV, fd) * ((1.0 - E) / E));
+}
+
+// The direction the split sum reads the lobe along: the mirror direction, or through the sphere.
+vec3 mx_prefiltered_direction(vec3 V, vec3 N, FresnelData fd)
+{
+    if (fd.refraction)
+        return mx_refraction_solid_sphere(-V, N, fd.ior.x);
+    return reflect(-V, N);
+}
+
+#ifdef MX_ENV_HYBRID
+// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
+// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
+mat3 mx_rotation_from_pole(vec3 D)
+{
+    if (D.z < -0.999)
+        return mx_frame_from_normal(D);
+    float k = 1.0 / (1.0 + D.z);
+    return mat3(vec3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
+                vec3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y),
+                D);
+}
+
+// Mip level of the chain for a sample of density `pdf` out of `count`: filtered importance sampling
+// (Colbert & Krivanek 2007) with the chain's GGX lobes as the filter. A sample stands for the solid
+// angle 1 / (count pdf) around it, and the level of alpha covers 4 pi alpha^2 (1 / the peak of its
+// lobe's density D / 4 at N = V): the level of alpha = sqrt(1 / (4 pi count pdf)).
+float mx_prefiltered_sample_lod(float pdf, int count)
+{
+    return mx_prefiltered_lod(min(sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+}
+
+// The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples
+// samples where the lobe differs from the split sum's. The lookup is the mean radiance over the
+// lobe Karis 2013 assumes (N = V = R: symmetric about the mirror direction R, isotropic); the true
+// lobe is stretched and pulled towards N at grazing views, where its error concentrates. The
+// difference of the two lobes' mean radiances is estimated with correlated samples (a control
+// variate, Veach 1997, sect. 2.5.4): each Fibonacci point is drawn through the true lobe (visible
+// normals, weighted by what the sample carries: F G2 / G1, or 1 - F through the surface) and
+// through the symmetric lobe turned from N to R (weighted by its cosine to R, as the chain was
+// convolved), both read at their filtered level. Where the lobes agree (facing views) the two sums
+// cancel and the smooth lookup is kept; at grazing views the samples add what it misses. The table
+// gives the albedo the mean radiance is multiplied by (a ratio estimator: the samples' own albedo
+// estimate, whose error dominates at a few samples, is replaced by its known value); the samples'
+// F only shapes the mean, so it is read off the line through the table's two Fresnel values
+// (mx_lobe_fresnel_at) instead of evaluating the Fresnel model per sample.
+vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float avgAlpha, FresnelData fd,
+                                       LobeFresnel lf)
+{
+    int sampleCount = max(u_envRadianceSamples, 1);
+    mat3 frame = mx_tangent_frame(N, X);
+    vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
+    Vt.z = max(Vt.z, MX_EPS);
+    vec3 Rt = mx_prefiltered_direction(Vt, vec3(0.0, 0.0, 1.0), fd);
+    mat3 toR = mx_rotation_from_pole(normalize(Rt));
+    vec3 lobeRadiance = vec3(0.0), lobeWeights = vec3(0.0), splitRadiance = vec3(0.0);
+    float splitWeights = 0.0;
+    for (int i = 0; i < sampleCount; i++)
+    {
+        vec2 u = mx_fibonacci_point(i, sampleCount);
+        vec3 H = mx_ggx_sample_visible_normal(u, Vt, alpha);
+        vec3 F = mx_lobe_fresnel_at(lf, clamp(dot(Vt, H), MX_EPS, 1.0));
+        vec3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
+        // A sample below the horizon keeps a token weight, so that a lobe whose every sample
+        // falls there still reads the environment around it.
+        vec3 w = fd.refraction ? vec3(1.0) - F : F * max(mx_ggx_sample_weight(Vt, Lt, alpha), 1.0e-4);
+        float pdf = mx_ggx_reflection_pdf(H, Vt, alpha);
+        lobeRadiance += w * mx_envmap_fetch(u_envRadiance, frame * Lt, mx_prefiltered_sample_lod(pdf, sampleCount));
+        lobeWeights += w;
+
+        vec3 Hs = mx_ggx_sample_visible_normal(u, vec3(0.0, 0.0, 1.0), vec2(avgAlpha));
+        vec3 Ls = reflect(vec3(0.0, 0.0, -1.0), Hs);
+        float cosine = max(Ls.z, 1.0e-4);  // a token weight below R's horizon, as above
+        float pdfs = mx_ggx_reflection_pdf(Hs, vec3(0.0, 0.0, 1.0), vec2(avgAlpha));
+        splitRadiance += cosine * mx_envmap_fetch(u_envRadiance, frame * (toR * Ls), mx_prefiltered_sample_lod(pdfs, sampleCount));
+        splitWeights += cosine;
+    }
+    vec3 lookup = mx_envmap_fetch(u_envRadiance, frame * Rt, mx_prefiltered_lod(avgAlpha));
+    vec3 correction = lobeRadiance / max(lobeWeights, vec3(MX_EPS)) - splitRadiance / max(splitWeights, MX_EPS);
+    return max(lookup + correction, vec3(0.0));
+}
+#endif
+
+// Light leaving a point with normal N towards V (tangent X) after one GGX bounce of roughness
+// alpha, or, with fd.refraction, after passing through a solid sphere of index fd.ior.x; `albedo`
+// as mx_environment_radiance() gives it: one lookup along the mirror (or refracted) direction, or
+// with MX_ENV_HYBRID that lookup corrected by samples. Without `fetch` only the albedo, from the
+// table, and no texture reads.
+vec3 mx_environment_prefiltered(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
 {
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     float avgAlpha = clamp(sqrt(alpha.x * alpha.y), 0.0, 1.0);
-    vec4 rule = mx_environment_dfg_rule(NdotV, avgAlpha);
-    vec3 reflected = rule.z * mx_fresnel_eval(rule.x, fd) + rule.w * mx_fresnel_eval(rule.y, fd);
-    float E = max(rule.z + rule.w, MX_EPS);  // the albedo with F = 1
-    vec3 L;
-    if (fd.refraction)
-    {
-        albedo = vec3(1.0) - reflected / E;
-        L = mx_refraction_solid_sphere(-V, N, fd.ior.x);
-    }
-    else
-    {
-        albedo = reflected * (vec3(1.0) + mx_fresnel_eval(NdotV, fd) * ((1.0 - E) / E));
-        L = reflect(-V, N);
-    }
-    return mx_envmap_fetch(u_envRadiance, L, mx_prefiltered_lod(avgAlpha)) * albedo * u_envLightIntensity;
+    LobeFresnel lf = mx_lobe_fresnel(NdotV, avgAlpha, fd);
+    albedo = mx_environment_table_albedo(lf, NdotV, fd);
+    if (!fetch)
+        return vec3(0.0);
+#ifdef MX_ENV_HYBRID
+    vec3 radiance = mx_environment_corrected_radiance(N, V, X, alpha, avgAlpha, fd, lf);
+#else
+    vec3 radiance = mx_envmap_fetch(u_envRadiance, mx_prefiltered_direction(V, N, fd), mx_prefiltered_lod(avgAlpha));
+#endif
+    return radiance * albedo * u_envLightIntensity;
 }
 
 // Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
 // & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
 // sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
-// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl).
+// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl), once
+// or, with MX_ENV_HYBRID too, corrected by u_envRadianceSamples samples of it.
 //
 // Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
@@ -580,7 +695,7 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
 vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
 {
 #ifdef MX_ENV_PREFILTER
-    return mx_environment_prefiltered_radiance(N, V, alpha, fd, albedo);
+    return mx_environment_prefiltered(N, V, X, alpha, fd, fetch, albedo);
 #else
     albedo = vec3(0.0);
     int sampleCount = u_envRadianceSamples;

@@ -35,6 +35,9 @@ def test_env_method_draws_and_caches_apart(client):
     prefiltered = thumbnail(client, "metal.mtlx", size=64, env_method="prefilter")
     assert prefiltered.status_code == 200 and is_png(prefiltered.content, 64)
     assert prefiltered.content != sampled.content
+    corrected = thumbnail(client, "metal.mtlx", size=64, env_method="hybrid")
+    assert corrected.status_code == 200 and is_png(corrected.content, 64)
+    assert corrected.content not in (sampled.content, prefiltered.content)
 
 
 def test_async_job(client):

@@ -1,7 +1,8 @@
 // Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
 // & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
 // sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
-// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl).
+// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl), once
+// or, with MX_ENV_HYBRID too, corrected by u_envRadianceSamples samples of it.
 //
 // Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
@@ -34,7 +35,7 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
 vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
 {
 #ifdef MX_ENV_PREFILTER
-    return mx_environment_prefiltered_radiance(N, V, alpha, fd, albedo);
+    return mx_environment_prefiltered(N, V, X, alpha, fd, fetch, albedo);
 #else
     albedo = vec3(0.0);
     int sampleCount = u_envRadianceSamples;
