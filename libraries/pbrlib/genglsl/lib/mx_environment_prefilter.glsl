@@ -10,14 +10,32 @@
 #include "mx_environment_map.glsl"
 #include "mx_environment_dfg.glsl"
 
-// Mip level of the prefiltered chain holding the GGX lobe of `alpha`: level 0 is the unfiltered
-// map, level l >= 1 the lobe of alpha = 2^(l + 4 - u_envRadianceMips) up to alpha 1 (texels about
-// as wide as the lobe), in between the chain's trilinear filtering blends neighbouring lobes.
-float mx_prefiltered_lod(float alpha)
+// Mip level of the prefiltered chain whose texels are as wide as the GGX lobe of `alpha`: level
+// l >= 1 holds the lobe of alpha = 2^(l + 4 - u_envRadianceMips) up to alpha 1 (texels about as wide
+// as the lobe), level 0 is the unfiltered map, and in between the chain's trilinear filtering
+// blends neighbouring levels.
+float mx_prefiltered_roughest_level()
 {
-    float roughest = max(float(u_envRadianceMips - 4), 1.0);
+    return max(float(u_envRadianceMips - 4), 1.0);
+}
+
+float mx_prefiltered_footprint_lod(float alpha)
+{
+    float roughest = mx_prefiltered_roughest_level();
     float firstAlpha = exp2(1.0 - roughest);
     return alpha < firstAlpha ? alpha / firstAlpha : min(log2(alpha) + roughest, roughest);
+}
+
+// Mip level holding the GGX lobe of `alpha` itself, as mx_prefiltered_footprint_lod() except that
+// a lobe narrower than a third of the unfiltered map's texels (alpha1 / 8, alpha1 the lobe of level
+// 1, whose texels are half as wide as its lobe) reads the unfiltered map alone, and from there the
+// blend with level 1 grows linearly: a fraction alpha / alpha1 of level 1 would spread a bright
+// source, the sun, over a near-mirror's pixels, where the map cannot resolve the lobe anyway.
+float mx_prefiltered_lod(float alpha)
+{
+    float firstAlpha = exp2(1.0 - mx_prefiltered_roughest_level());
+    float sharpest = firstAlpha / 8.0;
+    return alpha < firstAlpha ? max(alpha - sharpest, 0.0) / (firstAlpha - sharpest) : mx_prefiltered_footprint_lod(alpha);
 }
 
 // The lobe's Fresnel as the DFG table's two-point quadrature rule in VdotH sees it
@@ -88,7 +106,7 @@ mat3 mx_rotation_from_pole(vec3 D)
 // lobe's density D / 4 at N = V): the level of alpha = sqrt(1 / (4 pi count pdf)).
 float mx_prefiltered_sample_lod(float pdf, int count)
 {
-    return mx_prefiltered_lod(min(sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+    return mx_prefiltered_footprint_lod(min(sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
 }
 
 // The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples
