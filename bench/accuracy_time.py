@@ -4,15 +4,22 @@
 For each material, our shader and the reference's (the oracle's record), both drawn by our
 Renderer on the sphere in the procedural sky, at environment sample counts 1, 4, 16, 64, 256
 (filtered importance sampling) and, ours only, with the prefiltered environment
-(--env-method prefilter: one lookup in the GGX-prefiltered map, our DFG table; the reference's
-GLSL has no such path). Each point is compared with the same shader's converged image
-(--converged samples, 4096 by default): PSNR over the object's pixels, sRGB-encoded, peak 1, so
-the shading models' own differences do not count, only each one's sampling error. Frame times
-are the steady frame (median of frames after the first), points measured round-robin over
---rounds rounds (every configuration once per round, interleaved), the median kept.
+(--env-method prefilter: one lookup in the GGX-prefiltered map, our DFG table) and the hybrid
+(--env-method hybrid at 2, 4, 8 samples: that lookup corrected by correlated samples of the
+prefiltered map, a control variate); the reference's GLSL has neither. Ours is generated for each
+method (generate --env-method), as render and thumbnails draw it. Each point is compared with
+the same shader's converged image (--converged FIS samples, 4096 by default), as linear float
+framebuffers: PSNR over the object's pixels, clipped to [0, 1] and sRGB-encoded, peak 1 (what a
+viewer sees), and beside it unclipped linear HDR, peak 1 (where a highlight brighter than white,
+the sun in a near-mirror, still counts); the shading models' own differences do not count, only
+each one's sampling error. Frame times are the steady frame (median of frames after the first),
+points measured round-robin over --rounds rounds (every configuration once per round,
+interleaved), the median kept.
 
 Goal: at the reference's 16-sample frame time, our best point that is no slower is at least 6 dB
-closer to its converged image than the reference's 16 samples are to theirs.
+closer to its converged image than the reference's 16 samples are to theirs (the sRGB PSNR).
+Where both are closer than 8-bit quantization noise (EIGHT_BIT_DB) the table says so: no 8-bit
+image can show a difference there.
 
     .venv/bin/python bench/accuracy_time.py [--size 64] [--rounds 3] [--plot out/accuracy_time.png]
 
@@ -40,64 +47,81 @@ MATERIALS = [os.path.join("{corpus}", EXAMPLES, f"standard_surface_{name}.mtlx")
     os.path.join(HERE, "documents", "open_pbr_coated_metal.mtlx"),
     os.path.join(HERE, "documents", "gltf_pbr_painted.mtlx")]
 SAMPLE_COUNTS = (1, 4, 16, 64, 256)
+HYBRID_COUNTS = (2, 4, 8)
+ENV_METHODS = ("fis", "prefilter", "hybrid")
+SHADERS = ("ours", "reference")
 GOAL_SAMPLES, GOAL_DB = 16, 6.0
+# PSNR of uniform quantization noise at 8 bits (step 1/255, variance step^2 / 12): an error below
+# it disappears when the image is stored as 8 bits per channel.
+EIGHT_BIT_DB = 10.0 * math.log10(12.0 * 255.0 ** 2)
 
 
-def psnr(image: np.ndarray, converged: np.ndarray) -> float:
-    """Over the object's pixels, clipped to [0, 1] and sRGB-encoded (what a viewer sees), peak 1."""
+def psnr(image: np.ndarray, converged: np.ndarray, viewed: bool = True) -> float:
+    """Over the object's pixels, peak 1: `viewed` clipped to [0, 1] and sRGB-encoded (what a viewer
+    sees), else the linear HDR values as they are."""
     from shadergen.render.imageio import srgb_encode
 
     covered = converged[..., 3] > 0
-    encoded = [srgb_encode(np.clip(np.nan_to_num(x[..., :3].astype("f8")), 0.0, 1.0)) for x in (image, converged)]
-    mse = float(((encoded[0] - encoded[1])[covered] ** 2).mean())
+    rgb = [np.nan_to_num(x[..., :3].astype("f8")) for x in (image, converged)]
+    if viewed:
+        rgb = [srgb_encode(np.clip(x, 0.0, 1.0)) for x in rgb]
+    mse = float(((rgb[0] - rgb[1])[covered] ** 2).mean())
     return float("inf") if mse == 0 else 10.0 * math.log10(1.0 / mse)
 
 
 def points(shader: str) -> list[tuple[str, int]]:
     """(env_method, samples) measured for a shader; prefilter ignores the sample count."""
     fis = [("fis", n) for n in SAMPLE_COUNTS]
-    return fis + [("prefilter", 1)] if shader == "ours" else fis
+    return fis + [("prefilter", 1)] + [("hybrid", n) for n in HYBRID_COUNTS] if shader == "ours" else fis
 
 
 def label(method: str, samples: int) -> str:
-    return "prefilter" if method == "prefilter" else f"fis {samples}"
+    return "prefilter" if method == "prefilter" else f"{method} {samples}"
 
 
-def records(document: str) -> dict[str, dict]:
+def records(document: str) -> dict[tuple[str, str], dict]:
+    """(shader, env_method) -> record: ours generated for each method, the reference's (FIS only)."""
     from shadergen.api import generate_file
 
-    ours_record = generate_file(document)[0]
-    if "error" in ours_record:
-        raise SystemExit(f"{document}: {ours_record['error']}")
+    shaders = {}
+    for method in ENV_METHODS:
+        record = generate_file(document, environment=method)[0]
+        if "error" in record:
+            raise SystemExit(f"{document}: {record['error']}")
+        shaders[("ours", method)] = record
+    element = shaders[("ours", "fis")]["element"]
     reference = [r for r in oracle_records(document, os.path.dirname(document)) if "error" not in r]
-    matching = [r for r in reference if r.get("element") == ours_record["element"]] or reference
+    matching = [r for r in reference if r.get("element") == element] or reference
     if not matching:
         raise SystemExit(f"the oracle gave no record for {document}")
-    return {"ours": ours_record, "reference": matching[0]}
+    shaders[("reference", "fis")] = matching[0]
+    return shaders
 
 
 def measure(renderer, document: str, args) -> list[dict]:
     shaders = records(document)
     render_options = dict(size=args.size, document_dir=os.path.dirname(document))
-    converged = {name: renderer.render(rec, env_samples=args.converged, **render_options).rgba
-                 for name, rec in shaders.items()}
+    converged = {name: renderer.render(shaders[(name, "fis")], env_samples=args.converged, **render_options).rgba
+                 for name in SHADERS}
     times: dict[tuple, list[float]] = {}
     images: dict[tuple, np.ndarray] = {}
     for _ in range(args.rounds):
-        for name, rec in shaders.items():
+        for name in SHADERS:
             for method, samples in points(name):
-                result = renderer.render(rec, env_method=method, env_samples=samples, frames=args.frames,
-                                         **render_options)
+                result = renderer.render(shaders[(name, method)], env_method=method, env_samples=samples,
+                                         frames=args.frames, **render_options)
                 times.setdefault((name, method, samples), []).append(result.timings_ms["frame"])
                 images[(name, method, samples)] = result.rgba
-    element = shaders["ours"]["element"]
+    element = shaders[("ours", "fis")]["element"]
     rows = [{"material": element, "shader": name, "method": method, "samples": samples,
              "frame_ms": statistics.median(times[(name, method, samples)]),
-             "psnr": psnr(images[(name, method, samples)], converged[name])}
-            for name in shaders for method, samples in points(name)]
+             "psnr": psnr(images[(name, method, samples)], converged[name]),
+             "psnr_hdr": psnr(images[(name, method, samples)], converged[name], viewed=False)}
+            for name in SHADERS for method, samples in points(name)]
     rows.append({"material": element, "shader": "ours vs reference", "method": "converged",
                  "samples": args.converged, "frame_ms": float("nan"),
-                 "psnr": psnr(converged["ours"], converged["reference"])})
+                 "psnr": psnr(converged["ours"], converged["reference"]),
+                 "psnr_hdr": psnr(converged["ours"], converged["reference"], viewed=False)})
     return rows
 
 
@@ -107,8 +131,10 @@ def goal(rows: list[dict]) -> dict:
     ours = [r for r in rows if r["shader"] == "ours" and r["frame_ms"] <= reference["frame_ms"]]
     best = max(ours, key=lambda r: r["psnr"]) if ours else None
     gain = best["psnr"] - reference["psnr"] if best else float("nan")
+    below_8bit = best is not None and min(best["psnr"], reference["psnr"]) >= EIGHT_BIT_DB
     return {"material": reference["material"], "budget_ms": reference["frame_ms"], "reference_db": reference["psnr"],
-            "ours": best, "gain": gain, "met": gain >= GOAL_DB}
+            "reference_hdr_db": reference["psnr_hdr"], "ours": best, "gain": gain, "met": gain >= GOAL_DB,
+            "below_8bit": below_8bit}
 
 
 def fmt(value: float, digits: int = 1) -> str:
@@ -118,21 +144,27 @@ def fmt(value: float, digits: int = 1) -> str:
 def print_tables(all_rows: list[dict], goals: list[dict], args) -> None:
     print(f"# steady frame time and PSNR against each shader's {args.converged}-sample render "
           f"({args.size}x{args.size}, median of {args.rounds} interleaved rounds of {args.frames} frames)")
-    print(f"{'material':<28} {'shader':<18} {'point':<10} {'frame ms':>9} {'PSNR dB':>8}")
+    print(f"{'material':<28} {'shader':<18} {'point':<10} {'frame ms':>9} {'PSNR dB':>8} {'HDR dB':>7}")
     for r in all_rows:
         print(f"{r['material']:<28} {r['shader']:<18} {label(r['method'], r['samples']):<10} "
-              f"{fmt(r['frame_ms'], 2):>9} {fmt(r['psnr']):>8}")
+              f"{fmt(r['frame_ms'], 2):>9} {fmt(r['psnr']):>8} {fmt(r['psnr_hdr']):>7}")
     print()
-    print(f"# goal: at the reference's {GOAL_SAMPLES}-sample frame time, ours >= {GOAL_DB:.0f} dB closer to converged")
+    print(f"# goal: at the reference's {GOAL_SAMPLES}-sample frame time, ours >= {GOAL_DB:.0f} dB closer to converged "
+          f"(sRGB PSNR; HDR: the linear PSNR of the same points); 8-bit: both closer than 8-bit quantization noise "
+          f"({EIGHT_BIT_DB:.1f} dB)")
     print(f"{'material':<28} {'ref 16 ms':>9} {'ref 16 dB':>9} {'ours point':<10} {'ours ms':>8} {'ours dB':>8} "
-          f"{'gain dB':>8} {'met':>4}")
+          f"{'gain dB':>8} {'met':>4} {'8-bit':>5} {'HDR gain':>8}")
     for g in goals:
-        best = g["ours"] or {"method": "-", "samples": 0, "frame_ms": float("nan"), "psnr": float("nan")}
+        best = g["ours"] or {"method": "-", "samples": 0, "frame_ms": float("nan"), "psnr": float("nan"),
+                             "psnr_hdr": float("nan")}
         print(f"{g['material']:<28} {fmt(g['budget_ms'], 2):>9} {fmt(g['reference_db']):>9} "
               f"{label(best['method'], best['samples']) if g['ours'] else '-':<10} {fmt(best['frame_ms'], 2):>8} "
-              f"{fmt(best['psnr']):>8} {fmt(g['gain']):>8} {'yes' if g['met'] else 'no':>4}")
+              f"{fmt(best['psnr']):>8} {fmt(g['gain']):>8} {'yes' if g['met'] else 'no':>4} "
+              f"{'yes' if g['below_8bit'] else '':>5} {fmt(best['psnr_hdr'] - g['reference_hdr_db']):>8}")
     met = sum(g["met"] for g in goals)
-    print(f"goal met for {met} of {len(goals)} materials")
+    invisible = sum(g["below_8bit"] and not g["met"] for g in goals)
+    print(f"goal met for {met} of {len(goals)} materials; of the others, {invisible} where the reference's "
+          f"{GOAL_SAMPLES} samples and ours are both below 8-bit quantization noise")
 
 
 def plot(all_rows: list[dict], path: str, args) -> None:
@@ -152,6 +184,12 @@ def plot(all_rows: list[dict], path: str, args) -> None:
             for r in fis:
                 ax.annotate(str(r["samples"]), (r["frame_ms"], r["psnr"]), fontsize=7, xytext=(3, -9),
                             textcoords="offset points", color=colour)
+        hybrid = [r for r in all_rows if r["material"] == material and r["method"] == "hybrid"]
+        ax.plot([r["frame_ms"] for r in hybrid], [r["psnr"] for r in hybrid], "s-", color="tab:purple",
+                label="ours hybrid")
+        for r in hybrid:
+            ax.annotate(str(r["samples"]), (r["frame_ms"], r["psnr"]), fontsize=7, xytext=(3, 4),
+                        textcoords="offset points", color="tab:purple")
         for r in all_rows:
             if r["material"] == material and r["method"] == "prefilter":
                 ax.plot([r["frame_ms"]], [r["psnr"]], "*", markersize=14, color="tab:green", label="ours prefilter")
