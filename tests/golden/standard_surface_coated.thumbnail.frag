@@ -295,7 +295,8 @@ vec3 mx_environment_irradiance(vec3 N)
 // Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
 // & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
 // sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
-// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl).
+// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl), once
+// or, with MX_ENV_HYBRID too, corrected by u_envRadianceSamples samples of it.
 //
 // Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
