@@ -32,7 +32,11 @@ def wgpu_device(lp_threads: int | None = None):
     os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")  # Mesa's Vulkan WSI layer complains without one
     try:
         import wgpu
+        from wgpu.backends.wgpu_native.extras import set_instance_extras
 
+        # Vulkan only: probing wgpu's OpenGL back end makes its own EGL context current on this
+        # thread, and the GL renderer's context in the same process then fails every glCreateProgram.
+        set_instance_extras(backends=["Vulkan"])
         adapter = wgpu.gpu.request_adapter_sync(power_preference="high-performance")
         missing = [f for f in FEATURES if f not in adapter.features]
         if missing:

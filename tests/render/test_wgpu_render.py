@@ -129,3 +129,25 @@ def test_the_command_line_draws_with_wgpu(tmp_path, wgpu_renderer):
                               "--backend", "wgpu", "--npy", "p.npy", "--env-method", "prefilter"],
                              capture_output=True, text=True, cwd=tmp_path, timeout=600)
     assert refused.returncode == 1 and "invalid_request" in refused.stderr and "Traceback" not in refused.stderr
+
+
+GL_AFTER_WGPU = '''
+from shadergen.api import Generator
+from shadergen.render import Renderer
+from shadergen.render.wgpu_device import wgpu_device
+gen, gl = Generator(), Renderer(search_paths=[])
+gl.render(gen.prepare(TEXTURED, target="glsl").emit(), size=8)
+wgpu_device()
+image = gl.render(gen.prepare(LIT, target="glsl").emit(), size=8).rgba
+print(float(image[4, 4, 3]))
+'''
+
+
+def test_the_gl_renderer_still_compiles_after_the_wgpu_device_is_made(wgpu_renderer):
+    """wgpu probes its OpenGL back end unless told not to, which leaves its own EGL context current
+    on the thread: the GL renderer's next program then fails to link ("cannot create program").
+    A fresh process, so that the GL context surely exists before the device."""
+    script = f"TEXTURED = {TEXTURED!r}\nLIT = {LIT!r}\n" + GL_AFTER_WGPU
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert float(run.stdout.strip().splitlines()[-1]) == 1.0
