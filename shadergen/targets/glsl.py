@@ -4,6 +4,7 @@ A Syntax knows nothing of graphs; the generator asks it how to spell things.
 """
 import math
 import re
+from functools import lru_cache
 
 from ..types import TYPES, default_value
 
@@ -150,6 +151,22 @@ class EsslSyntax(Syntax):
     vertex_data_block = False  # ESSL 3.00 has no in/out interface blocks
 
 
+# `void <lobe>_prepare(<parameters>)`; the word boundary before `void` is checked by hand, since a
+# leading \b would stop the regex engine from scanning for the literal.
+PREPARE_FUNCTION = re.compile(r"void\s+(\w+)_prepare\s*\(([^)]*)\)")
+
+
+@lru_cache(maxsize=256)
+def prepare_functions(source: str) -> dict[str, str]:
+    """Lobe name -> the parameter list of its first `<lobe>_prepare` definition in the source (one
+    scan per library source, not a pattern compiled per lobe)."""
+    found: dict[str, str] = {}
+    for m in PREPARE_FUNCTION.finditer(source):
+        if m.start() == 0 or not (source[m.start() - 1].isalnum() or source[m.start() - 1] == "_"):
+            found.setdefault(m.group(1), m.group(2))
+    return found
+
+
 class ClosureConvention:
     """How the GLSL closure functions behave, read from their source: which shading contexts a
     lobe answers, and what a lobe gives at zero weight."""
@@ -161,10 +178,10 @@ class ClosureConvention:
     def prepared_state(self, source: str, function: str) -> str | None:
         """The type of the state `<function>_prepare` writes (its last parameter, `out`), where the
         source prepares the lobe once per shading point; None where it does not."""
-        found = re.search(rf"\bvoid\s+{re.escape(function)}_prepare\s*\(([^)]*)\)", source)
-        if found is None:
+        parameters = prepare_functions(source).get(function)
+        if parameters is None:
             return None
-        last = found.group(1).split(",")[-1].split()
+        last = parameters.split(",")[-1].split()
         return last[1] if len(last) == 3 and last[0] == "out" else None
 
     def empty_at_zero_weight(self, source: str, function: str) -> bool:
