@@ -9,14 +9,12 @@ becomes a `surfacematerial` element (see usd_network.py for the networks); the d
 import os
 import posixpath
 import re
-import tempfile
 from contextlib import contextmanager
 
 from .document import Document
 from .element import Element
 from .errors import ShaderGenError
 from .library import Library, Scope
-from .usd_network import NetworkTranslator
 
 USD_SUFFIXES = (".usda", ".usdc", ".usd", ".usdz")
 UPLOAD_FORMATS = ("usda", "usdz")
@@ -149,6 +147,8 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
     if document_format == "usdz":
         if not data.startswith(b"PK\x03\x04"):
             raise ShaderGenError("invalid_document", "the upload is not a usdz package (a zip archive)", "<document>")
+        import tempfile  # here, like usd-core and the translator: a MaterialX-only process never loads them
+
         with tempfile.TemporaryDirectory(prefix="shadergen-usdz-") as folder:
             package = os.path.join(folder, "upload.usdz")
             with open(package, "wb") as f:
@@ -163,6 +163,8 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
 
 
 def _translate(layer, library: Library, path: str | None, assets: AssetPaths) -> Document:
+    from .usd_network import NetworkTranslator
+
     _, _, Usd, UsdShade = _pxr()
     with usd_errors(path or "<document>"):
         stage = Usd.Stage.Open(layer)
