@@ -6,8 +6,10 @@ every library file, the folder, the generator's code), so a cold process reads o
 instead of parsing XML. The cache names source files relative to the library folder. Documents may declare their own
 nodedefs, implementations and nodegraph implementations: `Scope` layers a document over a library.
 """
+import gc
 import json
 import os
+from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
 
@@ -108,11 +110,12 @@ class Library(Index):
         files = [p for p in library_files(root) if p.suffix == ".mtlx"]
         content_hash = output_key(root)
         cached = cache_dir() / f"library-{content_hash[:24]}.json"
-        roots = _read_cache(cached, root)
-        if roots is None:
-            roots = [parse_document(p.read_bytes(), path=str(p)).root for p in files]
-            _write_cache(cached, roots, root)
-        return cls(root, files, content_hash, roots)
+        with collection_paused():
+            roots = _read_cache(cached, root)
+            if roots is None:
+                roots = [parse_document(p.read_bytes(), path=str(p)).root for p in files]
+                _write_cache(cached, roots, root)
+            return cls(root, files, content_hash, roots)
 
     def target_chain(self, target: str) -> list[str]:
         chain = []
@@ -149,6 +152,20 @@ def _write_cache(path: Path, roots: list[Element], root: Path) -> None:
         os.replace(tmp, path)  # atomic: concurrent processes never read half a file
     except OSError:
         pass  # a read-only home is not fatal: the next process parses again
+
+
+@contextmanager
+def collection_paused():
+    """The cyclic garbage collector paused: a library is tens of thousands of new containers and
+    no cycles, which the collector would otherwise rescan every few hundred allocations (a cold
+    `generate` of carpaint ran half of its collections while loading the library)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 @lru_cache(maxsize=None)
