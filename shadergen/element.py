@@ -1,4 +1,5 @@
 """The element tree every layer reads: a MaterialX element with its category, attributes and name path."""
+import json
 
 
 class Element:
@@ -7,13 +8,14 @@ class Element:
     __slots__ = ("category", "name", "attrs", "_children", "_pending", "parent", "_by_name", "source")
 
     def __init__(self, category: str, attrs: dict, parent: "Element | None" = None, source: str | None = None,
-                 pending: list | None = None):
+                 pending: list | str | None = None):
         self.category = category
         self.name = attrs.get("name", "")
         self.attrs = attrs
         self._children: list[Element] | None = None if pending else []
-        # Children still in their cached [category, attrs, children] form: a library holds
-        # thousands of elements and a shader reads a few dozen, so they are built when first read.
+        # Children still in their cached [category, attrs, children] form (or that list as JSON
+        # text): a library holds thousands of elements and a shader reads a few dozen, so they are
+        # built when first read.
         self._pending = pending
         self.parent = parent
         self._by_name: dict[str, Element] | None = None
@@ -22,7 +24,10 @@ class Element:
     @property
     def children(self) -> list["Element"]:
         if self._children is None:
-            self._children = [Element(c, a, self, self.source, kids) for c, a, kids in self._pending]
+            pending = self._pending
+            if isinstance(pending, str):  # the library cache keeps a definition's children as JSON text
+                pending = json.loads(pending)
+            self._children = [Element(c, a, self, self.source, kids) for c, a, kids in pending]
             self._pending = None
         return self._children
 

@@ -7,6 +7,7 @@ instead of parsing XML. The cache names source files relative to the library fol
 nodedefs, implementations and nodegraph implementations: `Scope` layers a document over a library.
 """
 import gc
+import hashlib
 import json
 import os
 from contextlib import contextmanager
@@ -129,16 +130,33 @@ def _to_json(e: Element) -> list:
     return [e.category, e.attrs, [_to_json(c) for c in e.children]]
 
 
+def _definitions_to_json(root: Element) -> list:
+    """A library file: its top-level elements with their children as JSON text, which Element
+    decodes when they are first read (a shader reads a few dozen of some 1,700 definitions)."""
+    return [root.category, root.attrs,
+            [[d.category, d.attrs, json.dumps([_to_json(c) for c in d.children], separators=(",", ":"))
+              if d.children else []] for d in root.children]]
+
+
 def _from_json(data: list, source: str | None) -> Element:
     category, attrs, children = data
     return Element(category, attrs, None, source, children)
 
 
+# The cache file is the JSON array ["<sha256 of the payload>", <payload>]: the digest is checked
+# before anything is read, so a damaged file is rebuilt instead of failing when a definition's
+# children are decoded later.
+_DIGEST_HEAD = len('["') + 64 + len('",')
+
+
 def _read_cache(path: Path, root: Path) -> list[Element] | None:
     try:
         with open(path, "rb") as f:
-            data = json.loads(f.read())
-        return [_from_json(d, str(root / src)) for src, d in data]
+            data = f.read()
+        payload = data[_DIGEST_HEAD:-1]
+        if data[2:_DIGEST_HEAD - 2] != hashlib.sha256(payload).hexdigest().encode():
+            return None
+        return [_from_json(d, str(root / src)) for src, d in json.loads(payload)]
     except (OSError, ValueError, TypeError):
         return None  # missing or corrupt: rebuilt from the .mtlx files
 
@@ -147,8 +165,9 @@ def _write_cache(path: Path, roots: list[Element], root: Path) -> None:
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        relative = [[os.path.relpath(r.source, root), _to_json(r)] for r in roots]
-        tmp.write_text(json.dumps(relative, separators=(",", ":")))
+        relative = [[os.path.relpath(r.source, root), _definitions_to_json(r)] for r in roots]
+        payload = json.dumps(relative, separators=(",", ":")).encode()
+        tmp.write_bytes(b'["' + hashlib.sha256(payload).hexdigest().encode() + b'",' + payload + b"]")
         os.replace(tmp, path)  # atomic: concurrent processes never read half a file
     except OSError:
         pass  # a read-only home is not fatal: the next process parses again

@@ -45,7 +45,19 @@ def test_parsed_library_is_cached_on_disk_and_rebuilt_when_corrupt(tmp_path, mon
     cached = list(cache_dir().glob("library-*.json"))
     assert len(cached) == 1 and cached[0].name.startswith(f"library-{first.content_hash[:24]}")
     json.loads(cached[0].read_text())  # a JSON file, never a pickle
+    text = cached[0].read_text()
     cached[0].write_text("{corrupt")
     again = Library.load()
     assert again.content_hash == first.content_hash and len(again.nodedefs) == len(first.nodedefs)
     assert Generator(again).prepare(doc('<sin name="s" type="float"/><output name="o" type="float" nodename="s"/>')).emit()
+    # Damage that is still JSON (a definition's children, decoded only when read) is caught by the
+    # file's digest up front: the library is rebuilt, never broken later.
+    assert cached[0].read_text() == text
+    damaged = text.replace('\\"name\\":\\"in\\"', '\\"name\\":\\"in', 1)
+    assert damaged != text
+    json.loads(damaged)
+    cached[0].write_text(damaged)
+    rebuilt = Library.load()
+    assert [i.name for i in rebuilt.nodedefs["ND_sin_float"].children] == \
+        [i.name for i in first.nodedefs["ND_sin_float"].children]
+    assert cached[0].read_text() == text
