@@ -170,3 +170,18 @@ def test_the_transmission_context_code_is_kept_only_for_surfaces_that_write_that
     clear = pixel(gen, material(DIELECTRIC.format(t=0, ior=1.5, mode="RT")), interface="specialized")
     assert "CLOSURE_TYPE_TRANSMISSION, L, V, N, P" not in opaque and "mx_specular_transmission_albedo" not in opaque
     assert "CLOSURE_TYPE_TRANSMISSION, L, V, N, P" in clear and "mx_specular_transmission_albedo(closureData" in clear
+
+
+@needs_glslang
+def test_retro_reflection_brings_its_own_samples_of_the_view_through_the_layer_only_where_it_can_be_set(gen):
+    lobe = '<dielectric_bsdf name="b" type="BSDF"><input name="retroreflective" type="boolean" value="{r}"/>' \
+           '</dielectric_bsdf>'
+    folded = pixel(gen, material(lobe.format(r="false")), interface="specialized")
+    retro = pixel(gen, material(lobe.format(r="true")), interface="specialized")
+    live = pixel(gen, material(lobe.format(r="false")))  # a uniform in complete: either way at run time
+    shading_model = pixel(gen, doc('<standard_surface name="s" type="surfaceshader"/><surfacematerial name="mat" '
+                                   'type="material"><input name="surfaceshader" type="surfaceshader" nodename="s"/>'
+                                   '</surfacematerial>'))  # its lobes' flags are constants of its nodegraph
+    assert "if (lobe.retroreflective)" not in folded and "if (lobe.retroreflective)" not in shading_model
+    assert "if (lobe.retroreflective)" in retro and "if (lobe.retroreflective)" in live
+    assert glslang(shading_model, "pixel")[0] and glslang(retro, "pixel")[0]

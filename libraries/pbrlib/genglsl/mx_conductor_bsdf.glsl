@@ -3,6 +3,7 @@
 #include "lib/mx_specular.glsl"
 #pragma shadergen feature FRESNEL_CONDUCTOR
 #pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
+#pragma shadergen feature RETROREFLECTIVE unless retroreflective == false
 
 // Once per shading point (lib/mx_specular.glsl).
 void mx_conductor_bsdf_prepare(ClosureData closureData, float weight, vec3 ior_n, vec3 ior_k, vec2 roughness,

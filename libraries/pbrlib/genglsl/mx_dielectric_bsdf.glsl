@@ -4,6 +4,7 @@
 #include "lib/mx_albedo_dielectric.glsl"
 #pragma shadergen feature FRESNEL_DIELECTRIC
 #pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
+#pragma shadergen feature RETROREFLECTIVE unless retroreflective == false
 #pragma shadergen feature REFRACTION unless scatter_mode == R
 #pragma shadergen feature DIELECTRIC_LEAVING unless ior >= 1
 

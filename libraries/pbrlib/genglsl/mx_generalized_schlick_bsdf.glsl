@@ -3,6 +3,7 @@
 #include "lib/mx_specular.glsl"
 #pragma shadergen feature FRESNEL_SCHLICK
 #pragma shadergen feature THIN_FILM unless thinfilm_thickness <= 0
+#pragma shadergen feature RETROREFLECTIVE unless retroreflective == false
 #pragma shadergen feature REFRACTION unless scatter_mode == R
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.

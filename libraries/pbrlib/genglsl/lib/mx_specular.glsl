@@ -89,12 +89,18 @@ vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
 // the prepared samples, or new ones where retro-reflection prepared them along the mirrored view.
 vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
 {
-    if (!lobe.retroreflective)
-        return lobe.environmentAlbedo;
-    vec3 albedo;
-    mx_environment_samples(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X, lobe.alpha, lobe.fd,
-                           false, albedo);
-    return albedo;
+#ifdef MX_FEATURE_RETROREFLECTIVE
+    // Written only where a lobe can be retro-reflective (a generation-time feature): compilers fold
+    // a flag in a struct late, after their front end has inlined and optimised the loop it guards.
+    if (lobe.retroreflective)
+    {
+        vec3 albedo;
+        mx_environment_samples(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X, lobe.alpha,
+                               lobe.fd, false, albedo);
+        return albedo;
+    }
+#endif
+    return lobe.environmentAlbedo;
 }
 
 // What the layers below receive of light from one direction, given what the lobe reflects of it.
