@@ -175,7 +175,7 @@ def test_the_transmission_context_code_is_kept_only_for_surfaces_that_write_that
 @needs_glslang
 def test_retro_reflection_brings_its_own_samples_of_the_view_through_the_layer_only_where_it_can_be_set(gen):
     lobe = '<dielectric_bsdf name="b" type="BSDF"><input name="retroreflective" type="boolean" value="{r}"/>' \
-           '</dielectric_bsdf>'
+           '<input name="scatter_mode" type="string" value="RT"/></dielectric_bsdf>'  # a transmission context
     folded = pixel(gen, material(lobe.format(r="false")), interface="specialized")
     retro = pixel(gen, material(lobe.format(r="true")), interface="specialized")
     live = pixel(gen, material(lobe.format(r="false")))  # a uniform in complete: either way at run time
