@@ -255,7 +255,11 @@ def image_fallback(file: Input | Socket):
     folded into the code, so a renderer could not find it among the uniforms): what the node gives
     when its file is missing or unreadable. None when the node has no constant default."""
     default = file.owner.inputs.get("default")
-    while default is not None and default.socket is not None:  # a body's input bound to its node's
+    seen = set()
+    # a body's input bound to its node's; a body kept as a function binds the node's own input to
+    # its parameter, whose origin is that input again
+    while default is not None and default.socket is not None and id(default) not in seen:
+        seen.add(id(default))
         default = default.socket.origin
     if default is None or default.connection is not None:
         return None
