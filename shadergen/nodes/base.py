@@ -14,6 +14,7 @@ from ..element import Element
 from ..errors import ShaderGenError
 from ..features import node_features
 from ..library import Library, read_source
+from ..targets.glsl import starts_word
 from ..targets.glsl_target import PLACEHOLDER
 
 REGISTRY: dict[str, type["NodeImpl"]] = {}
@@ -98,8 +99,7 @@ class SourceFunctionImpl(NodeImpl):
 
 def takes_derivatives(source: str) -> bool:
     """Whether the source calls dFdx, dFdy, fwidth or texture (as whole names)."""
-    return any(m.start() == 0 or not (source[m.start() - 1].isalnum() or source[m.start() - 1] == "_")
-               for m in DERIVATIVES.finditer(source))
+    return any(starts_word(source, m.start()) for m in DERIVATIVES.finditer(source))
 
 
 def _source_path(elem: Element, file: str) -> str:

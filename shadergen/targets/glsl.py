@@ -162,9 +162,15 @@ def prepare_functions(source: str) -> dict[str, str]:
     scan per library source, not a pattern compiled per lobe)."""
     found: dict[str, str] = {}
     for m in PREPARE_FUNCTION.finditer(source):
-        if m.start() == 0 or not (source[m.start() - 1].isalnum() or source[m.start() - 1] == "_"):
+        if starts_word(source, m.start()):
             found.setdefault(m.group(1), m.group(2))
     return found
+
+
+def starts_word(source: str, index: int) -> bool:
+    """Whether an identifier of `source` can begin at `index` (what a leading \\b would check; the
+    scans that need it do without \\b, which stops the regex engine from searching for a literal)."""
+    return index == 0 or not (source[index - 1].isalnum() or source[index - 1] == "_")
 
 
 class ClosureConvention:
