@@ -162,15 +162,21 @@ def _read_cache(path: Path, root: Path) -> list[Element] | None:
 
 
 def _write_cache(path: Path, roots: list[Element], root: Path) -> None:
+    relative = [[os.path.relpath(r.source, root), _definitions_to_json(r)] for r in roots]
+    payload = json.dumps(relative, separators=(",", ":")).encode()
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        relative = [[os.path.relpath(r.source, root), _definitions_to_json(r)] for r in roots]
-        payload = json.dumps(relative, separators=(",", ":")).encode()
-        tmp.write_bytes(b'["' + hashlib.sha256(payload).hexdigest().encode() + b'",' + payload + b"]")
-        os.replace(tmp, path)  # atomic: concurrent processes never read half a file
+        write_atomically(path, b'["' + hashlib.sha256(payload).hexdigest().encode() + b'",' + payload + b"]")
     except OSError:
         pass  # a read-only home is not fatal: the next process parses again
+
+
+def write_atomically(path: Path, data: bytes) -> None:
+    """`data` as the file `path` (its folder made if need be), written beside it and then renamed:
+    concurrent processes never read half a file."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(f".{os.getpid()}.tmp")
+    tmp.write_bytes(data)
+    os.replace(tmp, path)
 
 
 @contextmanager

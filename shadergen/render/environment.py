@@ -11,6 +11,7 @@ The procedural sky and computed irradiance maps are kept on disk (the cache fold
 they are computed from, so that a thumbnail process reads them instead of computing them.
 """
 import hashlib
+import io
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -60,7 +61,7 @@ def computed(name: str, compute) -> np.ndarray:
     """The float32 map `compute()` returns, read from the cache folder when an earlier process kept
     it: the file is named by `name` and this module's source (a change to how maps are computed
     is never served from an old file). A cache that cannot be read or written is computed past."""
-    from shadergen.library import cache_dir  # the generator's cache folder, imported only here
+    from shadergen.library import cache_dir, write_atomically  # the generator's cache, imported only here
 
     digest = hashlib.sha256(Path(__file__).read_bytes() + name.encode()).hexdigest()[:24]
     path = cache_dir() / "environments" / f"{digest}.npy"
@@ -69,12 +70,10 @@ def computed(name: str, compute) -> np.ndarray:
     except (OSError, ValueError):
         pass  # missing or corrupt: computed again
     image = np.ascontiguousarray(compute(), "f4")
+    file = io.BytesIO()
+    np.save(file, image)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        with open(tmp, "wb") as f:
-            np.save(f, image)
-        os.replace(tmp, path)  # atomic: concurrent processes never read half a file
+        write_atomically(path, file.getvalue())
     except OSError:
         pass
     return image
