@@ -101,7 +101,14 @@ def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], se
     identifiers used by the roots and those lines. Items keep the spacing of their sources: one
     blank line where the source had one or where dropped items come between, none between
     neighbours that had none (a run of #defines)."""
-    section = _section(tuple(function_lines))
+    out, used = _reduced(_section(tuple(function_lines)), roots)
+    return list(out), set(used)
+
+
+@lru_cache(maxsize=256)
+def _reduced(section: Section, roots: str) -> tuple[tuple[str, ...], frozenset[str]]:
+    """A section reduced to what `roots` use: shaders of one topology have the same main, request
+    after request, so the walk and the reassembly are done once for each."""
     keep, used = section.reachable(roots)
     out: list[str] = []
     previous = None
@@ -116,7 +123,7 @@ def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], se
         previous = k
     if out and out[-1].strip():
         out.append("")
-    return out, used
+    return tuple(out), frozenset(used)
 
 
 def identifiers(text: str) -> set[str]:
