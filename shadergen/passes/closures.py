@@ -52,7 +52,8 @@ def prune_closures(graph: Graph, convention) -> int:
                 pass_through(graph, node, node.inputs[kept], reading)
                 count += 1
                 break
-    graph.nodes = topological_order(graph.outputs)
+    if count:  # unchanged, the order stands
+        graph.nodes = topological_order(graph.outputs)
     for node in graph.nodes:
         if node.category == "surface" and "bsdf" in node.inputs:
             node.facts["transmission"] = any(transmits(n, convention) for n in closure_tree(node.inputs["bsdf"]))

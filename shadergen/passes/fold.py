@@ -19,7 +19,8 @@ def fold_constants(graph: Graph) -> int:
     for node in graph.nodes:
         if fold_node(node, reading) or simplify(graph, node, reading):
             count += 1
-    graph.nodes = topological_order(graph.outputs)
+    if count:  # unchanged, the order stands
+        graph.nodes = topological_order(graph.outputs)
     return count
 
 

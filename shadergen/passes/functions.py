@@ -20,6 +20,7 @@ def share_functions(graph: Graph, uniform_flow) -> int:
     depths = sorted({_depth(n.instance) for n in graph.nodes if n.instance is not None}, reverse=True)
     for depth in depths:  # innermost first
         bodies = _bodies(graph)
+        changed = False
         groups: dict[tuple, list[Instance]] = {}
         for inst, body in bodies.values():
             if _depth(inst) == depth:
@@ -35,7 +36,9 @@ def share_functions(graph: Graph, uniform_flow) -> int:
             for inst in group:
                 _call(graph, readers, inst, function, uniform_flow)
             calls += len(group)
-        graph.nodes = topological_order(graph.outputs)
+            changed = True
+        if changed:
+            graph.nodes = topological_order(graph.outputs)
     return calls
 
 

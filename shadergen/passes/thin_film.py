@@ -24,6 +24,8 @@ LOBE_INPUTS = {"thickness": "thinfilm_thickness", "ior": "thinfilm_ior"}  # the 
 def push_thin_films(graph: Graph) -> int:
     """Returns how many lobes took a film."""
     films = [n for n in graph.nodes if n.category == FILM]
+    if not films:
+        return 0
     count = 0
     for film in films:
         lobes = [n for n in closure_tree(film.inputs["base"], stop=lambda n: n.category == FILM)
