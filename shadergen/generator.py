@@ -29,7 +29,8 @@ class Namer:
         self.used: set[str] = set()
 
     def __call__(self, wanted: str) -> str:
-        name = re.sub(r"\W", "_", wanted) or "v"
+        # most names are identifiers already (node and input names): only the others are cleaned
+        name = wanted if wanted.isascii() and wanted.isidentifier() else re.sub(r"\W", "_", wanted) or "v"
         if name[0].isdigit() or name.startswith(self.reserved_prefixes):
             name = "v_" + name
         base, n = name, 1
@@ -201,11 +202,19 @@ class EmitContext:
         prepared states (nodes/lobes.py)."""
         emit_lobes(self, inp, point_arguments)
 
+    def closure_nodes(self, inp: Input) -> list[Node]:
+        """The closure nodes `inp` reads, readers first (nodes/lobes.py): walked once per shader,
+        read by the shading point and by every context."""
+        key = ("closure_nodes", id(inp))
+        if key not in self.memo:
+            self.memo[key] = closure_nodes(inp)
+        return self.memo[key]
+
     def emit_closures(self, inp: Input, context: str) -> str:
         """Evaluate the closure nodes upstream of `inp` in one shading context (seed's
         SgNodeContext): the caller has declared `closureData` for that context. Data nodes feeding
         the closures were computed once, before. Returns the expression of the result."""
-        nodes = closure_nodes(inp)[::-1]  # what a closure reads before it
+        nodes = self.closure_nodes(inp)[::-1]  # what a closure reads before it
         saved = self.closure
         self.closure = context
         try:

@@ -66,6 +66,9 @@ class Writer:
         self.lines.append(self.unit * self.depth + text if text else "")
 
     def extend(self, text: str) -> None:
+        if not self.depth:  # library files, written whole at the top level: their lines as they are
+            self.lines.extend(text_lines(text))
+            return
         indent = self.unit * self.depth
         self.lines.extend(indent + ln if ln else "" for ln in text_lines(text))
 

@@ -50,7 +50,7 @@ def emit_lobes(ctx, inp: Input, point_arguments) -> None:
     """The weights, then the prepared states, of the lobes `inp` reads. `point_arguments()`
     declares the shading point's closure data on first use and returns what a prepare call takes
     before the lobe's inputs."""
-    nodes = closure_nodes(inp)
+    nodes = ctx.closure_nodes(inp)
     emit_weights(ctx, nodes)
     ctx.prepared_lobes = {}
     for node in reversed(nodes):  # in the order the contexts call them
