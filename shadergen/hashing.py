@@ -27,7 +27,7 @@ def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str
     public = {id(p): i for i, p in enumerate(graph.interface)}
 
     def value(port):
-        return None if port.public else _jsonable(port.value)
+        return None if port.public else port.value
 
     uniforms = [[p.owner.name, p.name, p.type, p.path, p.meta] for p in graph.interface]
     nodes = []
@@ -48,15 +48,12 @@ def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str
          "environment": graph.environment, "lights": graph.lights,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
          "nodes": nodes, "outputs": outputs, "uniforms": uniforms})
-    values = _canonical([_jsonable(p.value) for p in graph.interface])
+    values = _canonical([p.value for p in graph.interface])
     full = hashlib.sha256(structure + b"\0" + values).hexdigest()
     return full, full if graph.values_in_source else hashlib.sha256(structure).hexdigest()
 
 
 def _canonical(data) -> bytes:
-    """JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally."""
+    """JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally;
+    tuples (vector values) are arrays, as lists are."""
     return json.dumps(data, sort_keys=True, separators=(",", ":"), default=str).encode()
-
-
-def _jsonable(v):
-    return list(v) if isinstance(v, tuple) else v
