@@ -15,13 +15,16 @@ KEY_FORMAT = 2  # bump when the layout of what is hashed changes
 
 
 def generator_fingerprint(package: Path = PACKAGE) -> str:
-    """The generator's code: a new release must never be served records cached by the old one.
-    The renderer is not part of what a record depends on."""
+    """The generator's code: a new release must never be served records cached by the old one."""
     h = hashlib.sha256()
-    for relative in _files_under(package, ".py"):
-        if "render" not in relative.split(os.sep):
-            h.update(relative.encode() + b"\0" + _read(package, relative) + b"\0")
+    for relative in _code_files(package):
+        h.update(relative.encode() + b"\0" + _read(package, relative) + b"\0")
     return h.hexdigest()
+
+
+def _code_files(package: Path) -> list[str]:
+    """The generator's Python files; the renderer is not part of what a record depends on."""
+    return [relative for relative in _files_under(package, ".py") if "render" not in relative.split(os.sep)]
 
 
 def library_files(root: Path) -> list[Path]:
@@ -43,6 +46,22 @@ def _files_under(folder: Path, suffix: str = "") -> list[str]:
 def _read(folder: Path, relative: str) -> bytes:
     with open(os.path.join(folder, relative), "rb") as f:
         return f.read()
+
+
+def file_stamps(root: Path, package: Path = PACKAGE) -> tuple[str, int]:
+    """A digest of the name, size, modification time and inode of every file `output_key` reads,
+    and the newest of those times (ns). Equal stamps mean the same files, unless a file was
+    rewritten within the clock step of its last modification: a caller trusts stamps only of
+    files that were older than that when it read them."""
+    root = Path(root).resolve()
+    h = hashlib.sha256(f"{root}\0{package}\0".encode())
+    newest = 0
+    for folder, names in ((package, _code_files(package)), (root, _files_under(root))):
+        for relative in names:
+            st = os.stat(os.path.join(folder, relative))
+            h.update(f"{relative}\0{st.st_size}\0{st.st_mtime_ns}\0{st.st_ino}\0".encode())
+            newest = max(newest, st.st_mtime_ns)
+    return h.hexdigest(), newest
 
 
 def output_key(root: Path, package: Path = PACKAGE) -> str:

@@ -10,6 +10,7 @@ import gc
 import hashlib
 import json
 import os
+import time
 from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
@@ -17,7 +18,7 @@ from pathlib import Path
 from .document import parse_document
 from .element import Element
 from .errors import ShaderGenError
-from .fingerprint import library_files, output_key
+from .fingerprint import PACKAGE, file_stamps, library_files, output_key
 
 DEFAULT_LIBRARY_ROOT = Path(__file__).resolve().parent.parent / "libraries"
 
@@ -109,7 +110,7 @@ class Library(Index):
     def load(cls, root: Path | None = None) -> "Library":
         root = Path(root or library_root()).resolve()
         files = [p for p in library_files(root) if p.suffix == ".mtlx"]
-        content_hash = output_key(root)
+        content_hash = remembered_output_key(root)
         cached = cache_dir() / f"library-{content_hash[:24]}.json"
         with collection_paused():
             roots = _read_cache(cached, root)
@@ -124,6 +125,34 @@ class Library(Index):
             chain.append(target)
             target = self.targets.get(target)
         return chain
+
+
+# Files modified this recently may still change within their clock step without a new stamp.
+RECENT_NS = 2_000_000_000
+
+
+def remembered_output_key(root: Path, package: Path = PACKAGE) -> str:
+    """fingerprint.output_key, kept in the cache folder in a file named by the stamps of the files
+    it reads: a cold process stats those files instead of reading and hashing them all (a fifth of
+    its time). Any edit of a library or generator file changes its stamps, hence the file looked
+    for; a damaged file is recomputed and rewritten. A key is kept only when every file is older
+    than RECENT_NS, so a later rewrite cannot keep an old stamp."""
+    stamps, newest = file_stamps(root, package)
+    path = cache_dir() / f"output-key-{stamps[:32]}.txt"
+    try:
+        with open(path, encoding="ascii") as f:
+            key, check = f.read().split()
+        if hashlib.sha256(key.encode()).hexdigest() == check:
+            return key
+    except (OSError, ValueError):
+        pass  # missing or damaged: computed again
+    key = output_key(root, package)
+    if newest < time.time_ns() - RECENT_NS:
+        try:
+            write_atomically(path, f"{key} {hashlib.sha256(key.encode()).hexdigest()}\n".encode())
+        except OSError:
+            pass  # a read-only home is not fatal: the next process hashes again
+    return key
 
 
 def _to_json(e: Element) -> list:

@@ -1,13 +1,17 @@
 """Every input that changes generated code moves the output key: library definitions, their GLSL
-sources, the folder they are loaded from and the generator's own code (fingerprint.py)."""
+sources, the folder they are loaded from and the generator's own code (fingerprint.py); the key a
+cold process remembers from those files' stamps follows every edit."""
+import os
 import shutil
+import time
 from pathlib import Path
 
 import pytest
 
+from shadergen import library
 from shadergen.api import Generator
 from shadergen.fingerprint import PACKAGE, output_key
-from shadergen.library import DEFAULT_LIBRARY_ROOT, Library
+from shadergen.library import DEFAULT_LIBRARY_ROOT, Library, remembered_output_key
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "marble_checker.mtlx"
 FRACTAL_SOURCE = Path("stdlib/genglsl/mx_noise_fractal.glsl")
@@ -62,3 +66,57 @@ def test_a_copied_library_emits_its_own_sources(library_copy, tmp_path, monkeypa
     assert MARKER not in original.emit()["stages"]["pixel"]
     for cached in (tmp_path / "cache").glob("library-*.json"):  # sources are named inside their library
         assert str(DEFAULT_LIBRARY_ROOT) not in cached.read_text() and str(library_copy) not in cached.read_text()
+
+
+def aged(folder: Path) -> Path:
+    """Every file under `folder` last modified an hour ago: old enough for its stamp to be trusted."""
+    then = time.time() - 3600
+    for path in folder.rglob("*"):
+        os.utime(path, (then, then))
+    return folder
+
+
+@pytest.fixture
+def remembered(library_copy, tmp_path, monkeypatch):
+    """(library, package, cache folder): aged copies, and the cache folder the key is kept in."""
+    monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path / "cache"))
+    package = aged(Path(shutil.copytree(PACKAGE, tmp_path / "shadergen")))
+    return aged(library_copy), package, tmp_path / "cache"
+
+
+def test_a_later_process_reads_the_remembered_key_without_hashing(remembered, monkeypatch):
+    root, package, cache = remembered
+    key = remembered_output_key(root, package)
+    assert key == output_key(root, package) and len(list(cache.glob("output-key-*.txt"))) == 1
+
+    def hashing(*_):
+        raise AssertionError("the files were hashed again")
+    monkeypatch.setattr(library, "output_key", hashing)
+    assert remembered_output_key(root, package) == key
+
+
+def test_an_edited_file_moves_the_remembered_key(remembered):
+    root, package, _ = remembered
+    before = remembered_output_key(root, package)
+    for edit in (root / FRACTAL_SOURCE, package / "graph.py"):
+        edited(edit, MARKER if edit.suffix == ".glsl" else "# a change in the generator")
+        after = remembered_output_key(root, package)
+        assert after != before and after == output_key(root, package)
+        before = after
+
+
+def test_a_damaged_remembered_key_is_computed_again_and_rewritten(remembered):
+    root, package, cache = remembered
+    key = remembered_output_key(root, package)
+    [kept] = cache.glob("output-key-*.txt")
+    for damage in ("0" * 64 + " " + "0" * 64, key[:40], "", "\xff not ascii"):
+        kept.write_bytes(damage.encode("latin-1"))
+        assert remembered_output_key(root, package) == key
+        assert kept.read_text().split()[0] == key
+
+
+def test_a_key_of_files_modified_just_now_is_not_kept(remembered):
+    root, package, cache = remembered
+    edited(root / FRACTAL_SOURCE, MARKER)  # a rewrite within its clock step could keep this stamp
+    assert remembered_output_key(root, package) == output_key(root, package)
+    assert not list(cache.glob("output-key-*.txt"))
