@@ -78,12 +78,14 @@ class InlineImpl(NodeImpl):
 
 class SourceFunctionImpl(NodeImpl):
     """A function in a library source file. Its files are read and expanded when it is made:
-    made once per library (nodes.implementation_for), they are read once per library."""
+    made once per library (nodes.implementation_for), they are read once per library, and files
+    several sources include (the closures' common code) once for all of them."""
 
-    def __init__(self, elem: Element):
+    def __init__(self, elem: Element, library: Library | None = None):
         self.path = _source_path(elem, elem.get("file"))
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
-        self.files = tuple(expand_includes(self.path, set()))  # (path, text) of it and its includes, dependencies first
+        # (path, text) of it and its includes, dependencies first
+        self.files = tuple(expand_includes(self.path, set(), library))
         self.source = self.files[-1][1]  # the text of its own file, without its #include lines
         self.uses_derivatives = any(takes_derivatives(text) for _, text in self.files)
 
@@ -111,20 +113,31 @@ def _source_path(elem: Element, file: str) -> str:
     return path
 
 
-def expand_includes(path: str, seen: set[str]) -> list[tuple[str, str]]:
-    """A source file and the files it #includes, dependencies first, each once (by path)."""
+def expand_includes(path: str, seen: set[str], library: Library | None = None) -> list[tuple[str, str]]:
+    """A source file and the files it #includes, dependencies first, each once (by path). With a
+    `library`, each file is read once for the library's life (its files are part of its key)."""
     if path in seen:
         return []
     seen.add(path)
-    text = read_source(path)
+    includes, text = library.fact(("source", path), lambda: read_included(path)) if library is not None \
+        else read_included(path)
     out = []
+    for inc_path in includes:
+        out.extend(expand_includes(inc_path, seen, library))
+    out.append((path, text))
+    return out
+
+
+def read_included(path: str) -> tuple[tuple[str, ...], str]:
+    """The files a source #includes (paths, in order) and its text without its #include lines."""
+    text = read_source(path)
+    includes = []
     for inc in INCLUDE.findall(text):
         inc_path = os.path.normpath(os.path.join(os.path.dirname(path), inc))
         if not os.path.exists(inc_path):
             raise ShaderGenError("missing_source", f"'{path}' includes missing '{inc}'", path)
-        out.extend(expand_includes(inc_path, seen))
-    out.append((path, INCLUDE.sub("", text).strip("\n")))
-    return out
+        includes.append(inc_path)
+    return tuple(includes), INCLUDE.sub("", text).strip("\n")
 
 
 class GraphFunctionImpl(NodeImpl):
@@ -147,7 +160,7 @@ def implementation_for(elem: Element, library: Library | None = None) -> NodeImp
     make, and dynamic ones may keep state for the shader they write, so they are made each time."""
     file = elem.get("file")
     if file and elem.get("sourcecode") is None and library is not None and library.owns(elem):
-        return library.fact(("implementation", id(elem)), lambda: _from_file(elem, file))
+        return library.fact(("implementation", id(elem)), lambda: _from_file(elem, file, library))
     return _make(elem)
 
 
@@ -167,5 +180,5 @@ def _make(elem: Element) -> NodeImpl:
     return impl
 
 
-def _from_file(elem: Element, file: str) -> NodeImpl:
-    return InlineImpl.from_file(elem) if file.endswith(".inline") else SourceFunctionImpl(elem)
+def _from_file(elem: Element, file: str, library: Library | None = None) -> NodeImpl:
+    return InlineImpl.from_file(elem) if file.endswith(".inline") else SourceFunctionImpl(elem, library)
