@@ -166,17 +166,28 @@ def upload(ctx, image: np.ndarray, levels: list[np.ndarray] | None = None):
     order: GL's t = 0 is the first row uploaded, which is what the generated code's v flip
     expects). `levels`: the images of levels 1, 2, ... down to 1 x 1; by default computed here
     as GL's mipmap generation makes them (the driver's own generation compiles a blit shader on
-    first use: about 0.1-0.2 s of every thumbnail process on llvmpipe)."""
+    first use: about 0.1-0.2 s of every thumbnail process on llvmpipe). An RGB image is stored
+    as RGBA with alpha 1 (what GL reads from RGB anyway): llvmpipe filters four float channels
+    faster than three (Examples carpaint, complete: ~8% less CPU per frame with the environment's
+    radiance so stored)."""
     image = np.ascontiguousarray(image, "f4")
     height, width, channels = image.shape
     if channels > 4:
         image, channels = np.ascontiguousarray(image[..., :4]), 4
+    if channels == 3:
+        image, channels = opaque(image), 4
+        levels = None if levels is None else [opaque(level) for level in levels]
     texture = ctx.texture((width, height), channels, image.tobytes(), dtype="f4")
     if channels in _SWIZZLE:
         texture.swizzle = _SWIZZLE[channels]
     texture.use(location=ctx.default_texture_unit)  # moderngl's own unit: no sampler's binding is disturbed
     gl_extras().define_levels(channels, mip_chain(image)[1:] if levels is None else levels)
     return texture
+
+
+def opaque(rgb: np.ndarray) -> np.ndarray:
+    """An (h, w, 3) image as (h, w, 4), alpha 1."""
+    return np.concatenate([rgb, np.ones_like(rgb[..., :1])], axis=2)
 
 
 def mip_chain(image: np.ndarray) -> list[np.ndarray]:

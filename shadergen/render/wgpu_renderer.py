@@ -19,7 +19,7 @@ from .base import RenderResult, SceneRenderer
 from .errors import RenderError
 from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, record_values, texture_requests
 from .record import check_record, source_digest
-from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling, mip_chain
+from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling, mip_chain, opaque
 from .wgpu_device import wgpu_device
 from .wgpu_program import COLOR_FORMAT, DEPTH_FORMAT, STAGES, WgslPipeline
 
@@ -180,5 +180,5 @@ def _rgba(image: np.ndarray) -> np.ndarray:
     if channels == 2:
         return np.concatenate([np.repeat(image[..., :1], 3, axis=2), image[..., 1:2]], axis=2)
     if channels == 3:
-        return np.concatenate([image, np.ones_like(image[..., :1])], axis=2)
+        return opaque(image)
     return image[..., :4]
