@@ -73,10 +73,10 @@ VARIANTS = {
     "no transmission context": lambda s: block_removed(s, TRANSMISSION),
     "no light loop, no transmission": lambda s: block_removed(block_removed(s, LIGHT_LOOP), TRANSMISSION),
     "no sample loop in the lobes' preparation": lambda s: replaced(
-        s, "    if (lobe.weight > 0.0)\n        lobe.environment = mx_environment_samples(",
-        "    if (false)\n        lobe.environment = mx_environment_samples("),
+        s, "    if (lobe.weight > 0.0)\n        lobe.environment = mx_environment_reflected(",
+        "    if (false)\n        lobe.environment = mx_environment_reflected("),
     "no thin film in the Fresnel dispatch": lambda s: replaced(
-        s, "    if (mx_fresnel_has_thinfilm(fd))\n        return mx_fresnel_airy(cosTheta, fd);\n", ""),
+        s, "    if (withFilm && mx_fresnel_has_thinfilm(fd))\n        return mx_fresnel_airy(cosTheta, fd);\n", ""),
 }
 
 

@@ -459,16 +459,24 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 // --- Dispatch --------------------------------------------------------------------------------
 
 // Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
-// and the thin film only when some closure's film can be thicker than 0.
-vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
+// and the thin film only when some closure's film can be thicker than 0. `withFilm` false leaves
+// fd's film out: a caller that knows it has none passes a constant and gets no film code, which
+// matters where F is taken per sample, since a CPU rasterizer (Mesa's llvmpipe) runs both sides
+// of a branch (mx_environment_reflected).
+vec3 mx_fresnel_eval_film(float cosTheta, FresnelData fd, bool withFilm)
 {
-    if (mx_fresnel_has_thinfilm(fd))
+    if (withFilm && mx_fresnel_has_thinfilm(fd))
         return mx_fresnel_airy(cosTheta, fd);
     if (fd.model == FRESNEL_MODEL_DIELECTRIC)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
     if (fd.model == FRESNEL_MODEL_CONDUCTOR)
         return mx_fresnel_conductor(cosTheta, fd.ior, fd.extinction);
     return vec3(0.0);  // no closure of this shader uses another model
+}
+
+vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
+{
+    return mx_fresnel_eval_film(cosTheta, fd, true);
 }
 
 // Reading the albedo tables that tools/fit_albedo.py writes: regular grids over [0, 1]^2 with a
@@ -659,16 +667,22 @@ vec3 mx_ggx_energy_compensation(float NdotV, float alpha, vec3 F)
 // Map convention: texel (u, v) with v = 0 the top row holds map direction
 // (cos(lat) sin(lon), sin(lat), -cos(lat) cos(lon)), lat = (0.5 - v) pi, lon = (u - 0.5) 2 pi.
 
-vec2 mx_envmap_uv(vec3 dir)
+// The texel coordinates of map direction `mapDir`, a unit vector up to rounding.
+vec2 mx_envmap_uv(vec3 mapDir)
 {
-    return vec2(atan(dir.x, -dir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(dir.y) * MX_INV_PI);
+    return vec2(atan(mapDir.x, -mapDir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(clamp(mapDir.y, -1.0, 1.0)) * MX_INV_PI);
+}
+
+// The map `envMap` seen along map direction `mapDir`, at mip level `lod`.
+vec3 mx_envmap_lookup(sampler2D envMap, vec3 mapDir, float lod)
+{
+    return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
 }
 
 // The map `envMap` seen along world direction `dir`, at mip level `lod`.
 vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
 {
-    vec3 mapDir = normalize((u_envMatrix * vec4(dir, 0.0)).xyz);
-    return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
+    return mx_envmap_lookup(envMap, normalize((u_envMatrix * vec4(dir, 0.0)).xyz), lod);
 }
 
 // Direction leaving a solid sphere of index `ior` that ray direction R enters where the normal is N.
@@ -963,12 +977,12 @@ vec3 mx_environment_prefiltered(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData 
 // u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
 // in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
 
-// Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
-// with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
-float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
+// Mip level for a sample of density `pdf` along map direction `mapDir` (GPU Gems 3, 20.4, eq. 13),
+// with the lat-long map's stretching towards its poles, biased 1.5 levels sharper.
+float mx_envmap_lod(vec3 mapDir, float pdf, int sampleCount)
 {
     float coarsest = float(u_envRadianceMips - 1) - 1.5;
-    float stretch = sqrt(1.0 - dir.y * dir.y);
+    float stretch = sqrt(1.0 - mapDir.y * mapDir.y);
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
 
@@ -983,8 +997,11 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
 // `albedo` returns what the same samples give in a white environment: the fraction of the light
 // the lobe reflects (or lets through), consistent with the radiance to the last sample, which is
 // what a layer below must not receive again. Without `fetch` only `albedo` is computed (no
-// texture reads), so that other contexts see the very albedo the environment term has.
-vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
+// texture reads), so that other contexts see the very albedo the environment term has. Without
+// `withFilm` fd's thin film is left out (mx_fresnel_eval_film; the prefiltered way takes it
+// where there is one).
+vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, bool withFilm,
+                            out vec3 albedo)
 {
 #ifdef MX_ENV_PREFILTER
     return mx_environment_prefiltered(N, V, X, alpha, fd, fetch, albedo);
@@ -997,6 +1014,7 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
     Vt.z = max(Vt.z, MX_EPS);
+    mat3 toMap = mat3(u_envMatrix) * frame;  // a sample's direction straight to the map's (a rotation)
 
     vec3 carried = vec3(0.0);
     float whiteAlbedo = 0.0;
@@ -1007,10 +1025,10 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
         vec3 Li = vec3(0.0);
         if (fetch)
         {
-            vec3 Lw = frame * Lt;
-            Li = mx_envmap_fetch(u_envRadiance, Lw, mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
+            vec3 Lm = toMap * Lt;
+            Li = mx_envmap_lookup(u_envRadiance, Lm, mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
         }
-        vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
+        vec3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
         vec3 throughput = fd.refraction ? vec3(1.0) - F : F * weight;
         carried += Li * throughput;
@@ -1021,7 +1039,7 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     if (!fd.refraction)
     {
         float E = whiteAlbedo * scale;
-        vec3 compensation = vec3(1.0) + mx_fresnel_eval(Vt.z, fd) * ((1.0 - E) / max(E, MX_EPS));
+        vec3 compensation = vec3(1.0) + mx_fresnel_eval_film(Vt.z, fd, withFilm) * ((1.0 - E) / max(E, MX_EPS));
         carried *= compensation;
         albedo *= compensation;
     }
@@ -1030,10 +1048,23 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
 #endif
 }
 
+// The environment a lobe reflects, prepared once per shading point. A film's Fresnel costs more
+// than the rest of a sample, and a CPU rasterizer (Mesa's llvmpipe) runs both sides of a branch:
+// the samples are written with the film and without, so that a lobe with no film at run time
+// runs the film's loop once, masked, rather than the film at every sample.
+vec3 mx_environment_reflected(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
+{
+#ifndef MX_ENV_PREFILTER
+    if (mx_fresnel_has_thinfilm(fd))
+        return mx_environment_samples(N, V, X, alpha, fd, fetch, true, albedo);
+#endif
+    return mx_environment_samples(N, V, X, alpha, fd, fetch, false, albedo);
+}
+
 // The environment seen through the lobe (see mx_environment_samples).
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
-    return mx_environment_samples(N, V, X, alpha, fd, true, albedo);
+    return mx_environment_samples(N, V, X, alpha, fd, true, true, albedo);
 }
 
 // Transmission rendered by refraction: what is seen through the surface is the environment,
@@ -1114,8 +1145,8 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
     if (lobe.weight > 0.0)
-        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
-                                                  lobe.environmentAlbedo);
+        lobe.environment = mx_environment_reflected(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
+                                                    lobe.environmentAlbedo);
     return lobe;
 }
 

@@ -11,12 +11,12 @@
 #include "mx_environment_map.glsl"
 #include "mx_environment_prefilter.glsl"
 
-// Mip level for a sample of density `pdf` along world direction `dir` (GPU Gems 3, 20.4, eq. 13),
-// with the lat-long map's stretching towards the poles, biased 1.5 levels sharper.
-float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
+// Mip level for a sample of density `pdf` along map direction `mapDir` (GPU Gems 3, 20.4, eq. 13),
+// with the lat-long map's stretching towards its poles, biased 1.5 levels sharper.
+float mx_envmap_lod(vec3 mapDir, float pdf, int sampleCount)
 {
     float coarsest = float(u_envRadianceMips - 1) - 1.5;
-    float stretch = sqrt(1.0 - dir.y * dir.y);
+    float stretch = sqrt(1.0 - mapDir.y * mapDir.y);
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
 
@@ -31,8 +31,11 @@ float mx_envmap_lod(vec3 dir, float pdf, int sampleCount)
 // `albedo` returns what the same samples give in a white environment: the fraction of the light
 // the lobe reflects (or lets through), consistent with the radiance to the last sample, which is
 // what a layer below must not receive again. Without `fetch` only `albedo` is computed (no
-// texture reads), so that other contexts see the very albedo the environment term has.
-vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
+// texture reads), so that other contexts see the very albedo the environment term has. Without
+// `withFilm` fd's thin film is left out (mx_fresnel_eval_film; the prefiltered way takes it
+// where there is one).
+vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, bool withFilm,
+                            out vec3 albedo)
 {
 #ifdef MX_ENV_PREFILTER
     return mx_environment_prefiltered(N, V, X, alpha, fd, fetch, albedo);
@@ -45,6 +48,7 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
     Vt.z = max(Vt.z, MX_EPS);
+    mat3 toMap = mat3(u_envMatrix) * frame;  // a sample's direction straight to the map's (a rotation)
 
     vec3 carried = vec3(0.0);
     float whiteAlbedo = 0.0;
@@ -59,10 +63,10 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
         vec3 Li = vec3(0.0);
         if (fetch)
         {
-            vec3 Lw = frame * Lt;
-            Li = mx_envmap_fetch(u_envRadiance, Lw, mx_envmap_lod(Lw, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
+            vec3 Lm = toMap * Lt;
+            Li = mx_envmap_lookup(u_envRadiance, Lm, mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
         }
-        vec3 F = mx_fresnel_eval(clamp(dot(Vt, H), MX_EPS, 1.0), fd);
+        vec3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
         vec3 throughput = fd.refraction ? vec3(1.0) - F : F * weight;
         carried += Li * throughput;
@@ -73,7 +77,7 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     if (!fd.refraction)
     {
         float E = whiteAlbedo * scale;
-        vec3 compensation = vec3(1.0) + mx_fresnel_eval(Vt.z, fd) * ((1.0 - E) / max(E, MX_EPS));
+        vec3 compensation = vec3(1.0) + mx_fresnel_eval_film(Vt.z, fd, withFilm) * ((1.0 - E) / max(E, MX_EPS));
         carried *= compensation;
         albedo *= compensation;
     }
@@ -82,8 +86,23 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
 #endif
 }
 
+// The environment a lobe reflects, prepared once per shading point. A film's Fresnel costs more
+// than the rest of a sample, and a CPU rasterizer (Mesa's llvmpipe) runs both sides of a branch:
+// the samples are written with the film and without, so that a lobe with no film at run time
+// runs the film's loop once, masked, rather than the film at every sample.
+vec3 mx_environment_reflected(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
+{
+#ifdef MX_FEATURE_THIN_FILM
+#ifndef MX_ENV_PREFILTER
+    if (mx_fresnel_has_thinfilm(fd))
+        return mx_environment_samples(N, V, X, alpha, fd, fetch, true, albedo);
+#endif
+#endif
+    return mx_environment_samples(N, V, X, alpha, fd, fetch, false, albedo);
+}
+
 // The environment seen through the lobe (see mx_environment_samples).
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
-    return mx_environment_samples(N, V, X, alpha, fd, true, albedo);
+    return mx_environment_samples(N, V, X, alpha, fd, true, true, albedo);
 }

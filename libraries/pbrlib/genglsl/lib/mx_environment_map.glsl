@@ -5,16 +5,22 @@
 // (cos(lat) sin(lon), sin(lat), -cos(lat) cos(lon)), lat = (0.5 - v) pi, lon = (u - 0.5) 2 pi.
 #include "mx_pbr_common.glsl"
 
-vec2 mx_envmap_uv(vec3 dir)
+// The texel coordinates of map direction `mapDir`, a unit vector up to rounding.
+vec2 mx_envmap_uv(vec3 mapDir)
 {
-    return vec2(atan(dir.x, -dir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(dir.y) * MX_INV_PI);
+    return vec2(atan(mapDir.x, -mapDir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(clamp(mapDir.y, -1.0, 1.0)) * MX_INV_PI);
+}
+
+// The map `envMap` seen along map direction `mapDir`, at mip level `lod`.
+vec3 mx_envmap_lookup(sampler2D envMap, vec3 mapDir, float lod)
+{
+    return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
 }
 
 // The map `envMap` seen along world direction `dir`, at mip level `lod`.
 vec3 mx_envmap_fetch(sampler2D envMap, vec3 dir, float lod)
 {
-    vec3 mapDir = normalize((u_envMatrix * vec4(dir, 0.0)).xyz);
-    return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
+    return mx_envmap_lookup(envMap, normalize((u_envMatrix * vec4(dir, 0.0)).xyz), lod);
 }
 
 // Direction leaving a solid sphere of index `ior` that ray direction R enters where the normal is N.

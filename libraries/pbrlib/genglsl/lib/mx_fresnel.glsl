@@ -244,11 +244,14 @@ vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 // --- Dispatch --------------------------------------------------------------------------------
 
 // Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
-// and the thin film only when some closure's film can be thicker than 0.
-vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
+// and the thin film only when some closure's film can be thicker than 0. `withFilm` false leaves
+// fd's film out: a caller that knows it has none passes a constant and gets no film code, which
+// matters where F is taken per sample, since a CPU rasterizer (Mesa's llvmpipe) runs both sides
+// of a branch (mx_environment_reflected).
+vec3 mx_fresnel_eval_film(float cosTheta, FresnelData fd, bool withFilm)
 {
 #ifdef MX_FEATURE_THIN_FILM
-    if (mx_fresnel_has_thinfilm(fd))
+    if (withFilm && mx_fresnel_has_thinfilm(fd))
         return mx_fresnel_airy(cosTheta, fd);
 #endif
 #ifdef MX_FEATURE_FRESNEL_DIELECTRIC
@@ -264,4 +267,9 @@ vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
 #else
     return vec3(0.0);  // no closure of this shader uses another model
 #endif
+}
+
+vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
+{
+    return mx_fresnel_eval_film(cosTheta, fd, true);
 }

@@ -66,8 +66,8 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
     if (lobe.weight > 0.0)
-        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
-                                                  lobe.environmentAlbedo);
+        lobe.environment = mx_environment_reflected(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
+                                                    lobe.environmentAlbedo);
     return lobe;
 }
 
@@ -96,7 +96,7 @@ vec3 mx_specular_transmission_albedo(ClosureData closureData, SpecularLobe lobe)
     {
         vec3 albedo;
         mx_environment_samples(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X, lobe.alpha,
-                               lobe.fd, false, albedo);
+                               lobe.fd, false, true, albedo);
         return albedo;
     }
 #endif
