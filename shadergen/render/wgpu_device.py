@@ -4,11 +4,12 @@ there is no GPU), and WGSL validation through it.
 Validation is what wgpu does when it creates a shader module: naga (inside wgpu-native) parses the
 WGSL and runs its validator, the same checks a browser's WebGPU makes. Drawing additionally
 creates the render pipeline, where the two stages' interfaces and bindings are checked against
-each other.
+each other. Validation alone runs in a child process (wgsl_errors).
 """
 import os
 
 from .errors import RenderError
+from .wgsl_validation import Validator
 
 # Float textures the environment and HDR images need are filterable only with this feature.
 FEATURES = ("float32-filterable",)
@@ -16,6 +17,7 @@ INSTALL = "pip install wgpu (the [wgpu] extra) and the Vulkan driver mesa-vulkan
 
 _device = None
 _owner_pid: int | None = None
+_validator: Validator | None = None
 
 
 def wgpu_device(lp_threads: int | None = None):
@@ -69,12 +71,10 @@ def shader_module(device, source: str, label: str):
 
 
 def wgsl_errors(sources: dict[str, str]) -> dict[str, str]:
-    """name -> the validator's message, for every WGSL module it rejects (an empty dict: all valid)."""
-    device = wgpu_device()
-    errors = {}
-    for name, source in sources.items():
-        try:
-            shader_module(device, source, name)
-        except RenderError as exc:
-            errors[name] = exc.message
-    return errors
+    """name -> the validator's message, for every WGSL module it rejects (an empty dict: all valid).
+    Validated in a child process (wgsl_validation.py): a naga panic rejects one module, with its
+    message, instead of aborting this process."""
+    global _validator
+    if _validator is None:
+        _validator = Validator()
+    return _validator.errors(sources)
