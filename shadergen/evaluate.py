@@ -125,6 +125,51 @@ def _artistic_ior(reflectivity: tuple, edge_color: tuple) -> dict:
     return {"ior": tuple(ior), "extinction": tuple(extinction)}
 
 
+# The compositing nodes, as libraries/stdlib/genglsl/compositing_impl.mtlx computes them: a guarded
+# division takes its guard's value (GLSL's select computes both sides, and keeps the guard's).
+def _burn(b, f, w):
+    return 0.0 if abs(f) < 1.0e-8 else b * (1.0 - w) + (1.0 - (1.0 - b) / f) * w
+
+
+def _dodge(b, f, w):
+    return 0.0 if abs(1.0 - f) < 1.0e-8 else b * (1.0 - w) + (b / (1.0 - f)) * w
+
+
+def _overlay(b, f):
+    return 1.0 - 2.0 * (1.0 - f) * (1.0 - b) if b >= 0.5 else 2.0 * f * b
+
+
+def _unpremult(c: tuple) -> tuple:
+    return c if c[3] == 0.0 else (c[0] / c[3], c[1] / c[3], c[2] / c[3], c[3])
+
+
+def _disjointover(fg: tuple, bg: tuple, amount: float) -> tuple:
+    coverage = fg[3] + bg[3]
+    rgb = tuple(f + b for f, b in zip(fg[:3], bg[:3]))
+    if coverage > 1.0:
+        rgb = (0.0,) * 3 if abs(bg[3]) < 1.0e-8 else tuple(f + b * ((1.0 - fg[3]) / bg[3]) for f, b in zip(fg[:3], bg[:3]))
+    return _mix(bg, rgb + (min(coverage, 1.0),), amount)
+
+
+def _matte(fg: tuple, bg: tuple) -> tuple:
+    return tuple(b * (1.0 - fg[3]) + f * fg[3] for f, b in zip(fg[:3], bg[:3])) + (fg[3] + bg[3] * (1.0 - fg[3]),)
+
+
+def _scaled(c: tuple, k: float) -> tuple:
+    return tuple(x * k for x in c)
+
+
+def _composite(category: str, i: dict):
+    """The alpha compositing operators on color4: what is mixed over bg by `mix`."""
+    fg, bg = i["fg"], i["bg"]
+    over = {"in": lambda: _scaled(fg, bg[3]), "mask": lambda: _scaled(bg, fg[3]),
+            "out": lambda: _scaled(fg, 1.0 - bg[3]),
+            "over": lambda: tuple(f + b * (1.0 - fg[3]) for f, b in zip(fg, bg)), "matte": lambda: _matte(fg, bg)}
+    return _mix(bg, over[category](), i["mix"])
+
+
+COMPOSITES = ("in", "mask", "out", "over", "matte")
+
 MULTIPLE_OUTPUTS = {"artistic_ior": lambda i: _artistic_ior(i["reflectivity"], i["edge_color"])}
 
 CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
@@ -163,6 +208,21 @@ def _evaluate(category: str, i: dict, out_type: str):
         blend = {"plus": lambda b, f: b + f, "minus": lambda b, f: b - f, "difference": lambda b, f: abs(b - f),
                  "screen": lambda b, f: 1.0 - (1.0 - f) * (1.0 - b)}[category]
         return _mix(i["bg"], componentwise(blend, i["bg"], i["fg"]), i["mix"])
+    if category == "burn":
+        return componentwise(_burn, i["bg"], i["fg"], i["mix"])
+    if category == "dodge":
+        return componentwise(_dodge, i["bg"], i["fg"], i["mix"])
+    if category == "overlay":
+        return _mix(i["bg"], componentwise(_overlay, i["bg"], i["fg"]), i["mix"])
+    if category in COMPOSITES:
+        return _composite(category, i)
+    if category == "disjointover":
+        return _disjointover(i["fg"], i["bg"], i["mix"])
+    if category == "premult":
+        c = i["in"]
+        return _scaled(c[:3], c[3]) + (c[3],)
+    if category == "unpremult":
+        return _unpremult(i["in"])
     if category == "inside":
         return componentwise(lambda x, m: x * m, i["in"], i["mask"])
     if category == "outside":

@@ -47,7 +47,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     run("thin_surface", lambda: share_one_sided_bsdf(graph))
     run("expand", lambda: expand_nodegraphs(graph, builder))
     run("thin_film", lambda: push_thin_films(graph))
-    run("fold", lambda: fold_constants(graph))
+    run("fold", lambda: fold_constants(graph, builder))
     choose_implementations(graph.nodes, builder.scope.library)
     run("prune_closures", lambda: prune_closures(graph, target.closures))
     run("textures", lambda: publish_textures(graph))

@@ -1,9 +1,10 @@
 """Folding by value: a node whose inputs are all constants becomes its value in the inputs that
-read it (shadergen/evaluate.py computes it); nodes with some constant inputs simplify by algebraic
-identities (x*1, x*0, x+0, mix at 0 or 1, a conditional on constants, a switch on a constant).
-The constants are what the interface left fixed, so `specialized` folds the most."""
+read it (shadergen/evaluate.py computes it), and a `constant` node of that value where it drives a
+shader output; nodes with some constant inputs simplify by algebraic identities (x*1, x*0, x+0, mix
+at 0 or 1, a conditional on constants, a switch on a constant). The constants are what the
+interface left fixed, so `specialized` folds the most."""
 from ..evaluate import NotFoldable, evaluate_outputs
-from ..graph import Graph, Input, Node
+from ..graph import Graph, GraphBuilder, Input, Node, Output
 from ..types import TYPES, default_value
 from .edit import can_pass, pass_through, readers, set_constant
 from .order import topological_order
@@ -12,12 +13,12 @@ BLENDS = ("mix", "plus", "minus", "difference", "screen", "overlay", "burn", "do
 CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
 
 
-def fold_constants(graph: Graph) -> int:
-    """Returns how many nodes were folded or simplified."""
+def fold_constants(graph: Graph, builder: GraphBuilder) -> int:
+    """Returns how many nodes were folded or simplified. `builder` makes the constant nodes."""
     reading = readers(graph)
     count = 0
     for node in graph.nodes:
-        if fold_node(node, reading) or simplify(graph, node, reading):
+        if fold_node(graph, node, reading, builder) or simplify(graph, node, reading):
             count += 1
     if count:  # unchanged, the order stands
         graph.nodes = topological_order(graph.outputs)
@@ -32,11 +33,10 @@ def constant(node: Node, name: str):
     return True, inp.value
 
 
-def fold_node(node: Node, reading: dict) -> bool:
-    if not node.inputs or any(not inp.is_constant() or inp.type == "filename" for inp in node.inputs.values()):
+def fold_node(graph: Graph, node: Node, reading: dict, builder: GraphBuilder) -> bool:
+    if node.category == "constant" or not node.inputs or \
+            any(not inp.is_constant() or inp.type == "filename" for inp in node.inputs.values()):
         return False
-    if not any(id(out) in reading for out in node.outputs.values()):
-        return False  # nothing reads it (a shader output): it stays as it is
     try:
         values = evaluate_outputs(node.category, {n: i.value for n, i in node.inputs.items()},
                                   [(o.name, o.type) for o in node.outputs.values()])
@@ -45,7 +45,23 @@ def fold_node(node: Node, reading: dict) -> bool:
     for out in node.outputs.values():
         for inp in reading.pop(id(out), []):
             set_constant(inp, values[out.name])
+    for name, out in graph.outputs.items():
+        if out.node is node:
+            # Left as an expression, it would be made of literals alone: work the GPU does for every
+            # pixel, and in WGSL abstract-typed, which only constant expressions may be.
+            graph.outputs[name] = constant_output(builder, out, values[out.name])
     return True
+
+
+def constant_output(builder: GraphBuilder, out: Output, value) -> Output:
+    """The output of a `constant` node holding `value`, named as the node it stands for."""
+    nodedef = builder.scope.nodedef(f"ND_constant_{out.type}")
+    node = builder.new_node(out.node.name, "constant", out.type, nodedef,
+                            builder.scope.implementation(nodedef, builder.target), out.node.path)
+    node.name = out.node.name if len(out.node.outputs) == 1 else f"{out.node.name}_{out.name}"
+    node.instance, node.scope = out.node.instance, out.node.scope
+    node.inputs["value"].value, node.inputs["value"].path = value, None
+    return node.outputs["out"]
 
 
 def _all(value, wanted: float) -> bool:

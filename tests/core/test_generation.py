@@ -31,10 +31,10 @@ def test_inline_expression_substitutes_inputs(gen):
 
 
 def test_reduced_interface_writes_constants_and_keeps_negative_literals_safe(gen):
-    rec = first(gen, '<subtract name="s" type="float"><input name="in1" type="float" value="1"/>'
-                     '<input name="in2" type="float" value="-0.5"/></subtract><output name="o" type="float" nodename="s"/>',
-                interface="reduced")
-    assert "float s_out = 1.0 - (-0.5);" in pixel(rec)
+    rec = first(gen, '<texcoord name="t" type="vector2"/><subtract name="s" type="vector2">'
+                     '<input name="in1" type="vector2" nodename="t"/><input name="in2" type="float" value="-0.5"/>'
+                     '</subtract><output name="o" type="vector2" nodename="s"/>', interface="reduced")
+    assert "vec2 s_out = t_out - (-0.5);" in pixel(rec)
     assert rec["blocks"]["pixel"]["PublicUniforms"] == []
 
 

@@ -56,6 +56,19 @@ def test_the_pbr_parameter_conversions_evaluate_as_the_library_computes_them():
         assert ((n - 1) ** 2 + k ** 2) / ((n + 1) ** 2 + k ** 2) == pytest.approx(r, rel=1e-5)
 
 
+def test_compositing_guards_give_what_the_library_gives():
+    """compositing_impl.mtlx selects the guard's value where a division would be by (near) zero."""
+    def one(category, **inputs):
+        return evaluate_outputs(category, inputs, [("out", "color4" if category in ("unpremult", "disjointover") else "float")])["out"]
+    assert one("burn", fg=0.0, bg=0.5, mix=0.5) == 0.0 and one("dodge", fg=1.0, bg=0.5, mix=0.5) == 0.0
+    assert one("burn", fg=0.5, bg=0.5, mix=1.0) == 0.0 and one("dodge", fg=0.5, bg=0.25, mix=1.0) == 0.5
+    assert one("unpremult", **{"in": (1.0, 0.5, 0.25, 0.0)}) == (1.0, 0.5, 0.25, 0.0)
+    assert one("unpremult", **{"in": (1.0, 0.5, 0.25, 0.5)}) == (2.0, 1.0, 0.5, 0.5)
+    # coverage over one with a transparent background: black, and alpha one
+    assert one("disjointover", fg=(0.5, 0.5, 0.5, 1.5), bg=(1.0, 1.0, 1.0, 0.0), mix=1.0) == (0.0, 0.0, 0.0, 1.0)
+    assert one("disjointover", fg=(0.5, 0.5, 0.5, 0.75), bg=(1.0, 1.0, 1.0, 0.5), mix=1.0) == (1.0, 1.0, 1.0, 1.0)
+
+
 @pytest.mark.parametrize("category,inputs", [
     ("divide", {"in1": 1.0, "in2": 0.0}),  # infinity: no literal holds it
     ("sqrt", {"in": -1.0}),
@@ -70,13 +83,27 @@ def test_what_cannot_be_computed_is_not_folded(category, inputs):
 def test_constant_math_folds_into_its_reader_in_specialized(gen):
     body = ('<add name="a" type="float"><input name="in1" type="float" value="0.25"/>'
             '<input name="in2" type="float" value="0.5"/></add>'
-            '<sin name="s" type="float"><input name="in" type="float" nodename="a"/></sin>' + OUT.format(t="float", n="s"))
+            '<position name="p" type="vector3"/><multiply name="m" type="vector3">'
+            '<input name="in1" type="vector3" nodename="p"/><input name="in2" type="float" nodename="a"/></multiply>'
+            + OUT.format(t="vector3", n="m"))
     specialized = record(gen, body, interface="specialized")
-    assert "float s_out = sin(0.75);" in main_of(specialized)
+    assert "vec3 m_out = p_out * 0.75;" in main_of(specialized)
     assert "a_out" not in specialized["stages"]["pixel"]
     assert specialized["passes"]["fold"] == 1 and specialized["blocks"]["pixel"]["PublicUniforms"] == []
     complete = record(gen, body)
     assert "a_out" in main_of(complete) and complete["passes"]["fold"] == 0  # every input is live
+
+
+def test_a_constant_node_driving_the_output_becomes_its_value(gen):
+    """Left unfolded it would be an expression of literals alone, computed for every pixel (and in
+    WGSL abstract-typed, which only constant expressions may be)."""
+    body = ('<mix name="m" type="float"><input name="fg" type="float" value="1"/><input name="bg" type="float" value="0"/>'
+            '<input name="mix" type="float" value="0.25"/></mix>' + OUT.format(t="float", n="m"))
+    specialized = record(gen, body, interface="specialized")
+    assert "float m_out = 0.25;" in main_of(specialized) and specialized["passes"]["fold"] == 1
+    wgsl = record(gen, body, interface="specialized", target="wgsl")["stages"]["pixel"]
+    assert "var m_out: f32 = 0.25;" in wgsl
+    assert "m_out = mix(" in main_of(record(gen, body))  # complete: its inputs are live
 
 
 @pytest.mark.parametrize("node,gone", [
@@ -109,7 +136,8 @@ def test_times_zero_is_the_zero_of_the_type(gen):
             '<input name="in1" type="vector3" nodename="p"/><input name="in2" type="float" value="0"/></multiply>'
             '<cos name="c" type="vector3"><input name="in" type="vector3" nodename="m"/></cos>' + OUT.format(t="vector3", n="c"))
     rec = record(gen, body, interface="specialized")
-    assert "vec3 c_out = cos(vec3(0.0, 0.0, 0.0));" in main_of(rec) and "p_out" not in rec["stages"]["pixel"]
+    # cos of that zero is a constant too: cos(0) in every component
+    assert "vec3 c_out = vec3(1.0, 1.0, 1.0);" in main_of(rec) and "p_out" not in rec["stages"]["pixel"]
 
 
 # -- closures ------------------------------------------------------------------------------------------

@@ -166,3 +166,42 @@ def test_a_library_file_translated_again_for_other_features_validates(gen, valid
     every = gen.prepare(doc(surface.format(t=0.2)), target="wgsl").emit()["stages"]
     assert "mx_surface_transmission" not in smooth["pixel"] and "mx_surface_transmission" in every["pixel"]
     assert not validator({"smooth": smooth["pixel"], "every": every["pixel"]})
+
+
+COMPOSITING = [  # (node, output type, inputs): each folds to one value, guarded divisions included
+    ("mix", "float", {"fg": "0.4", "bg": "0.3", "mix": "0.5"}),
+    ("burn", "float", {"fg": "0", "bg": "0.5", "mix": "0.5"}),  # a division by zero, guarded
+    ("dodge", "float", {"fg": "1", "bg": "0.5", "mix": "0.5"}),
+    ("unpremult", "color4", {"in": "1, 0, 0.5, 0.5"}),  # naga's constant evaluator panicked on this one
+    ("disjointover", "color4", {"fg": "1, 1, 1, 0.5", "bg": "1, 1, 0, 0", "mix": "0.5"}),
+]
+
+
+@pytest.mark.parametrize("category,type_name,inputs", COMPOSITING, ids=[c[0] for c in COMPOSITING])
+def test_a_specialized_compositing_element_validates(gen, validator, category, type_name, inputs):
+    """All-constant nodes that drive the output are folded to a constant too: left as they were,
+    they were expressions of abstract-typed literals, or divisions by zero, that naga rejects."""
+    values = "".join(f'<input name="{n}" type="{"float" if n == "mix" else type_name}" value="{v}"/>' for n, v in inputs.items())
+    text = doc(f'<nodegraph name="g"><{category} name="n" type="{type_name}">{values}</{category}>'
+               f'<output name="out" type="{type_name}" nodename="n"/></nodegraph>')
+    rec = gen.prepare(text, target="wgsl", interface="specialized").emit()
+    assert rec["passes"]["fold"] == 1
+    assert not validator(rec["stages"])
+
+
+PANICS = """@fragment
+fn fragmentMain() -> @location(0) vec4f {
+    let c = select(vec4f(vec4f(1.0, 0.0, 0.5, 0.5).rgb / 0.5, 0.5), vec4f(1.0), vec4f(1.0).a == 0.0);
+    return c;
+}
+"""
+
+
+def test_a_validator_panic_is_one_rejected_module(validator):
+    """naga 29's constant evaluator panics on a select() of constant vectors; a panic through
+    wgpu-native's C interface aborts the process, so validation runs in a child process and the
+    module is rejected with the panic's message, the modules after it still validated."""
+    good = "@fragment\nfn fragmentMain() -> @location(0) vec4f {\n    return vec4f(1.0);\n}\n"
+    errors = validator({"before": good, "panics": PANICS, "after": good, "bad": good.replace("vec4f(1.0)", "1.5i")})
+    assert set(errors) == {"panics", "bad"}, errors
+    assert "panicked" in errors["panics"] and "constant_evaluator" in errors["panics"], errors["panics"]

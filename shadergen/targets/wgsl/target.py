@@ -115,8 +115,7 @@ class WgslTarget(GlslTarget):
             text, _ = translator().expression(template, {k: TYPE_NAMES.get(t, t) for k, (_, t) in names.items()})
         except Untranslatable as e:
             raise Untranslatable(e.message.removeprefix("no WGSL translation: "), expression) from None
-        return re.sub(r"\binline_\w+\b", lambda m: f"({names[m.group()][0]})"
-                      if not re.fullmatch(r"[\w.]+", names[m.group()][0]) else names[m.group()][0], text)
+        return re.sub(r"\binline_\w+\b", lambda m: _primary(names[m.group()][0]), text)
 
     def library_source(self, path: str, text: str) -> str:
         try:
@@ -254,6 +253,12 @@ def _braces(w: Writer, opener: str):
     finally:
         w.depth -= 1
         w.line("}")
+
+
+def _primary(text: str) -> str:
+    """An operand as it can stand in any expression: names and constructor calls as they are,
+    anything else (a negative literal, an operator) in parentheses."""
+    return text if re.fullmatch(r"[\w.]+|\w+\([^()]*\)", text) else f"({text})"
 
 
 def _read_through(text: str, reads: dict[str, str]) -> str:
