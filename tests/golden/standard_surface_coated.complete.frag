@@ -816,15 +816,21 @@ float mx_prefiltered_footprint_lod(float alpha)
     return alpha < firstAlpha ? alpha / firstAlpha : min(log2(alpha) + roughest, roughest);
 }
 
+// The widest lobe the unfiltered map cannot resolve: a third of its texels (alpha1 / 8, alpha1 the
+// lobe of level 1, whose texels are half as wide as its lobe).
+float mx_prefiltered_sharpest_alpha()
+{
+    return exp2(1.0 - mx_prefiltered_roughest_level()) / 8.0;
+}
+
 // Mip level holding the GGX lobe of `alpha` itself, as mx_prefiltered_footprint_lod() except that
-// a lobe narrower than a third of the unfiltered map's texels (alpha1 / 8, alpha1 the lobe of level
-// 1, whose texels are half as wide as its lobe) reads the unfiltered map alone, and from there the
-// blend with level 1 grows linearly: a fraction alpha / alpha1 of level 1 would spread a bright
-// source, the sun, over a near-mirror's pixels, where the map cannot resolve the lobe anyway.
+// a lobe narrower than mx_prefiltered_sharpest_alpha() reads the unfiltered map alone, and from
+// there the blend with level 1 grows linearly: a fraction alpha / alpha1 of level 1 would spread a
+// bright source, the sun, over a near-mirror's pixels, where the map cannot resolve the lobe anyway.
 float mx_prefiltered_lod(float alpha)
 {
     float firstAlpha = exp2(1.0 - mx_prefiltered_roughest_level());
-    float sharpest = firstAlpha / 8.0;
+    float sharpest = mx_prefiltered_sharpest_alpha();
     return alpha < firstAlpha ? max(alpha - sharpest, 0.0) / (firstAlpha - sharpest) : mx_prefiltered_footprint_lod(alpha);
 }
 
@@ -855,11 +861,13 @@ vec3 mx_lobe_fresnel_at(LobeFresnel lf, float cosine)
 // The fraction of the light arriving over the lobe that it reflects (or, with fd.refraction, lets
 // through) at NdotV, as mx_environment_radiance() gives it as `albedo`: the table's rule with F
 // (reflection, times Turquin's multiple-scattering factor 1 + F (1 - E) / E as the sampled path
-// applies it) or with 1 - F averaged over the lobe (refraction).
-vec3 mx_environment_table_albedo(LobeFresnel lf, float NdotV, FresnelData fd)
+// applies it) or with 1 - F averaged over the lobe (refraction). `anisotropy` is what an
+// anisotropic lobe reflects beyond the table's isotropic one (mx_anisotropic_albedo_difference:
+// with F, and with F = 1), zero for an isotropic lobe.
+vec3 mx_environment_table_albedo(LobeFresnel lf, float NdotV, FresnelData fd, vec4 anisotropy)
 {
-    vec3 reflected = lf.rule.z * lf.F1 + lf.rule.w * lf.F2;
-    float E = max(lf.rule.z + lf.rule.w, MX_EPS);  // the albedo with F = 1
+    vec3 reflected = max(lf.rule.z * lf.F1 + lf.rule.w * lf.F2 + anisotropy.rgb, vec3(0.0));
+    float E = max(lf.rule.z + lf.rule.w + anisotropy.a, MX_EPS);  // the albedo with F = 1
     if (fd.refraction)
         return vec3(1.0) - reflected / E;
     return reflected * (vec3(1.0) + mx_fresnel_eval(NdotV, fd) * ((1.0 - E) / E));
@@ -889,10 +897,41 @@ mat3 mx_rotation_from_pole(vec3 D)
 // Mip level of the chain for a sample of density `pdf` out of `count`: filtered importance sampling
 // (Colbert & Krivanek 2007) with the chain's GGX lobes as the filter. A sample stands for the solid
 // angle 1 / (count pdf) around it, and the level of alpha covers 4 pi alpha^2 (1 / the peak of its
-// lobe's density D / 4 at N = V): the level of alpha = sqrt(1 / (4 pi count pdf)).
-float mx_prefiltered_sample_lod(float pdf, int count)
+// lobe's density D / 4 at N = V): the level of alpha = sqrt(1 / (4 pi count pdf)). The samples of
+// an anisotropic lobe lie `elongation` (sqrt of its alphas' ratio) times farther apart along its
+// long axis than that round footprint: the filter covers that axis, so that a small bright source
+// (the sun) does not alias between them (standard_surface_carpaint, 16 samples: 44.8 -> 47.1 dB
+// against its converged image, bench/accuracy_time.py --size 32), and the symmetric lobe's samples
+// are read with the same filter, so that where the two lobes agree their sums still cancel.
+float mx_prefiltered_sample_lod(float pdf, int count, float elongation)
 {
-    return mx_prefiltered_footprint_lod(min(sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+    return mx_prefiltered_footprint_lod(min(elongation * sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+}
+
+// How much more an anisotropic lobe reflects towards Vt (tangent space) than the isotropic lobe of
+// its mean roughness the table holds (up to a few percent either way at grazing views, as the
+// view's azimuth meets the long or the short axis): both lobes drawn through the same
+// u_envRadianceSamples Fibonacci points (correlated samples, so that a few estimate the difference
+// of two close integrals well), each sample weighted by what it carries, G2 / G1, and by the
+// lobe's F there: (the difference with F, the difference with F = 1). No texture reads.
+vec4 mx_anisotropic_albedo_difference(vec3 Vt, vec2 alpha, float avgAlpha, LobeFresnel lf, FresnelData fd)
+{
+    vec4 difference = vec4(0.0);
+    if (alpha.x == alpha.y || fd.refraction)
+        return difference;
+    int sampleCount = max(u_envRadianceSamples, 1);
+    for (int i = 0; i < sampleCount; i++)
+    {
+        vec2 u = mx_fibonacci_point(i, sampleCount);
+        vec3 H = mx_ggx_sample_visible_normal(u, Vt, alpha);
+        float weight = mx_ggx_sample_weight(Vt, reflect(-Vt, H), alpha);
+        vec3 Hi = mx_ggx_sample_visible_normal(u, Vt, vec2(avgAlpha));
+        float weightIsotropic = mx_ggx_sample_weight(Vt, reflect(-Vt, Hi), vec2(avgAlpha));
+        vec3 carried = mx_lobe_fresnel_at(lf, clamp(dot(Vt, H), MX_EPS, 1.0)) * weight -
+                       mx_lobe_fresnel_at(lf, clamp(dot(Vt, Hi), MX_EPS, 1.0)) * weightIsotropic;
+        difference += vec4(carried, weight - weightIsotropic);
+    }
+    return difference / float(sampleCount);
 }
 
 // The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples
@@ -906,17 +945,23 @@ float mx_prefiltered_sample_lod(float pdf, int count)
 // convolved), both read at their filtered level. Where the lobes agree (facing views) the two sums
 // cancel and the smooth lookup is kept; at grazing views the samples add what it misses. The table
 // gives the albedo the mean radiance is multiplied by (a ratio estimator: the samples' own albedo
-// estimate, whose error dominates at a few samples, is replaced by its known value); the samples'
+// estimate, whose error dominates at a few samples, is replaced by its known value, or for an
+// anisotropic lobe by the table's corrected by mx_anisotropic_albedo_difference); the samples'
 // F only shapes the mean, so it is read off the line through the table's two Fresnel values
 // (mx_lobe_fresnel_at) instead of evaluating the Fresnel model per sample.
 vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float avgAlpha, FresnelData fd,
                                        LobeFresnel lf)
 {
-    int sampleCount = max(u_envRadianceSamples, 1);
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
     Vt.z = max(Vt.z, MX_EPS);
     vec3 Rt = mx_prefiltered_direction(Vt, vec3(0.0, 0.0, 1.0), fd);
+    vec3 lookup = mx_envmap_fetch(u_envRadiance, frame * Rt, mx_prefiltered_lod(avgAlpha));
+    // A lobe narrower than the unfiltered map resolves reads it along R at any view: no samples.
+    if (max(alpha.x, alpha.y) < mx_prefiltered_sharpest_alpha())
+        return lookup;
+    int sampleCount = max(u_envRadianceSamples, 1);
+    float elongation = sqrt(max(alpha.x, alpha.y) / max(min(alpha.x, alpha.y), MX_EPS));
     mat3 toR = mx_rotation_from_pole(normalize(Rt));
     vec3 lobeRadiance = vec3(0.0), lobeWeights = vec3(0.0), splitRadiance = vec3(0.0);
     float splitWeights = 0.0;
@@ -930,17 +975,16 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
         // falls there still reads the environment around it.
         vec3 w = fd.refraction ? vec3(1.0) - F : F * max(mx_ggx_sample_weight(Vt, Lt, alpha), 1.0e-4);
         float pdf = mx_ggx_reflection_pdf(H, Vt, alpha);
-        lobeRadiance += w * mx_envmap_fetch(u_envRadiance, frame * Lt, mx_prefiltered_sample_lod(pdf, sampleCount));
+        lobeRadiance += w * mx_envmap_fetch(u_envRadiance, frame * Lt, mx_prefiltered_sample_lod(pdf, sampleCount, elongation));
         lobeWeights += w;
 
         vec3 Hs = mx_ggx_sample_visible_normal(u, vec3(0.0, 0.0, 1.0), vec2(avgAlpha));
         vec3 Ls = reflect(vec3(0.0, 0.0, -1.0), Hs);
         float cosine = max(Ls.z, 1.0e-4);  // a token weight below R's horizon, as above
         float pdfs = mx_ggx_reflection_pdf(Hs, vec3(0.0, 0.0, 1.0), vec2(avgAlpha));
-        splitRadiance += cosine * mx_envmap_fetch(u_envRadiance, frame * (toR * Ls), mx_prefiltered_sample_lod(pdfs, sampleCount));
+        splitRadiance += cosine * mx_envmap_fetch(u_envRadiance, frame * (toR * Ls), mx_prefiltered_sample_lod(pdfs, sampleCount, elongation));
         splitWeights += cosine;
     }
-    vec3 lookup = mx_envmap_fetch(u_envRadiance, frame * Rt, mx_prefiltered_lod(avgAlpha));
     vec3 correction = lobeRadiance / max(lobeWeights, vec3(MX_EPS)) - splitRadiance / max(splitWeights, MX_EPS);
     return max(lookup + correction, vec3(0.0));
 }
@@ -950,13 +994,19 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
 // alpha, or, with fd.refraction, after passing through a solid sphere of index fd.ior.x; `albedo`
 // as mx_environment_radiance() gives it: one lookup along the mirror (or refracted) direction, or
 // with MX_ENV_HYBRID that lookup corrected by samples. Without `fetch` only the albedo, from the
-// table, and no texture reads.
+// table (with MX_ENV_HYBRID, an anisotropic lobe's corrected by samples), and no texture reads.
 vec3 mx_environment_prefiltered(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
 {
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
     float avgAlpha = clamp(sqrt(alpha.x * alpha.y), 0.0, 1.0);
     LobeFresnel lf = mx_lobe_fresnel(NdotV, avgAlpha, fd);
-    albedo = mx_environment_table_albedo(lf, NdotV, fd);
+#ifdef MX_ENV_HYBRID
+    vec3 Vt = V * mx_tangent_frame(N, X);
+    Vt.z = max(Vt.z, MX_EPS);
+    albedo = mx_environment_table_albedo(lf, NdotV, fd, mx_anisotropic_albedo_difference(Vt, alpha, avgAlpha, lf, fd));
+#else
+    albedo = mx_environment_table_albedo(lf, NdotV, fd, vec4(0.0));
+#endif
     if (!fetch)
         return vec3(0.0);
 #ifdef MX_ENV_HYBRID
