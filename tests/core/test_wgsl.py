@@ -205,3 +205,31 @@ def test_a_validator_panic_is_one_rejected_module(validator):
     errors = validator({"before": good, "panics": PANICS, "after": good, "bad": good.replace("vec4f(1.0)", "1.5i")})
     assert set(errors) == {"panics", "bad"}, errors
     assert "panicked" in errors["panics"] and "constant_evaluator" in errors["panics"], errors["panics"]
+
+
+NOT_FINITE = [  # nodes of literals whose value WGSL's compiler cannot hold: no Python evaluator folds them
+    '<divide name="n" type="float"><input name="in1" type="float" value="1"/><input name="in2" type="float" value="0"/></divide>',
+    '<divide name="n" type="vector3"><input name="in1" type="vector3" value="1, 0, 1"/><input name="in2" type="float" value="0"/></divide>',
+    '<modulo name="n" type="float"><input name="in1" type="float" value="1"/><input name="in2" type="float" value="0"/></modulo>',
+    '<remap name="n" type="float"><input name="in" type="float" value="1"/><input name="inlow" type="float" value="0.5"/>'
+    '<input name="inhigh" type="float" value="0.5"/></remap>',
+    '<sqrt name="n" type="float"><input name="in" type="float" value="-1"/></sqrt>',
+    '<ln name="n" type="float"><input name="in" type="float" value="0"/></ln>',
+    '<normalize name="n" type="vector3"><input name="in" type="vector3" value="0, 0, 0"/></normalize>',
+    '<exp name="n" type="float"><input name="in" type="float" value="100"/></exp>',
+]
+
+
+@pytest.mark.parametrize("node", NOT_FINITE, ids=["divide", "divide_vector3", "modulo", "remap", "sqrt", "ln", "normalize", "exp"])
+def test_literals_whose_value_is_not_finite_are_computed_at_run_time(gen, validator, node):
+    """WGSL rejects a constant expression whose value is infinite or undefined; GLSL computes it.
+    The literals go through an identity function, which no compiler evaluates."""
+    t = node.split('type="')[1].split('"')[0]
+    text = doc(f'<nodegraph name="g">{node}<output name="out" type="{t}" nodename="n"/></nodegraph>')
+    rec = gen.prepare(text, target="wgsl", interface="specialized").emit()
+    assert f"mx_runtime_{'vec3f' if t == 'vector3' else 'f32'}(" in rec["stages"]["pixel"]
+    assert not validator(rec["stages"])
+    literal = gen.prepare(doc(f'<nodegraph name="g"><constant name="n" type="{t}"><input name="value" type="{t}" '
+                              f'value="{"1, 2, 3" if t == "vector3" else "1"}"/></constant>'
+                              f'<output name="out" type="{t}" nodename="n"/></nodegraph>'), target="wgsl", interface="specialized").emit()
+    assert "mx_runtime" not in literal["stages"]["pixel"]  # a literal alone is finite: written as it is

@@ -80,6 +80,14 @@ fn mx_inverse_mat4(a: mat4x4f) -> mat4x4f {
 }
 """
 
+# Identity functions, one per type (WGSL has no generic ones), through which WgslTarget.inline reads
+# the literals of an expression made of literals alone. WGSL evaluates such an expression when it
+# compiles, and rejects it where its value is not finite (1.0 / 0.0: GLSL gives infinity) or where
+# a built-in it calls has no constant form for its abstract-typed literals (mix(0.0, 1.0, 0.5));
+# a function call is never a constant expression, so the GPU computes it as GLSL's would.
+RUNTIME_TYPES = ("f32", "i32", "bool", "vec2f", "vec3f", "vec4f", "mat3x3f", "mat4x4f")
+HELPERS += "".join(f"\nfn mx_runtime_{t}(value: {t}) -> {t} {{ return value; }}\n" for t in RUNTIME_TYPES)
+
 WGSL_RESERVED = set("""
 alias break case const const_assert continue continuing default diagnostic discard else enable false fn for if let
 loop override requires return struct switch true var while NULL Self abstract active alignas alignof as asm

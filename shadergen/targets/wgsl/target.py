@@ -17,7 +17,7 @@ from ...shader import PIXEL, VERTEX, Variable, Writer
 from ..deadcode import used_functions
 from ..glsl import LIGHT_DATA_MEMBERS, STRUCTS, TYPE_NAMES, ClosureConvention, Syntax, _float
 from ..glsl_target import PLACEHOLDER, GlslTarget
-from .builtins import HELPERS, WGSL_RESERVED, WGSL_TYPES
+from .builtins import HELPERS, RUNTIME_TYPES, WGSL_RESERVED, WGSL_TYPES
 from .layout import uniform_layout
 from .translate import FRAGMENT_BUILTINS, Translator, Untranslatable
 
@@ -110,6 +110,9 @@ class WgslTarget(GlslTarget):
     def inline(self, expression: str, inputs: dict[str, tuple[str, str]]) -> str:
         """A library's inline expression (GLSL) with its inputs' values: translated with their types."""
         names = {f"inline_{k}": v for k, v in inputs.items()}
+        if inputs and all(_literal(v) for v, _ in inputs.values()) and not PLACEHOLDER.fullmatch(expression.strip()):
+            names = {k: (f"mx_runtime_{wgsl_type(t)}({v})" if wgsl_type(t) in RUNTIME_TYPES else v, t)
+                     for k, (v, t) in names.items()}  # see builtins.RUNTIME_TYPES
         template = PLACEHOLDER.sub(r"inline_\1", expression)
         try:
             text, _ = translator().expression(template, {k: TYPE_NAMES.get(t, t) for k, (_, t) in names.items()})
@@ -256,9 +259,17 @@ def _braces(w: Writer, opener: str):
 
 
 def _primary(text: str) -> str:
-    """An operand as it can stand in any expression: names and constructor calls as they are,
-    anything else (a negative literal, an operator) in parentheses."""
-    return text if re.fullmatch(r"[\w.]+|\w+\([^()]*\)", text) else f"({text})"
+    """An operand as it can stand in any expression: names and calls as they are, anything else (a
+    negative literal, an operator) in parentheses."""
+    return text if re.fullmatch(r"[\w.]+|\w+\((?:[^()]|\([^()]*\))*\)", text) else f"({text})"
+
+
+LITERAL_WORDS = set(WGSL_TYPES.values()) | {"true", "false"}
+
+
+def _literal(text: str) -> bool:
+    """Nothing in it is read at run time: numbers, and type constructors of numbers."""
+    return all(word in LITERAL_WORDS for word in re.findall(r"\b[A-Za-z_]\w*", text))
 
 
 def _read_through(text: str, reads: dict[str, str]) -> str:
