@@ -140,7 +140,7 @@ class GlslTarget:
                 if not point:
                     w.line("// lobes prepared once per shading point, before any light")
                     w.line(self.declare("ClosureData", "pointData",
-                                        "makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion)"))
+                                        "ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion)"))
                     point.append("pointData")
                 return point
 
@@ -171,7 +171,7 @@ class GlslTarget:
     def _context(self, ctx, inp, context: str, accumulate: str) -> None:
         closure_type = self.CONTEXTS[context]
         ctx.body.line(self.declare("ClosureData", "closureData",
-                                   f"makeClosureData({closure_type}, L, V, N, P, occlusion)"))
+                                   f"ClosureData({closure_type}, L, V, N, P, occlusion)"))
         value = ctx.emit_closures(inp, context)
         ctx.body.line(accumulate.format(value))
 

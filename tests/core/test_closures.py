@@ -22,18 +22,18 @@ def test_each_context_evaluates_the_closures_data_nodes_once(gen):
     main = main_of(rec)
     assert main.count("mx_noise2d") == 1  # data feeding the BSDFs: computed once, before the contexts
     for context in ("CLOSURE_TYPE_INDIRECT", "CLOSURE_TYPE_TRANSMISSION", "CLOSURE_TYPE_EMISSION"):
-        assert f"makeClosureData({context}" in main
-    contexts = main.count("makeClosureData(CLOSURE_TYPE_") - main.count("makeClosureData(CLOSURE_TYPE_DEFAULT")
+        assert f"ClosureData({context}" in main
+    contexts = main.count("ClosureData(CLOSURE_TYPE_") - main.count("ClosureData(CLOSURE_TYPE_DEFAULT")
     assert main.count("mx_oren_nayar_diffuse_bsdf(closureData") == contexts - 1  # every BSDF context but emission
     assert main.count("mx_uniform_edf(closureData") == 1
-    assert main.index("mx_noise2d") < main.index("makeClosureData(")
+    assert main.index("mx_noise2d") < main.index("ClosureData(")
 
 
 def test_a_lobe_with_a_preparation_is_prepared_once_before_the_contexts(gen):
     main = main_of(gen.prepare(doc(MATERIAL)).emit())
     assert main.count("mx_dielectric_bsdf_prepare(pointData, coat_weight,") == 1
     prepared = main.index("mx_dielectric_bsdf_prepare(")
-    assert prepared < main.index("makeClosureData(CLOSURE_TYPE_REFLECTION")
+    assert prepared < main.index("ClosureData(CLOSURE_TYPE_REFLECTION")
     calls = [line.strip() for line in main.splitlines() if "mx_dielectric_bsdf(" in line]
     assert len(calls) == 3 and all(c == "mx_dielectric_bsdf(closureData, coat_lobe, coat_out);" for c in calls)
     assert main.count("mx_oren_nayar_diffuse_bsdf_prepare") == 0  # a lobe without one takes its inputs per context
@@ -43,7 +43,7 @@ def test_unconnected_closures_write_no_context(gen):
     rec = gen.prepare(doc('<surface name="surf" type="surfaceshader"/>'
                           '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" '
                           'nodename="surf"/></surfacematerial>')).emit()
-    assert "makeClosureData" not in main_of(rec)
+    assert "ClosureData(" not in main_of(rec)
 
 
 @needs_glslang

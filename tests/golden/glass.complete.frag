@@ -65,11 +65,6 @@ struct ClosureData
     float occlusion;
 };
 
-ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
-{
-    return ClosureData(closureType, L, V, N, P, occlusion);
-}
-
 // Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
@@ -1533,7 +1528,7 @@ void main()
         float occlusion = 1.0;
         float surfaceOpacity = glass_surface_opacity;
         // lobes prepared once per shading point, before any light
-        ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
+        ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe glass_lobe_lobe;
         mx_dielectric_bsdf_prepare(pointData, glass_lobe_weight, glass_lobe_tint, glass_lobe_ior, glass_lobe_roughness, glass_lobe_retroreflective, glass_lobe_thinfilm_thickness, glass_lobe_thinfilm_ior, geomprop_Nworld_out, geomprop_Tworld_out, glass_lobe_distribution, glass_lobe_scatter_mode, glass_lobe_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); ++activeLightIndex)
@@ -1541,21 +1536,21 @@ void main()
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
             BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
             glass_surface_out.color += lightShader.intensity * glass_lobe_out.response;
         }
         // environment
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
             BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
             glass_surface_out.color += occlusion * glass_lobe_out.response;
         }
         // transmission, seen along the view direction
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
             BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
             glass_surface_out.color += glass_lobe_out.response;

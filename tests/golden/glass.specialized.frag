@@ -49,11 +49,6 @@ struct ClosureData
     float occlusion;
 };
 
-ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
-{
-    return ClosureData(closureType, L, V, N, P, occlusion);
-}
-
 // Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
@@ -1223,7 +1218,7 @@ void main()
         float occlusion = 1.0;
         float surfaceOpacity = 1.0;
         // lobes prepared once per shading point, before any light
-        ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
+        ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe glass_lobe_lobe;
         mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.45, vec2(0.05, 0.05), false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 2, glass_lobe_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); ++activeLightIndex)
@@ -1231,21 +1226,21 @@ void main()
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
             BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
             glass_surface_out.color += lightShader.intensity * glass_lobe_out.response;
         }
         // environment
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
             BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
             glass_surface_out.color += occlusion * glass_lobe_out.response;
         }
         // transmission, seen along the view direction
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
             BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
             glass_surface_out.color += glass_lobe_out.response;

@@ -242,11 +242,6 @@ struct ClosureData
     float occlusion;
 };
 
-ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
-{
-    return ClosureData(closureType, L, V, N, P, occlusion);
-}
-
 // Fresnel reflectance: Schlick and its generalisations, exact dielectric and conductor
 // reflectance, and Belcour & Barla's thin-film (Airy) interference over any of them.
 
@@ -2303,7 +2298,7 @@ void main()
         float SR_coated_specular_brdf_active_weight = SR_coated_dielectric_reached ? SR_coated_specular : 0.0;
         float SR_coated_metal_brdf_active_weight = (SR_coated_metalness != 0.0) ? 1.0 : 0.0;
         // lobes prepared once per shading point, before any light
-        ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
+        ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe SR_coated_coat_brdf_lobe;
         mx_dielectric_bsdf_prepare(pointData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_lobe);
         SpecularLobe SR_coated_metal_brdf_lobe;
@@ -2317,7 +2312,7 @@ void main()
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
@@ -2360,7 +2355,7 @@ void main()
         }
         // environment
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
@@ -2403,7 +2398,7 @@ void main()
         }
         // emission
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
             EDF SR_coated_emission_edf_emission_out = EDF(0.0);
             mx_uniform_edf(closureData, SR_coated_emission_radiance_out, SR_coated_emission_edf_emission_out);
             EDF SR_coated_emission_edf_through_coat_out = EDF(0.0);
@@ -2412,7 +2407,7 @@ void main()
         }
         // transmission, seen along the view direction
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));

@@ -48,11 +48,6 @@ struct ClosureData
     float occlusion;
 };
 
-ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
-{
-    return ClosureData(closureType, L, V, N, P, occlusion);
-}
-
 // Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
@@ -1228,7 +1223,7 @@ void main()
         float occlusion = 1.0;
         float surfaceOpacity = 1.0;
         // lobes prepared once per shading point, before any light
-        ClosureData pointData = makeClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
+        ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe SR_coated_coat_brdf_lobe;
         mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.0025, 0.0025), false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_coat_brdf_lobe);
         SpecularLobe SR_coated_specular_brdf_lobe;
@@ -1238,7 +1233,7 @@ void main()
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
@@ -1253,7 +1248,7 @@ void main()
         }
         // environment
         {
-            ClosureData closureData = makeClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
+            ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
             BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
             BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));

@@ -19,8 +19,3 @@ struct ClosureData
     vec3 P;
     float occlusion;
 };
-
-ClosureData makeClosureData(int closureType, vec3 L, vec3 V, vec3 N, vec3 P, float occlusion)
-{
-    return ClosureData(closureType, L, V, N, P, occlusion);
-}
