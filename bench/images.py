@@ -2,7 +2,7 @@
 """Images unchanged by a change to the generator or the libraries: render, then compare.
 
 `render` draws every material under a folder of documents (the Examples by default) with our
-`complete` shader, once under the environment alone and once with a light rig as well, into a
+shader of one interface (`complete` unless --interface says otherwise), once under the environment alone and once with a light rig as well, into a
 folder of linear .npy images; `compare` prints the PSNR of each image of one such folder against
 the same image of another and fails when any is below --min-psnr. Render the baseline from the
 tree before the change (a checkout of main: `--tree`), then the change, then compare.
@@ -40,7 +40,7 @@ def render(args) -> int:
         for scene, extra in SCENES.items():
             out = os.path.join(args.out, scene, os.path.relpath(document, args.examples) + ".npy")
             os.makedirs(os.path.dirname(out), exist_ok=True)
-            cmd = [sys.executable, "-m", "shadergen.cli", "render", document, "--interface", "complete",
+            cmd = [sys.executable, "-m", "shadergen.cli", "render", document, "--interface", args.interface,
                    "--npy", out, "--size", str(args.size), "--search-path", CORPUS, *extra]
             run = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=args.tree)
             status = "ok" if run.returncode == 0 else "FAILED " + (run.stdout + run.stderr).strip()[-300:]
@@ -84,6 +84,7 @@ def main() -> int:
     r.add_argument("--examples", default=EXAMPLES, help="folder of documents, searched recursively")
     r.add_argument("--tree", default=ROOT, help="the source tree whose shadergen draws them")
     r.add_argument("--size", type=int, default=128)
+    r.add_argument("--interface", default="complete", choices=["complete", "reduced", "specialized"])
     c = sub.add_parser("compare", help="PSNR of every image of one folder against another")
     c.add_argument("before")
     c.add_argument("after")
