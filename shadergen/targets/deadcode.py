@@ -4,6 +4,11 @@ Library files bring whole families of functions (a file per closure operator def
 EDF and VDF forms); the stage needs only what `main` calls, directly or through what it calls.
 Top-level items are split by brace depth: a function, a struct, a `#define`, a global, each with
 the comment lines just above it. Items whose name cannot be read are kept.
+
+A comment block that a blank line separates from what follows documents the library *file* (its
+header, a "--- Dielectric ---" divider): it describes functions the shader mostly does not have,
+in an order the shader does not keep, so it is left out of every stage. Comments attached to a
+function, struct or definition stay with it.
 """
 import re
 from functools import lru_cache
@@ -11,31 +16,61 @@ from functools import lru_cache
 # GLSL identifiers are ASCII: matched as such, the scan runs about twice as fast as with Unicode
 # word classes (every item of every library file a shader includes is scanned once per process).
 IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
+COMMENT = re.compile(r"//.*")
 NAMES = (re.compile(r"^\s*#\s*define\s+(\w+)"), re.compile(r"^\s*struct\s+(\w+)"),
          re.compile(r"^\s*(?:const\s+)?\w+\s+(\w+)\s*(?:\(|=|;|\[)"))
+
+GUARD = re.compile(r"^\s*#\s*ifndef\s+(\w+)\s*$")
+ENDIF = re.compile(r"^\s*#\s*endif\b")
 
 
 def split_items(lines: list[str]) -> list[tuple[str | None, list[str]]]:
     """(defined name or None, lines) for each top-level item, comments attached to what follows."""
     items, current, pending, depth = [], [], [], 0
-    for line in lines:
+    index = 0
+    while index < len(lines):
+        line = lines[index]
         stripped = line.strip()
+        index += 1
         if depth == 0 and not current:
             if not stripped or stripped.startswith("//"):
                 pending.append(line)
                 continue
+            guarded = _default_definition(lines, index - 1)
+            if guarded:
+                items.append((guarded, _attached(pending) + lines[index - 1:index + 2]))
+                pending = []
+                index += 2
+                continue
             if stripped.startswith("#") and not stripped.endswith("\\"):
-                items.append((_name(stripped), pending + [line]))
+                items.append((_name(stripped), _attached(pending) + [line]))
                 pending = []
                 continue
         current.append(line)
         depth += _braces(line)
         if depth == 0 and (stripped.endswith("}") or stripped.endswith(";")):
-            items.append((_name(current[0].strip()), pending + current))
+            items.append((_name(current[0].strip()), _attached(pending) + current))
             current, pending = [], []
     if current or pending:
-        items.append((None, pending + current))
+        items.append((None, _attached(pending) + current))
     return items
+
+
+def _default_definition(lines: list[str], index: int) -> str | None:
+    """The name X when lines[index:] start with `#ifndef X`, `#define X ...`, `#endif`: a default a
+    compiler option may override, one item that is kept only where X is used."""
+    m = GUARD.match(lines[index])
+    if m and index + 2 < len(lines) and _name(lines[index + 1].strip()) == m.group(1) \
+            and ENDIF.match(lines[index + 2]):
+        return m.group(1)
+    return None
+
+
+def _attached(pending: list[str]) -> list[str]:
+    """The blank and comment lines before an item without its detached comment blocks: only the
+    comments after the last blank line document the item (the blank lines stay: they space it)."""
+    last_blank = max((i for i, line in enumerate(pending) if not line.strip()), default=-1)
+    return [line for i, line in enumerate(pending) if i > last_blank or not line.strip()]
 
 
 def _braces(line: str) -> int:
@@ -73,7 +108,7 @@ class Section:
     def reachable(self, roots: str) -> tuple[list[int], set[str]]:
         """The indices of the items the roots use, transitively, in their original order, and every
         identifier the roots and those items use."""
-        root_words = set(IDENTIFIER.findall(roots))
+        root_words = identifiers(roots)
         keep = set(self.always) | self.defining(root_words)
         todo = list(keep)
         while todo:
@@ -88,7 +123,7 @@ class Section:
 @lru_cache(maxsize=8192)
 def _words(item: tuple[str, ...]) -> frozenset[str]:
     """The identifiers of an item: library functions recur in every request, so this is memoised."""
-    return frozenset(IDENTIFIER.findall("\n".join(item)))
+    return frozenset(identifiers("\n".join(item)))
 
 
 @lru_cache(maxsize=64)
@@ -127,4 +162,5 @@ def _reduced(section: Section, roots: str) -> tuple[tuple[str, ...], frozenset[s
 
 
 def identifiers(text: str) -> set[str]:
-    return set(IDENTIFIER.findall(text))
+    """The identifiers of code: a name a comment mentions keeps nothing alive."""
+    return set(IDENTIFIER.findall(COMMENT.sub("", text)))

@@ -10,7 +10,6 @@ uniform sampler2D u_envRadiance;
 uniform float u_envLightIntensity;
 uniform int u_envRadianceMips;
 uniform int u_envRadianceSamples;
-uniform sampler2D u_envIrradiance;
 uniform bool u_refractionTwoSided;
 uniform vec3 u_viewPosition;
 
@@ -43,8 +42,6 @@ struct ClosureData
     vec3 P;
     float occlusion;
 };
-
-// Constants and small helpers shared by the PBR library.
 
 const float MX_PI = 3.1415926535897932;
 const float MX_INV_PI = 1.0 / MX_PI;
@@ -129,13 +126,6 @@ vec2 mx_fibonacci_point(int i, int count)
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
 
-// Fresnel reflectance: Schlick and its generalisations, exact dielectric and conductor
-// reflectance, and Belcour & Barla's thin-film (Airy) interference over any of them.
-
-#ifndef AIRY_FRESNEL_ITERATIONS
-#define AIRY_FRESNEL_ITERATIONS 2
-#endif
-
 #define FRESNEL_MODEL_DIELECTRIC 0
 
 // Thickest film taken (nanometres): interference has washed out long before.
@@ -166,8 +156,6 @@ FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 
                        mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
-// --- Dielectric ------------------------------------------------------------------------------
-
 // Unpolarised reflectance of a dielectric interface with relative index `eta` (transmitted over
 // incident side); 1 under total internal reflection.
 float mx_fresnel_dielectric(float cosTheta, float eta)
@@ -182,8 +170,6 @@ float mx_fresnel_dielectric(float cosTheta, float eta)
     return 0.5 * s * s * (1.0 + p * p);
 }
 
-// --- Dispatch --------------------------------------------------------------------------------
-
 // Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
 // and the thin film only when some closure's film can be thicker than 0. `withFilm` false leaves
 // fd's film out: a caller that knows it has none passes a constant and gets no film code, which
@@ -195,12 +181,6 @@ vec3 mx_fresnel_eval_film(float cosTheta, FresnelData fd, bool withFilm)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
     return vec3(0.0);  // no closure of this shader uses another model
 }
-
-// GGX (Trowbridge-Reitz) microfacets after Walter et al. 2007, with Smith masking-shadowing in
-// Heitz 2014's height-correlated form, visible-normal sampling, and multiple-scattering energy
-// compensation from our own albedo table (tools/fit_albedo.py; Kulla & Conty 2017, Turquin 2019).
-// Directions are in the tangent frame: x along the tangent, z along the normal; alpha = (alpha_x,
-// alpha_y) is the roughness along x and y.
 
 // Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
 const float MX_GGX_MIN_ALPHA = 1.0e-4;
@@ -261,12 +241,6 @@ float mx_ggx_reflection_pdf(vec3 H, vec3 V, vec2 alpha)
     return mx_ggx_D(H, alpha) * mx_ggx_G1(V, alpha) / (4.0 * max(V.z, MX_EPS));
 }
 
-// The lat-long environment map: lookups along world directions, shared by the two ways of lighting
-// with it (mx_environment_fis.glsl, mx_environment_prefilter.glsl).
-//
-// Map convention: texel (u, v) with v = 0 the top row holds map direction
-// (cos(lat) sin(lon), sin(lat), -cos(lat) cos(lon)), lat = (0.5 - v) pi, lon = (u - 0.5) 2 pi.
-
 // The texel coordinates of map direction `mapDir`, a unit vector up to rounding.
 vec2 mx_envmap_uv(vec3 mapDir)
 {
@@ -292,16 +266,6 @@ vec3 mx_refraction_solid_sphere(vec3 R, vec3 N, float ior)
     vec3 leaving = refract(inside, exitNormal, eta);
     return (dot(leaving, leaving) == 0.0) ? reflect(inside, exitNormal) : leaving;
 }
-
-// Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
-// & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
-// sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
-// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl), once
-// or, with MX_ENV_HYBRID too, corrected by u_envRadianceSamples samples of it.
-//
-// Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
-// u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
-// in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
 
 // Mip level for a sample of density `pdf` along map direction `mapDir` (GPU Gems 3, 20.4, eq. 13),
 // with the lat-long map's stretching towards its poles, biased 1.5 levels sharper.
@@ -385,9 +349,6 @@ vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     return mx_environment_samples(N, V, X, alpha, fd, true, true, albedo);
 }
 
-// Transmission rendered by refraction: what is seen through the surface is the environment,
-// refracted through a solid sphere of the surface's index; scene geometry behind is ignored.
-
 vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, vec3 tint)
 {
     fd.refraction = true;
@@ -396,19 +357,6 @@ vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
     vec3 transmitted;
     return mx_environment_radiance(N, V, X, alpha, distribution, fd, transmitted) * through;
 }
-
-// The GGX reflection lobe shared by the specular closures (dielectric, conductor, generalized
-// Schlick, and the environment term of hair).
-//
-// A specular closure is prepared once per shading point, before any light (its `_prepare`
-// function, which the generator calls before the shading contexts): normal, frame, Fresnel set-up,
-// directional albedo and the environment it reflects do not depend on the light. The closure
-// function then answers each context from the prepared SpecularLobe:
-//   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
-//                 BRDF's), F and the multiple-scattering compensation taken at the half vector.
-//   INDIRECT      the environment, sampled once by filtered importance sampling, compensated there.
-//   TRANSMISSION  no light of its own: what is seen through a layer loses exactly the albedo its
-//                 environment term has (the same samples).
 
 struct SpecularLobe
 {
@@ -479,9 +427,6 @@ bool mx_is_scattering_context(int closureType)
     return closureType == CLOSURE_TYPE_REFLECTION || closureType == CLOSURE_TYPE_TRANSMISSION ||
            closureType == CLOSURE_TYPE_INDIRECT;
 }
-
-// <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
-// dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,

@@ -22,13 +22,6 @@ in VertexData
 
 out vec4 out1;
 
-// Integer lattice hashing and cell noise, shared by the procedural nodes.
-//
-// Lattice points are hashed with Bob Jenkins' lookup3 ("hashword": initial value
-// 0xdeadbeef + (length << 2) + 13, then mix per 3 words and a final avalanche), the hash that
-// OSL's noise uses, so cell values agree with renderers that follow OSL and MaterialX.
-// Works in GLSL 4.00 and ESSL 3.00: plain uint arithmetic, no bit-field built-ins.
-
 uint mx_hn_rotl(uint x, uint k)
 {
     return (x << k) | (x >> (32u - k));
@@ -90,12 +83,6 @@ uint mx_hn_hash(int x, int y, int z, int w, int v)
     mx_hn_mix(a, b, c);
     return mx_hn_final(a + uint(w), b + uint(v), c);
 }
-
-// Perlin's improved gradient noise on the integer lattice, and its fractal sum.
-//
-// Corner gradients are picked by the lookup3 lattice hash (mx_hash_noise.glsl), blended with
-// the quintic fade 6t^5 - 15t^4 + 10t^3, and scaled to about [-1, 1] by 0.6616 (2D) and
-// 0.9820 (3D), the factors OSL and MaterialX use, so the patterns line up with theirs.
 
 float mx_pn_fade(float t)
 {

@@ -43,8 +43,6 @@ struct ClosureData
     float occlusion;
 };
 
-// Constants and small helpers shared by the PBR library.
-
 const float MX_PI = 3.1415926535897932;
 const float MX_INV_PI = 1.0 / MX_PI;
 const float MX_EPS = 1.0e-8;  // floor for cosines and weights, as in MaterialX's hardware shading
@@ -134,13 +132,6 @@ vec2 mx_fibonacci_point(int i, int count)
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
 
-// Fresnel reflectance: Schlick and its generalisations, exact dielectric and conductor
-// reflectance, and Belcour & Barla's thin-film (Airy) interference over any of them.
-
-#ifndef AIRY_FRESNEL_ITERATIONS
-#define AIRY_FRESNEL_ITERATIONS 2
-#endif
-
 #define FRESNEL_MODEL_DIELECTRIC 0
 
 // Thickest film taken (nanometres): interference has washed out long before.
@@ -171,8 +162,6 @@ FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 
                        mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
-// --- Dielectric ------------------------------------------------------------------------------
-
 // Unpolarised reflectance of a dielectric interface with relative index `eta` (transmitted over
 // incident side); 1 under total internal reflection.
 float mx_fresnel_dielectric(float cosTheta, float eta)
@@ -187,8 +176,6 @@ float mx_fresnel_dielectric(float cosTheta, float eta)
     return 0.5 * s * s * (1.0 + p * p);
 }
 
-// --- Dispatch --------------------------------------------------------------------------------
-
 // Generation-time features (shadergen/features.py): a shader keeps the models its closures use,
 // and the thin film only when some closure's film can be thicker than 0. `withFilm` false leaves
 // fd's film out: a caller that knows it has none passes a constant and gets no film code, which
@@ -200,12 +187,6 @@ vec3 mx_fresnel_eval_film(float cosTheta, FresnelData fd, bool withFilm)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
     return vec3(0.0);  // no closure of this shader uses another model
 }
-
-// GGX (Trowbridge-Reitz) microfacets after Walter et al. 2007, with Smith masking-shadowing in
-// Heitz 2014's height-correlated form, visible-normal sampling, and multiple-scattering energy
-// compensation from our own albedo table (tools/fit_albedo.py; Kulla & Conty 2017, Turquin 2019).
-// Directions are in the tangent frame: x along the tangent, z along the normal; alpha = (alpha_x,
-// alpha_y) is the roughness along x and y.
 
 // Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
 const float MX_GGX_MIN_ALPHA = 1.0e-4;
@@ -266,12 +247,6 @@ float mx_ggx_reflection_pdf(vec3 H, vec3 V, vec2 alpha)
     return mx_ggx_D(H, alpha) * mx_ggx_G1(V, alpha) / (4.0 * max(V.z, MX_EPS));
 }
 
-// The lat-long environment map: lookups along world directions, shared by the two ways of lighting
-// with it (mx_environment_fis.glsl, mx_environment_prefilter.glsl).
-//
-// Map convention: texel (u, v) with v = 0 the top row holds map direction
-// (cos(lat) sin(lon), sin(lat), -cos(lat) cos(lon)), lat = (0.5 - v) pi, lon = (u - 0.5) 2 pi.
-
 // The texel coordinates of map direction `mapDir`, a unit vector up to rounding.
 vec2 mx_envmap_uv(vec3 mapDir)
 {
@@ -295,16 +270,6 @@ vec3 mx_environment_irradiance(vec3 N)
 {
     return mx_envmap_fetch(u_envIrradiance, N, 0.0) * u_envLightIntensity;
 }
-
-// Image-based lighting from a lat-long environment map, by filtered importance sampling (Krivanek
-// & Colbert 2008): GGX visible normals drawn from a spherical Fibonacci set, each environment
-// sample fetched from the mip level whose texel covers the sample's solid angle. A shader compiled
-// with MX_ENV_PREFILTER defined reads a prefiltered map instead (mx_environment_prefilter.glsl), once
-// or, with MX_ENV_HYBRID too, corrected by u_envRadianceSamples samples of it.
-//
-// Uniforms (declared by the generator with the surface node): u_envRadiance (mipmapped radiance),
-// u_envIrradiance (irradiance / pi), u_envMatrix (world -> map direction), u_envRadianceMips (levels
-// in the radiance map's mip chain), u_envRadianceSamples, u_envLightIntensity.
 
 // Mip level for a sample of density `pdf` along map direction `mapDir` (GPU Gems 3, 20.4, eq. 13),
 // with the lat-long map's stretching towards its poles, biased 1.5 levels sharper.
@@ -382,19 +347,6 @@ vec3 mx_environment_reflected(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd
     return mx_environment_samples(N, V, X, alpha, fd, fetch, false, albedo);
 }
 
-// The GGX reflection lobe shared by the specular closures (dielectric, conductor, generalized
-// Schlick, and the environment term of hair).
-//
-// A specular closure is prepared once per shading point, before any light (its `_prepare`
-// function, which the generator calls before the shading contexts): normal, frame, Fresnel set-up,
-// directional albedo and the environment it reflects do not depend on the light. The closure
-// function then answers each context from the prepared SpecularLobe:
-//   REFLECTION    D F G2 / (4 NdotV) towards closureData.L (the light's cosine cancels against the
-//                 BRDF's), F and the multiple-scattering compensation taken at the half vector.
-//   INDIRECT      the environment, sampled once by filtered importance sampling, compensated there.
-//   TRANSMISSION  no light of its own: what is seen through a layer loses exactly the albedo its
-//                 environment term has (the same samples).
-
 struct SpecularLobe
 {
     float weight;            // 0 where the lobe scatters nothing
@@ -458,9 +410,6 @@ bool mx_is_scattering_context(int closureType)
            closureType == CLOSURE_TYPE_INDIRECT;
 }
 
-// <dielectric_bsdf>: GGX reflection off, and refraction through, a dielectric interface (exact
-// dielectric Fresnel), with an optional thin film. scatter_mode: 0 R, 1 T, 2 RT.
-
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
                                 bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
@@ -488,9 +437,6 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     }
 }
 
-// <oren_nayar_diffuse_bsdf>: opaque rough diffuse reflection (lib/mx_diffuse.glsl), Lambert at
-// roughness 0; energy_compensation selects EON, the energy-preserving model of OpenPBR.
-
 void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 color, float roughness, vec3 N,
                                 bool energy_compensation, inout BSDF bsdf)
 {
@@ -509,8 +455,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
         bsdf.response = mx_environment_irradiance(N) * albedo * weight;
     }
 }
-
-// <layer>: vertical layering. The base is lit by what the top layer lets through.
 
 void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result)
 {
