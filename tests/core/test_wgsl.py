@@ -136,6 +136,13 @@ def test_comments_that_explain_are_kept_where_they_were():
     assert "    if (y > 1.0) { y = 1.0; }  // clamped" in lines
 
 
+def test_a_files_detached_comment_blocks_are_left_out_as_in_glsl():
+    out = translate("// The file's header.\n\n// Why f exists\nfloat f(float x)\n{\n    // a step\n\n"
+                    "    return x;\n}\n")
+    assert "header" not in out
+    assert out.splitlines()[0] == "// Why f exists" and "    // a step" in out.splitlines()
+
+
 def test_inverse_is_a_helper_of_the_target(gen, validator):
     text = doc('<nodegraph name="g"><invertmatrix name="i" type="matrix33"><input name="in" type="matrix33" '
                'value="1,0,0, 0,2,0, 0,0,4"/></invertmatrix><transformmatrix name="t" type="vector3">'

@@ -62,8 +62,10 @@ TRAILING = "//>"  # marks a comment that follows code on its line
 
 def tokenize(text: str) -> list[str]:
     """Tokens, comments among them as `// text` lines (a block comment gives one per line; a
-    comment after code on its line starts with TRAILING instead)."""
-    out, pos, line_start = [], 0, True
+    comment after code on its line starts with TRAILING instead). A top-level comment block that
+    a blank line separates from what follows documents the file, not a definition: it is left
+    out, as the GLSL targets leave it out (deadcode.py)."""
+    out, pos, line_start, depth = [], 0, True, 0
     while pos < len(text):
         m = TOKEN.match(text, pos)
         if not m:
@@ -71,7 +73,11 @@ def tokenize(text: str) -> list[str]:
         pos = m.end()
         if m.lastgroup == "ws":
             line_start = line_start or "\n" in m.group()
+            if depth == 0 and m.group().count("\n") > 1:
+                while out and out[-1].startswith("//") and not out[-1].startswith(TRAILING):
+                    out.pop()
             continue
+        depth += {"{": 1, "}": -1}.get(m.group(), 0)
         if m.lastgroup == "comment":
             body = m.group()[2:-2] if m.group().startswith("/*") else m.group()[2:]
             lines = [ln.strip().lstrip("*").strip() for ln in body.split("\n")]
