@@ -13,6 +13,8 @@ function, struct or definition stay with it.
 import re
 from functools import lru_cache
 
+from .deadfields import without_dead_members
+
 # GLSL identifiers are ASCII: matched as such, the scan runs about twice as fast as with Unicode
 # word classes (every item of every library file a shader includes is scanned once per process).
 IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
@@ -105,18 +107,21 @@ class Section:
     def defining(self, words) -> set[int]:
         return {k for w in words for k in self.by_name.get(w, ())}
 
-    def reachable(self, roots: str) -> tuple[list[int], set[str]]:
+    def reachable(self, root_words: set[str], edited: dict[int, tuple[str, ...]]) -> tuple[list[int], set[str]]:
         """The indices of the items the roots use, transitively, in their original order, and every
-        identifier the roots and those items use."""
-        root_words = identifiers(roots)
+        identifier the roots and those items use; `edited` replaces some items' lines."""
+        def words(k: int) -> frozenset[str]:
+            return _words(edited[k]) if k in edited else self.words[k]
+
         keep = set(self.always) | self.defining(root_words)
         todo = list(keep)
         while todo:
-            for k in self.uses[todo.pop()]:
-                if k not in keep:
-                    keep.add(k)
-                    todo.append(k)
-        used = root_words.union(*(self.words[k] for k in keep))
+            k = todo.pop()
+            for used_item in self.defining(words(k)) if k in edited else self.uses[k]:
+                if used_item not in keep:
+                    keep.add(used_item)
+                    todo.append(used_item)
+        used = root_words.union(*(words(k) for k in keep))
         return sorted(keep), used
 
 
@@ -135,7 +140,8 @@ def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], se
     """The function section's lines, reduced to what `roots` (main and declarations) use, and the
     identifiers used by the roots and those lines. Items keep the spacing of their sources: one
     blank line where the source had one or where dropped items come between, none between
-    neighbours that had none (a run of #defines)."""
+    neighbours that had none (a run of #defines). Struct members nothing reads go too
+    (deadfields.py), and then whatever only their stores called."""
     out, used = _reduced(_section(tuple(function_lines)), roots)
     return list(out), set(used)
 
@@ -144,11 +150,23 @@ def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], se
 def _reduced(section: Section, roots: str) -> tuple[tuple[str, ...], frozenset[str]]:
     """A section reduced to what `roots` use: shaders of one topology have the same main, request
     after request, so the walk and the reassembly are done once for each."""
-    keep, used = section.reachable(roots)
+    root_words = identifiers(roots)
+    keep, used = section.reachable(root_words, {})
+    while True:  # a store that goes may have been the last call of a function, whose reads then go too
+        edited = {keep[i]: item for i, item in
+                  without_dead_members([section.items[k] for k in keep], roots, root_words).items()}
+        still, used = section.reachable(root_words, edited) if edited else (keep, used)
+        if still == keep:
+            return _joined(section, keep, edited), frozenset(used)
+        keep = still
+
+
+def _joined(section: Section, keep: list[int], edited: dict[int, tuple[str, ...]]) -> tuple[str, ...]:
+    """The kept items' lines (`edited` replacing some), spaced as the module's doc says."""
     out: list[str] = []
     previous = None
     for k in keep:
-        lines = section.items[k]
+        lines = edited.get(k, section.items[k])
         first = next((i for i, line in enumerate(lines) if line.strip()), len(lines))
         if out and (first > 0 or previous != k - 1):
             out.append("")
@@ -158,7 +176,7 @@ def _reduced(section: Section, roots: str) -> tuple[tuple[str, ...], frozenset[s
         previous = k
     if out and out[-1].strip():
         out.append("")
-    return tuple(out), frozenset(used)
+    return tuple(out)
 
 
 def identifiers(text: str) -> set[str]:

@@ -366,14 +366,10 @@ struct SpecularLobe
     vec3 N;                  // the normal facing V
     vec3 V;                  // towards the viewer, mirrored about the normal for retro-reflection
     vec3 X;                  // tangent
-    bool retroreflective;
     vec2 alpha;              // clamped roughness pair
     FresnelData fd;
     int scatterMode;         // 0 R, 1 T, 2 RT
     int distribution;
-    mat3 frame;              // (X, Y, N) about N
-    vec3 Vt;                 // V in that frame
-    vec3 albedo;             // what the lobe reflects of light arriving along V (the caller's table value, compensated)
     vec3 environment;        // the environment the lobe reflects towards V
     vec3 environmentAlbedo;  // the fraction of the environment it reflects, from the same samples
 };
@@ -391,15 +387,10 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.V = retroreflective ? reflect(-closureData.V, lobe.surfaceN) : closureData.V;
     lobe.N = mx_facing_normal(lobe.surfaceN, lobe.V);
     lobe.X = X;
-    lobe.retroreflective = retroreflective;
     lobe.alpha = mx_ggx_clamp_alpha(roughness);
     lobe.fd = fd;
     lobe.scatterMode = scatterMode;
     lobe.distribution = distribution;
-    lobe.frame = mx_tangent_frame(lobe.N, X);
-    lobe.Vt = lobe.V * lobe.frame;
-    lobe.Vt.z = max(lobe.Vt.z, MX_EPS);
-    lobe.albedo = vec3(0.0);
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
     if (lobe.weight > 0.0)

@@ -1064,7 +1064,6 @@ struct SpecularLobe
     vec3 N;                  // the normal facing V
     vec3 V;                  // towards the viewer, mirrored about the normal for retro-reflection
     vec3 X;                  // tangent
-    bool retroreflective;
     vec2 alpha;              // clamped roughness pair
     FresnelData fd;
     int scatterMode;         // 0 R, 1 T, 2 RT
@@ -1097,7 +1096,6 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.V = retroreflective ? reflect(-closureData.V, lobe.surfaceN) : closureData.V;
     lobe.N = mx_facing_normal(lobe.surfaceN, lobe.V);
     lobe.X = X;
-    lobe.retroreflective = retroreflective;
     lobe.alpha = mx_ggx_clamp_alpha(roughness);
     lobe.fd = fd;
     lobe.scatterMode = scatterMode;
