@@ -537,7 +537,7 @@ vec3 mx_lobe_fresnel_at(LobeFresnel lf, float cosine)
 // through) at NdotV, as mx_environment_radiance() gives it as `albedo`: the table's rule with F
 // (reflection, times Turquin's multiple-scattering factor 1 + F (1 - E) / E as the sampled path
 // applies it) or with 1 - F averaged over the lobe (refraction). `anisotropy` is what an
-// anisotropic lobe reflects beyond the table's isotropic one (mx_anisotropic_albedo_difference:
+// anisotropic lobe reflects beyond the table's isotropic one (mx_environment_corrected_radiance:
 // with F, and with F = 1), zero for an isotropic lobe.
 vec3 mx_environment_table_albedo(LobeFresnel lf, float NdotV, FresnelData fd, vec4 anisotropy)
 {
@@ -583,32 +583,6 @@ float mx_prefiltered_sample_lod(float pdf, int count, float elongation)
     return mx_prefiltered_footprint_lod(min(elongation * sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
 }
 
-// How much more an anisotropic lobe reflects towards Vt (tangent space) than the isotropic lobe of
-// its mean roughness the table holds (up to a few percent either way at grazing views, as the
-// view's azimuth meets the long or the short axis): both lobes drawn through the same
-// u_envRadianceSamples Fibonacci points (correlated samples, so that a few estimate the difference
-// of two close integrals well), each sample weighted by what it carries, G2 / G1, and by the
-// lobe's F there: (the difference with F, the difference with F = 1). No texture reads.
-vec4 mx_anisotropic_albedo_difference(vec3 Vt, vec2 alpha, float avgAlpha, LobeFresnel lf, FresnelData fd)
-{
-    vec4 difference = vec4(0.0);
-    if (alpha.x == alpha.y || fd.refraction)
-        return difference;
-    int sampleCount = max(u_envRadianceSamples, 1);
-    for (int i = 0; i < sampleCount; i++)
-    {
-        vec2 u = mx_fibonacci_point(i, sampleCount);
-        vec3 H = mx_ggx_sample_visible_normal(u, Vt, alpha);
-        float weight = mx_ggx_sample_weight(Vt, reflect(-Vt, H), alpha);
-        vec3 Hi = mx_ggx_sample_visible_normal(u, Vt, vec2(avgAlpha));
-        float weightIsotropic = mx_ggx_sample_weight(Vt, reflect(-Vt, Hi), vec2(avgAlpha));
-        vec3 carried = mx_lobe_fresnel_at(lf, clamp(dot(Vt, H), MX_EPS, 1.0)) * weight -
-                       mx_lobe_fresnel_at(lf, clamp(dot(Vt, Hi), MX_EPS, 1.0)) * weightIsotropic;
-        difference += vec4(carried, weight - weightIsotropic);
-    }
-    return difference / float(sampleCount);
-}
-
 // The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples
 // samples where the lobe differs from the split sum's. The lookup is the mean radiance over the
 // lobe Karis 2013 assumes (N = V = R: symmetric about the mirror direction R, isotropic); the true
@@ -620,22 +594,27 @@ vec4 mx_anisotropic_albedo_difference(vec3 Vt, vec2 alpha, float avgAlpha, LobeF
 // convolved), both read at their filtered level. Where the lobes agree (facing views) the two sums
 // cancel and the smooth lookup is kept; at grazing views the samples add what it misses. The table
 // gives the albedo the mean radiance is multiplied by (a ratio estimator: the samples' own albedo
-// estimate, whose error dominates at a few samples, is replaced by its known value, or for an
-// anisotropic lobe by the table's corrected by mx_anisotropic_albedo_difference); the samples'
+// estimate, whose error dominates at a few samples, is replaced by its known value); the samples'
 // F only shapes the mean, so it is read off the line through the table's two Fresnel values
 // (mx_lobe_fresnel_at) instead of evaluating the Fresnel model per sample.
+//   The table holds isotropic lobes: an anisotropic one reflects up to a few percent more or less
+// at grazing views, as the view's azimuth meets its long or its short axis. The same points drawn
+// through the isotropic lobe of its mean roughness estimate the difference (correlated samples of
+// two close integrals; no texture reads), returned in `anisotropy`: (with F, with F = 1).
+// Without `fetch` only that, and no texture reads at all.
 vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float avgAlpha, FresnelData fd,
-                                       LobeFresnel lf)
+                                       LobeFresnel lf, bool fetch, out vec4 anisotropy)
 {
+    anisotropy = vec4(0.0);
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
     Vt.z = max(Vt.z, MX_EPS);
     vec3 Rt = mx_prefiltered_direction(Vt, vec3(0.0, 0.0, 1.0), fd);
-    vec3 lookup = mx_envmap_fetch(u_envRadiance, frame * Rt, mx_prefiltered_lod(avgAlpha));
+    vec3 lookup = fetch ? mx_envmap_fetch(u_envRadiance, frame * Rt, mx_prefiltered_lod(avgAlpha)) : vec3(0.0);
+    bool anisotropic = alpha.x != alpha.y && !fd.refraction;
     // A lobe narrower than the unfiltered map resolves reads it along R at any view: no samples.
-    if (max(alpha.x, alpha.y) < mx_prefiltered_sharpest_alpha())
-        return lookup;
-    int sampleCount = max(u_envRadianceSamples, 1);
+    bool corrected = fetch && max(alpha.x, alpha.y) >= mx_prefiltered_sharpest_alpha();
+    int sampleCount = corrected || anisotropic ? max(u_envRadianceSamples, 1) : 0;
     float elongation = sqrt(max(alpha.x, alpha.y) / max(min(alpha.x, alpha.y), MX_EPS));
     mat3 toR = mx_rotation_from_pole(normalize(Rt));
     vec3 lobeRadiance = vec3(0.0), lobeWeights = vec3(0.0), splitRadiance = vec3(0.0);
@@ -646,9 +625,19 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
         vec3 H = mx_ggx_sample_visible_normal(u, Vt, alpha);
         vec3 F = mx_lobe_fresnel_at(lf, clamp(dot(Vt, H), MX_EPS, 1.0));
         vec3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
-        // A sample below the horizon keeps a token weight, so that a lobe whose every sample
-        // falls there still reads the environment around it.
-        vec3 w = fd.refraction ? vec3(1.0) - F : F * max(mx_ggx_sample_weight(Vt, Lt, alpha), 1.0e-4);
+        float weight = mx_ggx_sample_weight(Vt, Lt, alpha);
+        if (anisotropic)
+        {
+            vec3 Hi = mx_ggx_sample_visible_normal(u, Vt, vec2(avgAlpha));
+            float weightIsotropic = mx_ggx_sample_weight(Vt, reflect(-Vt, Hi), vec2(avgAlpha));
+            anisotropy += vec4(F * weight - mx_lobe_fresnel_at(lf, clamp(dot(Vt, Hi), MX_EPS, 1.0)) * weightIsotropic,
+                               weight - weightIsotropic);
+        }
+        if (!corrected)
+            continue;
+        // A sample below the horizon keeps a token weight, so that a lobe whose every sample falls
+        // there still reads the environment around it.
+        vec3 w = fd.refraction ? vec3(1.0) - F : F * max(weight, 1.0e-4);
         float pdf = mx_ggx_reflection_pdf(H, Vt, alpha);
         lobeRadiance += w * mx_envmap_fetch(u_envRadiance, frame * Lt, mx_prefiltered_sample_lod(pdf, sampleCount, elongation));
         lobeWeights += w;
@@ -660,6 +649,9 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
         splitRadiance += cosine * mx_envmap_fetch(u_envRadiance, frame * (toR * Ls), mx_prefiltered_sample_lod(pdfs, sampleCount, elongation));
         splitWeights += cosine;
     }
+    anisotropy /= float(max(sampleCount, 1));
+    if (!corrected)
+        return lookup;
     vec3 correction = lobeRadiance / max(lobeWeights, vec3(MX_EPS)) - splitRadiance / max(splitWeights, MX_EPS);
     return max(lookup + correction, vec3(0.0));
 }
@@ -676,18 +668,13 @@ vec3 mx_environment_prefiltered(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData 
     float avgAlpha = clamp(sqrt(alpha.x * alpha.y), 0.0, 1.0);
     LobeFresnel lf = mx_lobe_fresnel(NdotV, avgAlpha, fd);
 #ifdef MX_ENV_HYBRID
-    vec3 Vt = V * mx_tangent_frame(N, X);
-    Vt.z = max(Vt.z, MX_EPS);
-    albedo = mx_environment_table_albedo(lf, NdotV, fd, mx_anisotropic_albedo_difference(Vt, alpha, avgAlpha, lf, fd));
+    vec4 anisotropy;
+    vec3 radiance = mx_environment_corrected_radiance(N, V, X, alpha, avgAlpha, fd, lf, fetch, anisotropy);
+    albedo = mx_environment_table_albedo(lf, NdotV, fd, anisotropy);
 #else
+    vec3 radiance = fetch ? mx_envmap_fetch(u_envRadiance, mx_prefiltered_direction(V, N, fd), mx_prefiltered_lod(avgAlpha))
+                          : vec3(0.0);
     albedo = mx_environment_table_albedo(lf, NdotV, fd, vec4(0.0));
-#endif
-    if (!fetch)
-        return vec3(0.0);
-#ifdef MX_ENV_HYBRID
-    vec3 radiance = mx_environment_corrected_radiance(N, V, X, alpha, avgAlpha, fd, lf);
-#else
-    vec3 radiance = mx_envmap_fetch(u_envRadiance, mx_prefiltered_direction(V, N, fd), mx_prefiltered_lod(avgAlpha));
 #endif
     return radiance * albedo * u_envLightIntensity;
 }
