@@ -14,6 +14,7 @@ import re
 from functools import lru_cache
 
 from .deadfields import without_dead_members
+from .forwarding import without_forwarding
 
 # GLSL identifiers are ASCII: matched as such, the scan runs about twice as fast as with Unicode
 # word classes (every item of every library file a shader includes is scanned once per process).
@@ -141,7 +142,8 @@ def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], se
     identifiers used by the roots and those lines. Items keep the spacing of their sources: one
     blank line where the source had one or where dropped items come between, none between
     neighbours that had none (a run of #defines). Struct members nothing reads go too
-    (deadfields.py), and then whatever only their stores called."""
+    (deadfields.py), callers of a forwarding function call its target (forwarding.py), and then
+    whatever only those stores and calls used."""
     out, used = _reduced(_section(tuple(function_lines)), roots)
     return list(out), set(used)
 
@@ -151,14 +153,16 @@ def _reduced(section: Section, roots: str) -> tuple[tuple[str, ...], frozenset[s
     """A section reduced to what `roots` use: shaders of one topology have the same main, request
     after request, so the walk and the reassembly are done once for each."""
     root_words = identifiers(roots)
-    keep, used = section.reachable(root_words, {})
-    while True:  # a store that goes may have been the last call of a function, whose reads then go too
-        edited = {keep[i]: item for i, item in
-                  without_dead_members([section.items[k] for k in keep], roots, root_words).items()}
-        still, used = section.reachable(root_words, edited) if edited else (keep, used)
-        if still == keep:
+    edited: dict[int, tuple[str, ...]] = {}
+    keep, used = section.reachable(root_words, edited)
+    while True:  # a store or a call that goes may have been the last use of a function
+        items = [edited.get(k, section.items[k]) for k in keep]
+        changed = without_dead_members(items, roots, root_words)
+        changed.update(without_forwarding([changed.get(i, item) for i, item in enumerate(items)], root_words))
+        if not changed:
             return _joined(section, keep, edited), frozenset(used)
-        keep = still
+        edited.update((keep[i], item) for i, item in changed.items())
+        keep, used = section.reachable(root_words, edited)
 
 
 def _joined(section: Section, keep: list[int], edited: dict[int, tuple[str, ...]]) -> tuple[str, ...]:

@@ -5,6 +5,7 @@ import os
 import pytest
 
 from shadergen.api import Generator
+from shadergen.targets.deadcode import used_functions
 
 
 @pytest.fixture(scope="session")
@@ -28,3 +29,9 @@ def glslang(source: str, stage: str) -> tuple[bool, str]:
 
 
 needs_glslang = pytest.mark.usefixtures("glslang_validator")  # skipped without it, failed under CI=true
+
+
+def kept_code(library: str, roots: str) -> str:
+    """What a stage keeps of the library's function lines when `roots` (its main) use them."""
+    lines, _ = used_functions(library.split("\n"), roots)
+    return "\n".join(lines)

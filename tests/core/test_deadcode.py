@@ -1,6 +1,8 @@
 """The dead-code step of C-like stages: which library items a stage keeps, with which comments."""
 from shadergen.targets.deadcode import used_functions
 
+from .conftest import kept_code
+
 LIBRARY = """// Helpers shared by the whole file: a header, separated from what follows by a blank line.
 
 // --- Section ---
@@ -32,8 +34,7 @@ float repeated(float x)
 
 
 def kept(roots: str) -> str:
-    lines, _ = used_functions(LIBRARY.split("\n"), roots)
-    return "\n".join(lines)
+    return kept_code(LIBRARY, roots)
 
 
 def test_detached_comment_blocks_are_left_out_and_attached_ones_kept():

@@ -187,11 +187,6 @@ vec3 mx_fresnel_eval_film(float cosTheta, FresnelData fd, bool withFilm)
     return vec3(0.0);  // no closure of this shader uses another model
 }
 
-vec3 mx_fresnel_eval(float cosTheta, FresnelData fd)
-{
-    return mx_fresnel_eval_film(cosTheta, fd, true);
-}
-
 // The cell of a grid of `size` (columns, rows) nodes that holds point p (clamped to the grid):
 // xy its lower node, zw the interpolation weights along each axis.
 vec4 mx_albedo_cell(vec2 p, vec2 size)
@@ -521,7 +516,7 @@ struct LobeFresnel
 LobeFresnel mx_lobe_fresnel(float NdotV, float avgAlpha, FresnelData fd)
 {
     vec4 rule = mx_environment_dfg_rule(NdotV, avgAlpha);
-    return LobeFresnel(rule, mx_fresnel_eval(rule.x, fd), mx_fresnel_eval(rule.y, fd));
+    return LobeFresnel(rule, mx_fresnel_eval_film(rule.x, fd, true), mx_fresnel_eval_film(rule.y, fd, true));
 }
 
 // The reflectance at VdotH `cosine` on the line through the rule's two points: what weights a
@@ -545,7 +540,7 @@ vec3 mx_environment_table_albedo(LobeFresnel lf, float NdotV, FresnelData fd, ve
     float E = max(lf.rule.z + lf.rule.w + anisotropy.a, MX_EPS);  // the albedo with F = 1
     if (fd.refraction)
         return vec3(1.0) - reflected / E;
-    return reflected * (vec3(1.0) + mx_fresnel_eval(NdotV, fd) * ((1.0 - E) / E));
+    return reflected * (vec3(1.0) + mx_fresnel_eval_film(NdotV, fd, true) * ((1.0 - E) / E));
 }
 
 // The direction the split sum reads the lobe along: the mirror direction, or through the sphere.
@@ -750,15 +745,6 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
 #endif
 }
 
-// The environment a lobe reflects, prepared once per shading point. A film's Fresnel costs more
-// than the rest of a sample, and a CPU rasterizer (Mesa's llvmpipe) runs both sides of a branch:
-// the samples are written with the film and without, so that a lobe with no film at run time
-// runs the film's loop once, masked, rather than the film at every sample.
-vec3 mx_environment_reflected(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
-{
-    return mx_environment_samples(N, V, X, alpha, fd, fetch, false, albedo);
-}
-
 // The environment seen through the lobe (see mx_environment_samples).
 vec3 mx_environment_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, int distribution, FresnelData fd, out vec3 albedo)
 {
@@ -798,7 +784,7 @@ struct SpecularLobe
 vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleScatteringAlbedo)
 {
     float c = clamp(cosine, MX_EPS, 1.0);
-    return singleScatteringAlbedo * mx_ggx_energy_compensation(c, mx_ggx_isotropic_alpha(alpha), mx_fresnel_eval(c, fd));
+    return singleScatteringAlbedo * mx_ggx_energy_compensation(c, mx_ggx_isotropic_alpha(alpha), mx_fresnel_eval_film(c, fd, true));
 }
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
@@ -825,8 +811,7 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
     if (lobe.weight > 0.0)
-        lobe.environment = mx_environment_reflected(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
-                                                    lobe.environmentAlbedo);
+        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1, false, lobe.environmentAlbedo);
     return lobe;
 }
 
@@ -837,7 +822,7 @@ vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
     if (Lt.z <= 0.0)
         return vec3(0.0);
     vec3 H = normalize(Lt + lobe.Vt);
-    vec3 F = mx_fresnel_eval(clamp(dot(lobe.Vt, H), MX_EPS, 1.0), lobe.fd);
+    vec3 F = mx_fresnel_eval_film(clamp(dot(lobe.Vt, H), MX_EPS, 1.0), lobe.fd, true);
     float DG = mx_ggx_D(H, lobe.alpha) * mx_ggx_G2(lobe.Vt, Lt, lobe.alpha);
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
     return F * mx_ggx_energy_compensation(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), F) *

@@ -338,15 +338,6 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     return carried * (scale * u_envLightIntensity);
 }
 
-// The environment a lobe reflects, prepared once per shading point. A film's Fresnel costs more
-// than the rest of a sample, and a CPU rasterizer (Mesa's llvmpipe) runs both sides of a branch:
-// the samples are written with the film and without, so that a lobe with no film at run time
-// runs the film's loop once, masked, rather than the film at every sample.
-vec3 mx_environment_reflected(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, bool fetch, out vec3 albedo)
-{
-    return mx_environment_samples(N, V, X, alpha, fd, fetch, false, albedo);
-}
-
 struct SpecularLobe
 {
     float weight;            // 0 where the lobe scatters nothing
@@ -377,8 +368,7 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
     if (lobe.weight > 0.0)
-        lobe.environment = mx_environment_reflected(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
-                                                    lobe.environmentAlbedo);
+        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1, false, lobe.environmentAlbedo);
     return lobe;
 }
 
