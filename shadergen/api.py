@@ -11,7 +11,6 @@ import hashlib
 import json
 import os
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from .document import Document, parse_document, read_document
@@ -70,20 +69,23 @@ def element_error(exc: Exception, where: str | None, doc: Document) -> ShaderGen
     return err
 
 
-@dataclass
 class Prepared:
-    """One renderable element with its graph built and its hash known; `emit` writes the code."""
-    generator: "Generator"
-    document: Document
-    element: str
-    target: str
-    interface: str
-    hash: str
-    topology_hash: str  # the hash without the values a value-free source leaves to the listing
-    graph: object
-    scope: Scope
-    warnings: list[str] = field(default_factory=list)
-    prepare_ms: float = 0.0
+    """One renderable element with its graph built and its hash known; `emit` writes the code.
+    (A plain class, not a dataclass: see graph.py.)"""
+
+    def __init__(self, generator: "Generator", document: Document, element: str, target: str, interface: str,
+                 hash: str, topology_hash: str, graph, scope: Scope, warnings: list[str], prepare_ms: float):
+        self.generator = generator
+        self.document = document
+        self.element = element
+        self.target = target
+        self.interface = interface
+        self.hash = hash
+        self.topology_hash = topology_hash  # the hash without the values a value-free source leaves to the listing
+        self.graph = graph
+        self.scope = scope
+        self.warnings = warnings
+        self.prepare_ms = prepare_ms
 
     def emit(self, source: bool = True) -> dict:
         t0 = time.perf_counter()

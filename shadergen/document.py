@@ -7,7 +7,6 @@ upgrades the older syntax that real documents still use (see upgrade.py).
 import codecs
 import os
 import re
-from dataclasses import dataclass, field
 from xml.etree.ElementTree import TreeBuilder
 
 from defusedxml import DefusedXmlException
@@ -28,16 +27,19 @@ SCOPED_ATTRIBUTES = ("fileprefix", "colorspace")
 MAX_NESTING = 64
 
 
-@dataclass
 class Document:
-    root: Element
-    path: str | None = None  # file path, when read from a file
-    version: tuple[int, int] = (1, 39)
-    warnings: list[str] = field(default_factory=list)
-    # Documents translated from another format (USD): the name each element has there (a prim
-    # path), and the elements that could not be translated, with why.
-    labels: dict[str, str] = field(default_factory=dict)
-    failures: dict[str, ShaderGenError] = field(default_factory=dict)
+    """A parsed document: its element tree and what reading it found. (A plain class, not a
+    dataclass: see graph.py.)"""
+
+    def __init__(self, root: Element, path: str | None = None, version: tuple[int, int] = (1, 39)):
+        self.root = root
+        self.path = path  # file path, when read from a file
+        self.version = version
+        self.warnings: list[str] = []
+        # Documents translated from another format (USD): the name each element has there (a prim
+        # path), and the elements that could not be translated, with why.
+        self.labels: dict[str, str] = {}
+        self.failures: dict[str, ShaderGenError] = {}
 
     def label(self, path: str | None) -> str | None:
         """What users call the element at `path` (or inside it): its own path for MaterialX."""

@@ -6,7 +6,7 @@ paths never enter the graph), connects default geometric nodes and inserts colou
 unit transforms. Everything after building is a named pass in `passes/`.
 """
 import re
-from dataclasses import dataclass, field
+from collections import namedtuple
 
 from . import types as T
 from .element import Element
@@ -26,53 +26,58 @@ COLORSPACE_ALIASES = {"gamma18": "g18_rec709", "gamma22": "g22_rec709", "gamma24
 TARGET_UNITS = {"distance": "meter"}
 
 
-@dataclass(frozen=True)
-class NodeRef:
-    """A connection's upstream node, before the node is built."""
-    elem: Element
-    output: str | None
+# The IR's classes are plain classes, not dataclasses: a cold `generate` process would spend a
+# tenth of its time importing the dataclasses module (and inspect) and generating their methods.
+NodeRef = namedtuple("NodeRef", "elem output")  # a connection's upstream node, before the node is built
 
 
-@dataclass(eq=False)
 class Socket:
     """An interface input of a nodegraph body: while the body is expanded, the input of the node
     it implements (`origin`); afterwards, a published uniform read by several inputs of the body."""
-    name: str
-    type: str
-    value: object = None
-    path: str | None = None
-    meta: dict = field(default_factory=dict)  # enum, enumvalues, uniform, colorspace, unit, ui...
-    consumers: list["Input"] = field(default_factory=list)
-    origin: "Input | None" = None
-    public: bool = False  # a PublicUniform of the shader
-    default: object = None  # the nodedef's value: a value-free shader's initializer
+
+    def __init__(self, name: str, type: str, value: object = None, path: str | None = None, meta: dict | None = None,
+                 origin: "Input | None" = None, public: bool = False, default: object = None):
+        self.name = name
+        self.type = type
+        self.value = value
+        self.path = path
+        self.meta = {} if meta is None else meta  # enum, enumvalues, uniform, colorspace, unit, ui...
+        self.consumers: list[Input] = []
+        self.origin = origin
+        self.public = public  # a PublicUniform of the shader
+        self.default = default  # the nodedef's value: a value-free shader's initializer
 
     @property
     def owner(self) -> "Node":
         return self.origin.node
 
 
-@dataclass(eq=False)
 class Output:
-    name: str
-    type: str
-    node: "Node"
+    """A node's output: what inputs connect to."""
+
+    def __init__(self, name: str, type: str, node: "Node"):
+        self.name = name
+        self.type = type
+        self.node = node
 
 
-@dataclass(eq=False)
 class Input:
-    name: str
-    type: str
-    node: "Node"
-    value: object = None
-    path: str | None = None  # element path of the document input it binds to (listings)
-    connection: Output | None = None
-    socket: Socket | None = None
-    meta: dict = field(default_factory=dict)
-    authored: bool = False  # set in the document (not a nodedef default)
-    public: bool = False  # a PublicUniform of the shader (decided by the interface pass)
-    parameter: str | None = None  # the body interface input it was bound to, inside an expanded nodegraph
-    default: object = None  # the nodedef's value: a value-free shader's initializer
+    """A node's input: a value, a connection, a socket of an expanded body, or a public uniform."""
+
+    def __init__(self, name: str, type: str, node: "Node", value: object = None, path: str | None = None,
+                 meta: dict | None = None, authored: bool = False, default: object = None):
+        self.name = name
+        self.type = type
+        self.node = node
+        self.value = value
+        self.path = path  # element path of the document input it binds to (listings)
+        self.connection: Output | None = None
+        self.socket: Socket | None = None
+        self.meta = {} if meta is None else meta
+        self.authored = authored  # set in the document (not a nodedef default)
+        self.public = False  # a PublicUniform of the shader (decided by the interface pass)
+        self.parameter: str | None = None  # the body interface input it was bound to, inside an expanded nodegraph
+        self.default = default  # the nodedef's value: a value-free shader's initializer
 
     @property
     def owner(self) -> "Node":
@@ -92,20 +97,23 @@ class Input:
         return self.connection is None and self.socket is None and not self.public
 
 
-@dataclass(eq=False)
 class Node:
-    name: str
-    category: str
-    type: str
-    nodedef: Element
-    implementation: Element | None
-    path: str
-    inputs: dict[str, Input] = field(default_factory=dict)
-    outputs: dict[str, Output] = field(default_factory=dict)
-    scope: tuple = ()  # ((conditional node, branch input name), ...) outermost first; () is global
-    impl: object = None  # the NodeImpl writing its code, chosen when the graph is prepared
-    instance: "Instance | None" = None  # the expanded nodegraph it comes from; None: the document's own
-    facts: dict = field(default_factory=dict)  # what the passes learned for emission (e.g. "transmission")
+    """A node of the graph: its definition, implementation and ports."""
+
+    def __init__(self, name: str, category: str, type: str, nodedef: Element, implementation: Element | None,
+                 path: str, instance: "Instance | None" = None):
+        self.name = name
+        self.category = category
+        self.type = type
+        self.nodedef = nodedef
+        self.implementation = implementation
+        self.path = path
+        self.inputs: dict[str, Input] = {}
+        self.outputs: dict[str, Output] = {}
+        self.scope: tuple = ()  # ((conditional node, branch input name), ...) outermost first; () is global
+        self.impl = None  # the NodeImpl writing its code, chosen when the graph is prepared
+        self.instance = instance  # the expanded nodegraph it comes from; None: the document's own
+        self.facts: dict = {}  # what the passes learned for emission (e.g. "transmission")
 
     def input_value(self, name: str, default=None):
         inp = self.inputs.get(name)
@@ -115,39 +123,45 @@ class Node:
         return [inp.connection.node for inp in self.inputs.values() if inp.connection is not None]
 
 
-@dataclass(eq=False)
 class Instance:
     """One use of a nodegraph implementation, expanded into the graph: the node it replaced and
     the expansion it sits in (nested nodegraphs)."""
-    graph_elem: Element
-    node: Node
-    parent: "Instance | None"
-    sockets: dict[str, Socket] = field(default_factory=dict)
-    outputs: dict[str, Output] = field(default_factory=dict)
+
+    def __init__(self, graph_elem: Element, node: Node, parent: "Instance | None"):
+        self.graph_elem = graph_elem
+        self.node = node
+        self.parent = parent
+        self.sockets: dict[str, Socket] = {}
+        self.outputs: dict[str, Output] = {}
 
 
-@dataclass(eq=False)
 class Function:
     """A nodegraph body written once and called by several nodes: its own small graph whose
     inputs read `params` (in the order of the calling node's inputs)."""
-    name: str
-    graph: "Graph"
-    params: list[Socket]
-    outputs: list[Output]  # in the order of the calling node's outputs
+
+    def __init__(self, name: str, graph: "Graph", params: list[Socket], outputs: list[Output]):
+        self.name = name
+        self.graph = graph
+        self.params = params
+        self.outputs = outputs  # in the order of the calling node's outputs
 
 
-@dataclass(eq=False)
 class Graph:
-    nodes: list[Node]
-    outputs: dict[str, Output]
-    root: Node | None = None  # the node a shader was generated from, when it is a node
-    warnings: list[str] = field(default_factory=list)
-    interface: list = field(default_factory=list)  # the public uniforms (Input | Socket), in listing order
-    passes: dict[str, int] = field(default_factory=dict)  # edits each pass made, in pass order
-    interface_mode: str = "complete"
-    values_in_source: bool = False  # uniform initializers hold the document's values, not the nodedef's
-    environment: str | None = None  # the environment lighting it is generated for (features.ENVIRONMENTS), or either
-    lights: bool = True  # lit by a light rig too; False: by the environment alone (no light loop)
+    """Nodes in topological order, the outputs a shader writes, and what the passes decided."""
+
+    def __init__(self, nodes: list[Node], outputs: dict[str, Output], root: Node | None = None,
+                 warnings: list[str] | None = None, interface_mode: str = "complete", values_in_source: bool = False,
+                 environment: str | None = None, lights: bool = True):
+        self.nodes = nodes
+        self.outputs = outputs
+        self.root = root  # the node a shader was generated from, when it is a node
+        self.warnings = [] if warnings is None else warnings
+        self.interface: list = []  # the public uniforms (Input | Socket), in listing order
+        self.passes: dict[str, int] = {}  # edits each pass made, in pass order
+        self.interface_mode = interface_mode
+        self.values_in_source = values_in_source  # uniform initializers hold the document's values, not the nodedef's
+        self.environment = environment  # the environment lighting it is generated for (features.ENVIRONMENTS), or either
+        self.lights = lights  # lit by a light rig too; False: by the environment alone (no light loop)
 
 
 def input_meta(decl: Element) -> dict:

@@ -4,7 +4,6 @@ A Stage owns its variable blocks and a line writer. The writer applies indentati
 written and offers a `block()` context manager, so an exception can never leave indentation wrong.
 """
 from contextlib import contextmanager
-from dataclasses import dataclass, field
 from functools import lru_cache
 
 from .types import value_to_json
@@ -12,18 +11,23 @@ from .types import value_to_json
 VERTEX, PIXEL = "vertex", "pixel"
 
 
-@dataclass(eq=False)
 class Variable:
-    name: str
-    type: str  # MaterialX type name
-    value: object = None
-    path: str | None = None
-    semantic: str | None = None
-    unit: str | None = None
-    colorspace: str | None = None
-    ui: dict | None = None
-    initializer: object = None  # what the source initialises the uniform to (the listing carries `value`)
-    fallback: object = None  # a filename's: what its image node gives for a missing or unreadable file
+    """A variable of a block, as the listing gives it. (Plain classes here, not dataclasses: see
+    graph.py.)"""
+
+    def __init__(self, name: str, type: str, value: object = None, path: str | None = None, unit: str | None = None,
+                 colorspace: str | None = None, ui: dict | None = None, initializer: object = None,
+                 fallback: object = None):
+        self.name = name
+        self.type = type  # MaterialX type name
+        self.value = value
+        self.path = path
+        self.semantic: str | None = None
+        self.unit = unit
+        self.colorspace = colorspace
+        self.ui = ui
+        self.initializer = initializer  # what the source initialises the uniform to (the listing carries `value`)
+        self.fallback = fallback  # a filename's: what its image node gives for a missing or unreadable file
 
     def to_json(self) -> dict:
         d = {"name": self.name, "type": self.type, "value": value_to_json(self.value), "path": self.path,
@@ -109,17 +113,15 @@ BLOCKS = {
 }
 
 
-@dataclass(eq=False)
 class Stage:
-    name: str
-    blocks: dict[str, VariableBlock] = field(default_factory=dict)
-    functions: Writer = field(default_factory=Writer)  # function definitions, in emission order
-    main: Writer = field(default_factory=Writer)  # body of main()
-    emitted: set = field(default_factory=set)  # ids of function definitions and includes already written
+    """One stage of a shader: its variable blocks, function definitions and main."""
 
-    def __post_init__(self):
-        for b in BLOCKS[self.name]:
-            self.blocks[b] = VariableBlock(b, "vd" if b == "VertexData" else "")
+    def __init__(self, name: str):
+        self.name = name
+        self.blocks = {b: VariableBlock(b, "vd" if b == "VertexData" else "") for b in BLOCKS[name]}
+        self.functions = Writer()  # function definitions, in emission order
+        self.main = Writer()  # body of main()
+        self.emitted: set = set()  # ids of function definitions and includes already written
 
     def once(self, key) -> bool:
         """True the first time `key` is seen: each function definition is emitted once per stage."""

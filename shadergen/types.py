@@ -5,17 +5,16 @@ float/int/bool/str for scalars and strings, tuples of floats for vectors, colour
 matrices (row-major), None for closures and shaders.
 """
 import math
-from dataclasses import dataclass
+from collections import namedtuple
 
 from .errors import ShaderGenError
 
 
-@dataclass(frozen=True)
-class TypeDesc:
-    name: str
-    size: int  # number of scalar components; 0 for strings, closures and shaders
-    base: str  # "float", "integer", "boolean", "string", "closure"
-    semantic: str = ""  # "color", "shader", "material", "closure"
+class TypeDesc(namedtuple("TypeDesc", "name size base semantic", defaults=("",))):
+    """A type: `size` scalar components (0 for strings, closures and shaders), its `base`
+    ("float", "integer", "boolean", "string", "closure") and `semantic` ("color", "shader",
+    "material", "closure" or ""). A named tuple, not a dataclass: see graph.py."""
+    __slots__ = ()
 
     @property
     def is_closure(self) -> bool:

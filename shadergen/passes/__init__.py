@@ -4,7 +4,7 @@ Each pass is a function of its own module and returns how many edits it made; th
 the counts (`"passes": {...}`), so a caller sees what was skipped and why. Emission never builds,
 expands or changes the graph.
 """
-from dataclasses import dataclass
+from collections import namedtuple
 
 from ..graph import Graph, GraphBuilder, Node, Output
 from .closures import prune_closures
@@ -18,13 +18,13 @@ from .thin_film import push_thin_films
 from .thin_surface import share_one_sided_bsdf
 
 
-@dataclass(frozen=True)
-class Options:
-    interface: str = "complete"  # complete | reduced | specialized
-    keep: frozenset[str] = frozenset()  # document inputs that stay live in `specialized`
-    values: str = "listing"  # listing: uniforms initialised to nodedef values; source: to the document's
-    environment: str | None = None  # fis | prefilter: only that way of environment lighting is written
-    lights: bool = True  # False: drawn without a light rig (a thumbnail), so no light loop is written
+class Options(namedtuple("Options", "interface keep values environment lights",
+                         defaults=("complete", frozenset(), "listing", None, True))):
+    """interface: complete | reduced | specialized. keep: document inputs that stay live in
+    `specialized`. values: listing (uniforms initialised to nodedef values) or source (to the
+    document's). environment: fis | prefilter | hybrid writes only that way of environment
+    lighting. lights: False for a drawing without a light rig (a thumbnail): no light loop."""
+    __slots__ = ()
 
     @property
     def values_in_source(self) -> bool:

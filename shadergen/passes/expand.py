@@ -6,8 +6,6 @@ replaces). The body's interface inputs take the node's bindings: a connection, a
 constant from here on), or a public uniform, which becomes a Socket the body's inputs share.
 Whether identical bodies are written once as a function is decided after the other passes.
 """
-from dataclasses import dataclass
-
 from ..element import Element
 from ..errors import ShaderGenError
 from ..graph import Graph, GraphBuilder, Input, Instance, Node, Output, Socket
@@ -65,13 +63,14 @@ def check_recursion(instance: Instance) -> None:
                                  + " -> ".join(e.name for e in chain[i:]), instance.graph_elem.path)
 
 
-@dataclass(eq=False)
 class Body:
     """A nodegraph's body built once, bound to no use: its nodes (in topological order) read
     the sockets of a template interface, its node names lack the prefix of a use."""
-    nodes: list[Node]
-    outputs: dict[str, Output]
-    warnings: list[str]
+
+    def __init__(self, nodes: list[Node], outputs: dict[str, Output], warnings: list[str]):
+        self.nodes = nodes
+        self.outputs = outputs
+        self.warnings = warnings
 
 
 def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
