@@ -50,6 +50,17 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
     return outputs + [o for o in doc.root.children_of("output") if o.get("type") not in closures]
 
 
+def _names(e: Element, element: str, doc: Document) -> bool:
+    """Whether `element` names `e`: its name, its path or its label. A document of many outputs is
+    asked for each of them in turn, so paths are walked only where the name could end one."""
+    if element == e.name:
+        return True
+    if not doc.labels and not element.endswith(e.name):
+        return False
+    path = e.path
+    return element == path or element == doc.label(path)
+
+
 # What generating one element can raise: its own errors, and gaps in our code that a document
 # reached, which still become a record (never a traceback).
 ELEMENT_FAILURES = (ShaderGenError, RecursionError, ValueError, TypeError, KeyError, AttributeError, IndexError)
@@ -178,7 +189,7 @@ class Generator:
         scope = Scope(self.library, doc.root)
         elems = renderable_elements(doc, scope)
         if element:
-            elems = [e for e in elems if element in (e.path, e.name, doc.label(e.path))] or self._named(doc, element)
+            elems = [e for e in elems if _names(e, element, doc)] or self._named(doc, element)
         elif not all:
             elems = elems[:1]
         options = Options(interface, frozenset(keep), values, environment, bool(lights))
