@@ -148,7 +148,7 @@ def used_functions(function_lines: list[str], roots: str) -> tuple[list[str], se
     return list(out), set(used)
 
 
-@lru_cache(maxsize=256)
+@lru_cache(maxsize=1024)  # a service answers many topologies: a library of materials, a test suite
 def _reduced(section: Section, roots: str) -> tuple[tuple[str, ...], frozenset[str]]:
     """A section reduced to what `roots` use: shaders of one topology have the same main, request
     after request, so the walk and the reassembly are done once for each."""
