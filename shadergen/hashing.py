@@ -1,8 +1,8 @@
 """The canonical graph hash: the cache key of a generated shader.
 
 It covers everything the output depends on and nothing else: the prepared graph (nodes in
-topological order with their definitions, implementations, bound values, listing paths and
-connections), the target, the interface mode and the library's output key (library files,
+topological order with their definitions, implementations, bound values and connections; the
+public uniforms with their listing paths), the target, the interface mode and the library's output key (library files,
 their folder and the generator's code: fingerprint.py). XML formatting, element order and unused nodes never reach the prepared graph, so they
 cannot change the key. Document-local definitions are hashed by content.
 """
@@ -36,7 +36,9 @@ def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str
         for inp in n.inputs.values():
             conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
             uniform = public.get(id(inp.socket if inp.socket is not None else inp))
-            inputs.append([inp.name, inp.type, value(inp), inp.path, conn, uniform, inp.authored, inp.meta])
+            # no path: after the passes only a public uniform's path reaches the record (the listing),
+            # and `uniforms` has it; the others' (a third of the bytes hashed) are where they came from
+            inputs.append([inp.name, inp.type, value(inp), conn, uniform, inp.authored, inp.meta])
         impl = n.implementation
         impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
         nodedef_key = _element_digest(n.nodedef) if id(impl) in local_ids else n.nodedef.name
