@@ -276,7 +276,8 @@ class Generator:
         graph = prepare(builder, outputs, root, shading_language, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
-        key = dict(target=target, interface=options.interface, library_hash=self.library.content_hash, local_ids=local)
+        key = dict(element=doc.label(elem.path), target=target, interface=options.interface,
+                   library_hash=self.library.content_hash, local_ids=local)
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()

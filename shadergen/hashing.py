@@ -17,12 +17,14 @@ def _element_digest(e: Element) -> list:
     return [e.category, sorted(e.attrs.items()), [_element_digest(c) for c in e.children]]
 
 
-def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str, local_ids: set[int]) -> tuple[str, str]:
-    """(hash, topology hash). `library_hash`: the library's output key (fingerprint.py), which
-    covers the generator's code too. `local_ids`: ids of the implementation elements the document
-    itself declares. The topology hash leaves out the values of the public uniforms (what a
-    value-free source leaves to the listing); the hash adds them. When the values are written into
-    the source, the two are the same."""
+def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, library_hash: str,
+                 local_ids: set[int]) -> tuple[str, str]:
+    """(hash, topology hash). `element`: the name path the record reports. `library_hash`: the
+    library's output key (fingerprint.py), which covers the generator's code too. `local_ids`: ids
+    of the implementation elements the document itself declares. The topology hash leaves out the
+    values of the public uniforms (what a value-free source leaves to the listing) and the element's
+    name (a record of the same topology is rebound to both); the hash adds them. When the values are
+    written into the source, the two are the same."""
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
 
@@ -50,7 +52,9 @@ def graph_hashes(graph: Graph, *, target: str, interface: str, library_hash: str
          "environment": graph.environment, "lights": graph.lights,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
          "nodes": nodes, "outputs": outputs, "uniforms": uniforms})
-    values = _canonical([p.value for p in graph.interface])
+    # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
+    # in their names, with no public uniform to carry a path) still have records of their own
+    values = _canonical([element, [p.value for p in graph.interface]])
     full = hashlib.sha256(structure + b"\0" + values).hexdigest()
     return full, full if graph.values_in_source else hashlib.sha256(structure).hexdigest()
 

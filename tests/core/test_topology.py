@@ -86,3 +86,14 @@ def test_unknown_values_option_is_an_error():
     with pytest.raises(ShaderGenError) as err:
         GEN.prepare(material(), values="inline")
     assert err.value.code == "unsupported_values"
+
+
+@pytest.mark.parametrize("interface", ["complete", "reduced", "specialized"])
+def test_elements_alike_but_for_their_names_have_records_of_their_own(interface):
+    """A cache keyed by the hash must not answer one element's request with another's record."""
+    graph = ('<?xml version="1.0"?><materialx version="1.39"><nodegraph name="{}">'
+             '<constant name="c" type="color3"><input name="value" type="color3" value="0.2, 0.3, 0.4"/></constant>'
+             '<output name="out" type="color3" nodename="c"/></nodegraph></materialx>')
+    a, b = (GEN.prepare(graph.format(name), interface=interface).emit() for name in ("A", "B"))
+    assert (a["element"], b["element"]) == ("A/out", "B/out")
+    assert a["hash"] != b["hash"] and a["stages"] == b["stages"]
