@@ -16,8 +16,7 @@ The facts of each item (a function, a struct) are memoised: library items recur 
 and a request only adds them up over the items its stage keeps.
 """
 import re
-from collections import Counter
-from dataclasses import dataclass
+from collections import Counter, namedtuple
 from functools import lru_cache
 
 MEMBER_USE = re.compile(r"\.([A-Za-z_]\w*)\b")
@@ -33,31 +32,14 @@ GLSL_MEMBER = re.compile(r"^\s*\w+\s+(\w+)\s*(?:\[\w*\])?\s*;")
 WGSL_STRUCT = re.compile(r"^struct\s+(\w+)\s*\{(.*)\}\s*$")
 
 
-@dataclass(frozen=True)
-class Store:
-    member: str
-    lines: range  # within the item
-    reads: Counter  # every `.member` of the statement, its own target included
-    calls: frozenset[str]
-    other_effect: bool
-
-
-@dataclass(frozen=True)
-class Struct:
-    name: str
-    members: dict[str, int]  # member -> its line within the item (WGSL: the struct's one line)
-    one_line: bool
-
-
-@dataclass(frozen=True)
-class Facts:
-    """What one item contributes: its struct, member reads, calls, stores, and whether it is a
-    function that writes through a parameter."""
-    struct: Struct | None
-    reads: Counter
-    calls: frozenset[str]
-    stores: tuple[Store, ...]
-    writer: str | None
+# Named tuples, not dataclasses: a cold process would import dataclasses for these alone (see graph.py).
+# Store: `lines` within the item; `reads` every `.member` of the statement, its own target included
+Store = namedtuple("Store", "member lines reads calls other_effect")
+# Struct: `members` maps a member to its line within the item (WGSL: the struct's one line)
+Struct = namedtuple("Struct", "name members one_line")
+# Facts: what one item contributes: its struct (or None), member reads (a Counter), calls, stores,
+# and the name of the function if it writes through a parameter (else None)
+Facts = namedtuple("Facts", "struct reads calls stores writer")
 
 
 def without_dead_members(items: list[tuple[str, ...]], roots: str, root_words: set[str]) -> dict[int, tuple[str, ...]]:

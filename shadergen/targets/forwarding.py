@@ -12,7 +12,7 @@ overload resolution differs. Calls from the roots (main) stay, since the roots a
 and so do calls that span a comment.
 """
 import re
-from dataclasses import dataclass
+from collections import namedtuple
 from functools import lru_cache
 
 SIGNATURE = re.compile(r"^\s*(\w+)\s+(\w+)\s*\(([^()]*)\)\s*$", re.S)
@@ -21,12 +21,9 @@ LITERAL = re.compile(r"^(?:-?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?[uf]?|true|false)$")
 PARAMETER = re.compile(r"^(?:(in|out|inout)\s+)?(?:const\s+)?(\w+)\s+(\w+)$")
 
 
-@dataclass(frozen=True)
-class Function:
-    name: str
-    returns: str
-    parameters: tuple[tuple[str, str, str], ...]  # (qualifier, type, name)
-    forwards: tuple[str, tuple[str, ...]] | None  # (target, arguments) of a forwarding body
+# a named tuple, not a dataclass: a cold process would import dataclasses for it alone (see graph.py);
+# `parameters`: (qualifier, type, name) each; `forwards`: (target, arguments) of a forwarding body, or None
+Function = namedtuple("Function", "name returns parameters forwards")
 
 
 def without_forwarding(items: list[tuple[str, ...]], root_words: set[str]) -> dict[int, tuple[str, ...]]:
