@@ -36,6 +36,14 @@ def _mix(bg, fg, t):
     return componentwise(lambda b, f, w: b * (1.0 - w) + f * w, bg, fg, t)
 
 
+def _round(x):
+    """GLSL's round(): a value halfway between two integers goes either way as the implementation
+    chooses (Mesa rounds it to even), so such a value is left to the GPU, as complete leaves it."""
+    if x - math.floor(x) == 0.5:
+        raise NotFoldable
+    return math.floor(x + 0.5)
+
+
 def _glsl_mod(x, y):
     return x - y * math.floor(x / y)
 
@@ -177,7 +185,7 @@ CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= 
 UNARY = {
     "absval": abs, "floor": math.floor, "ceil": math.ceil, "sqrt": math.sqrt, "exp": math.exp, "ln": math.log,
     "sin": math.sin, "cos": math.cos, "tan": math.tan, "asin": math.asin, "acos": math.acos,
-    "sign": lambda x: (x > 0) - (x < 0), "round": lambda x: math.floor(x + 0.5),
+    "sign": lambda x: (x > 0) - (x < 0), "round": _round,
     "fract": lambda x: x - math.floor(x),
 }
 BINARY = {
