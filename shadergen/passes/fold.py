@@ -3,14 +3,13 @@ read it (shadergen/evaluate.py computes it), and a `constant` node of that value
 shader output; nodes with some constant inputs simplify by algebraic identities (x*1, x*0, x+0, mix
 at 0 or 1, a conditional on constants, a switch on a constant). The constants are what the
 interface left fixed, so `specialized` folds the most."""
-from ..evaluate import NotFoldable, evaluate_outputs
+from ..evaluate import CONDITIONS, NotFoldable, evaluate_outputs
 from ..graph import Graph, GraphBuilder, Input, Node, Output
 from ..types import TYPES, default_value
 from .edit import can_pass, pass_through, readers, set_constant
 from .order import topological_order
 
 BLENDS = ("mix", "plus", "minus", "difference", "screen", "overlay", "burn", "dodge")  # bg at mix 0
-CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
 
 
 def fold_constants(graph: Graph, builder: GraphBuilder) -> int:
