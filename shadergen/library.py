@@ -71,10 +71,9 @@ class Index:
 class Library(Index):
     """The loaded data libraries of a process, with the hash that names their content."""
 
-    def __init__(self, root: Path, files: list[Path], content_hash: str, roots: list[Element]):
+    def __init__(self, root: Path, content_hash: str, roots: list[Element]):
         super().__init__()
         self.root = root
-        self.files = files
         self.content_hash = content_hash
         for r in roots:
             self.add(r)
@@ -109,15 +108,15 @@ class Library(Index):
     @classmethod
     def load(cls, root: Path | None = None) -> "Library":
         root = Path(root or library_root()).resolve()
-        files = [p for p in library_files(root) if p.suffix == ".mtlx"]
         content_hash = remembered_output_key(root)
         cached = cache_dir() / f"library-{content_hash[:24]}.json"
         with collection_paused():
             roots = _read_cache(cached, root)
-            if roots is None:
-                roots = [parse_document(p.read_bytes(), path=str(p)).root for p in files]
+            if roots is None:  # the folder is walked for its documents only when they are parsed
+                roots = [parse_document(p.read_bytes(), path=str(p)).root
+                         for p in library_files(root) if p.suffix == ".mtlx"]
                 _write_cache(cached, roots, root)
-            return cls(root, files, content_hash, roots)
+            return cls(root, content_hash, roots)
 
     def target_chain(self, target: str) -> list[str]:
         chain = []
