@@ -67,8 +67,8 @@ def computed(name: str, compute) -> np.ndarray:
     path = cache_dir() / "environments" / f"{digest}.npy"
     try:
         return np.load(path)
-    except (OSError, ValueError):
-        pass  # missing or corrupt: computed again
+    except (OSError, ValueError, EOFError):
+        pass  # missing or corrupt (an empty file is an EOFError): computed again
     image = np.ascontiguousarray(compute(), "f4")
     file = io.BytesIO()
     np.save(file, image)

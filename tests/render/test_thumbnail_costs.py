@@ -21,10 +21,15 @@ def test_environment_maps_are_computed_once_and_then_read_from_the_cache_folder(
     monkeypatch.setattr(environment_module, "procedural_sky", lambda: pytest.fail("computed again"))
     again = Environment.procedural()
     assert np.array_equal(again.radiance, first.radiance) and np.array_equal(again.irradiance, first.irradiance)
-    kept[0].write_bytes(b"not an array")  # a damaged file is computed past, not trusted
     monkeypatch.undo()
     monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
-    assert np.array_equal(Environment.procedural().radiance, first.radiance)
+    whole = {path: path.read_bytes() for path in kept}
+    # damaged files are computed past, not trusted: garbage, truncated, emptied (a full disk)
+    for damage in (lambda b: b"not an array", lambda b: b[:100], lambda b: b""):
+        for path in kept:
+            path.write_bytes(damage(whole[path]))
+        again = Environment.procedural()
+        assert np.array_equal(again.radiance, first.radiance) and np.array_equal(again.irradiance, first.irradiance)
 
 
 def gl_function(name: str, *argtypes):
