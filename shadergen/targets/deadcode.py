@@ -13,7 +13,7 @@ function, struct or definition stay with it.
 import re
 from functools import lru_cache
 
-from .deadfields import without_dead_members
+from .deadfields import code_of, without_dead_members
 from .forwarding import without_forwarding
 
 # GLSL identifiers are ASCII: matched as such, the scan runs about twice as fast as with Unicode
@@ -77,7 +77,7 @@ def _attached(pending: list[str]) -> list[str]:
 
 
 def _braces(line: str) -> int:
-    code = line.split("//", 1)[0]
+    code = code_of(line)
     return code.count("{") - code.count("}")
 
 

@@ -103,14 +103,14 @@ def _rewrite_struct(line: str, dead: set[str]) -> str:
     return f"struct {m.group(1)} {{ {', '.join(entries)} }}"
 
 
-def _code(line: str) -> str:
-    """One line without its comment."""
+def code_of(line: str) -> str:
+    """One line of source without its `//` comment (the scans of deadcode.py and forwarding.py too)."""
     return line.split("//", 1)[0] if "//" in line else line
 
 
 @lru_cache(maxsize=8192)
 def _facts(item: tuple[str, ...]) -> Facts:
-    code_lines = [_code(line) for line in item]
+    code_lines = [code_of(line) for line in item]
     code = "\n".join(code_lines)
     signature = SIGNATURE.match(_signature(code_lines))
     writer = signature.group(1) if signature and WRITTEN_PARAMETER.search(signature.group(2)) else None

@@ -15,6 +15,8 @@ import re
 from collections import namedtuple
 from functools import lru_cache
 
+from .deadfields import code_of
+
 SIGNATURE = re.compile(r"^\s*(\w+)\s+(\w+)\s*\(([^()]*)\)\s*$", re.S)
 FORWARD = re.compile(r"^\{\s*return\s+(\w+)\s*\((.*)\)\s*;\s*\}$", re.S)
 LITERAL = re.compile(r"^(?:-?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?[uf]?|true|false)$")
@@ -113,7 +115,7 @@ def _split(arguments: str) -> list[str]:
 @lru_cache(maxsize=8192)
 def _function(item: tuple[str, ...]) -> Function | None:
     """The item as a function: its signature, and its body when that only forwards."""
-    code = "\n".join(line.split("//", 1)[0] for line in item).strip()
+    code = "\n".join(code_of(line) for line in item).strip()
     brace = code.find("{")
     if brace < 0 or code.startswith(("struct", "#", "const")):
         return None
