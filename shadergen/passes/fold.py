@@ -10,6 +10,9 @@ from .edit import can_pass, pass_through, readers, set_constant
 from .order import topological_order
 
 BLENDS = ("mix", "plus", "minus", "difference", "screen", "overlay", "burn", "dodge")  # bg at mix 0
+# ...except where the implementation's guard against a division by zero gives 0 whatever the mix
+# (compositing_impl.mtlx): a known fg must be clear of it
+GUARDED_FG = {"burn": lambda f: abs(f) >= 1.0e-8, "dodge": lambda f: abs(1.0 - f) >= 1.0e-8}
 
 
 def fold_constants(graph: Graph, builder: GraphBuilder) -> int:
@@ -63,6 +66,15 @@ def constant_output(builder: GraphBuilder, out: Output, value) -> Output:
     return node.outputs["out"]
 
 
+def _clear_of_guard(node: Node) -> bool:
+    """Whether the node's fg is known to miss its guard (GUARDED_FG), or it has none."""
+    clear = GUARDED_FG.get(node.category)
+    if clear is None:
+        return True
+    known, fg = constant(node, "fg")
+    return known and all(clear(c) for c in (fg if isinstance(fg, tuple) else (fg,)))
+
+
 def _all(value, wanted: float) -> bool:
     return all(c == wanted for c in value) if isinstance(value, tuple) else value == wanted
 
@@ -90,7 +102,7 @@ def identity_source(node: Node):
     c, i = node.category, node.inputs
     if c in BLENDS and "bg" in i:
         known, w = constant(node, "mix")
-        if known and _all(w, 0.0):
+        if known and _all(w, 0.0) and _clear_of_guard(node):
             return i["bg"]
         if known and c == "mix" and _all(w, 1.0):
             return i["fg"]

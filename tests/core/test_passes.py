@@ -100,6 +100,22 @@ def test_constant_math_folds_into_its_reader_in_specialized(gen):
     assert "a_out" in main_of(complete) and complete["passes"]["fold"] == 0  # every input is live
 
 
+@pytest.mark.parametrize("category", ["burn", "dodge"])
+def test_a_guarded_blend_at_mix_zero_is_its_bg_only_where_fg_misses_the_guard(gen, category):
+    """burn and dodge give 0 where fg would divide by zero, whatever the mix: with fg live (read
+    from the position), mix 0 must not let bg stand for the node; with a constant fg clear of the
+    guard it does."""
+    def body(fg):
+        return ('<position name="p" type="vector3"/><extract name="x" type="float">'
+                '<input name="in" type="vector3" nodename="p"/><input name="index" type="integer" value="0"/></extract>'
+                f'<{category} name="b" type="float">{fg}<input name="bg" type="float" nodename="x"/>'
+                f'<input name="mix" type="float" value="0"/></{category}>' + OUT.format(t="float", n="b"))
+    live = main_of(record(gen, body('<input name="fg" type="float" nodename="x"/>'), interface="specialized"))
+    assert "b_out" in live and "1.0e-8" in live
+    clear = main_of(record(gen, body('<input name="fg" type="float" value="0.5"/>'), interface="specialized"))
+    assert "1.0e-8" not in clear
+
+
 def test_a_constant_node_driving_the_output_becomes_its_value(gen):
     """Left unfolded it would be an expression of literals alone, computed for every pixel (and in
     WGSL abstract-typed, which only constant expressions may be)."""
