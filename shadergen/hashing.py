@@ -31,6 +31,13 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     def value(port):
         return None if port.public else port.value
 
+    digests: dict[int, list] = {}  # id(element) -> its digest: thousands of uses share one local definition
+
+    def local_key(e: Element) -> list:
+        if id(e) not in digests:
+            digests[id(e)] = _element_digest(e)
+        return digests[id(e)]
+
     uniforms = [[p.owner.name, p.name, p.type, p.path, p.meta] for p in graph.interface]
     nodes = []
     for n in graph.nodes:
@@ -42,8 +49,8 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
             # and `uniforms` has it; the others' (a third of the bytes hashed) are where they came from
             inputs.append([inp.name, inp.type, value(inp), conn, uniform, inp.authored, inp.meta])
         impl = n.implementation
-        impl_key = _element_digest(impl) if id(impl) in local_ids else impl.name
-        nodedef_key = _element_digest(n.nodedef) if id(impl) in local_ids else n.nodedef.name
+        impl_key = local_key(impl) if id(impl) in local_ids else impl.name
+        nodedef_key = local_key(n.nodedef) if id(impl) in local_ids else n.nodedef.name
         scope = [[index[id(cond)], branch] for cond, branch in n.scope]
         nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
     outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]

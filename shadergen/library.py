@@ -241,14 +241,20 @@ class Scope:
             self.local.add(document_root)
         self.layers = (self.local, library)
         local = self.local
+        self.document_facts: dict = {}
         # The library's facts hold for a document that defines nothing of its own; its plain
         # nodegraphs matter only if an <implementation nodegraph="..."> could find one by name.
         self.library_only = not (local.nodedefs or local.implementations or local.geompropdefs or local.typedefs
                                  or local.units or local.targets or library.graph_names & local.nodegraphs.keys())
 
     def library_fact(self, key, compute):
-        """compute(), memoised in the library when the document defines nothing that could change it."""
-        return self.library.fact(key, compute) if self.library_only else compute()
+        """compute(), memoised in the library when the document defines nothing that could change
+        it, else for this document (a body its own definitions use thousands of times is built once)."""
+        if self.library_only:
+            return self.library.fact(key, compute)
+        if key not in self.document_facts:
+            self.document_facts[key] = compute()
+        return self.document_facts[key]
 
     def _first(self, table: str, name: str) -> Element | None:
         """The document's definition of that name, else the library's."""

@@ -17,24 +17,26 @@ SHADER_TYPES = {"surfaceshader", "volumeshader", "displacementshader", "lightsha
 def share_functions(graph: Graph, uniform_flow) -> int:
     """Returns how many uses became calls."""
     calls = 0
-    depths = sorted({_depth(n.instance) for n in graph.nodes if n.instance is not None}, reverse=True)
-    for depth in depths:  # innermost first
-        bodies = _bodies(graph)
+    uses = _uses(graph)
+    for depth in sorted({d for _, d in uses.values()}, reverse=True):  # innermost first
+        bodies = _bodies(graph, depth, uses)
         changed = False
         groups: dict[tuple, list[Instance]] = {}
         for inst, body in bodies.values():
-            if _depth(inst) == depth:
-                signature = _signature(inst, body)
-                if signature is not None:
-                    groups.setdefault(signature, []).append(inst)
+            signature = _signature(inst, body)
+            if signature is not None:
+                groups.setdefault(signature, []).append(inst)
+        readers = None
         for group in groups.values():
             size = len(bodies[id(group[0])][1])
             if (len(group) - 1) * size <= len(group):
                 continue  # writing the body at each use is no larger than a function and its calls
+            if readers is None:  # calls to come read the body too
+                readers = Readers(graph, graph.nodes + [inst.node for inst, _ in uses.values()])
             function = _make_function(group[0], bodies[id(group[0])][1], uniform_flow)
-            readers = graph.nodes + [i.node for i, _ in bodies.values()]  # calls to come read the body too
+            impl = GraphFunctionImpl(function, any(uniform_flow(n) for n in function.graph.nodes))
             for inst in group:
-                _call(graph, readers, inst, function, uniform_flow)
+                _call(graph, readers, inst, impl)
             calls += len(group)
             changed = True
         if changed:
@@ -42,8 +44,20 @@ def share_functions(graph: Graph, uniform_flow) -> int:
     return calls
 
 
-def _depth(inst: Instance) -> int:
-    return 0 if inst.parent is None else 1 + _depth(inst.parent)
+def _uses(graph: Graph) -> dict[int, tuple[Instance, int]]:
+    """id(use) -> (use, its depth of nesting; 0: a use in the document's own graph), for every
+    expanded use of the graph, nested ones included."""
+    uses: dict[int, tuple[Instance, int]] = {}
+    for node in graph.nodes:
+        chain, inst = [], node.instance
+        while inst is not None and id(inst) not in uses:  # each use's chain is walked once
+            chain.append(inst)
+            inst = inst.parent
+        depth = -1 if inst is None else uses[id(inst)][1]
+        for inst in reversed(chain):
+            depth += 1
+            uses[id(inst)] = (inst, depth)
+    return uses
 
 
 def _inside(node: Node, inst: Instance) -> bool:
@@ -53,14 +67,24 @@ def _inside(node: Node, inst: Instance) -> bool:
     return outer is inst
 
 
-def _bodies(graph: Graph) -> dict[int, tuple[Instance, list[Node]]]:
-    """Every expanded use with the nodes of its body (nested uses' included), in graph order."""
+def _bodies(graph: Graph, depth: int, uses: dict) -> dict[int, tuple[Instance, list[Node]]]:
+    """The uses at `depth` with the nodes of their bodies (nested uses' included), in graph order."""
+    enclosing: dict[int, Instance | None] = {}  # id(use) -> the use at `depth` it sits in, None: none
     bodies: dict[int, tuple[Instance, list[Node]]] = {}
     for node in graph.nodes:
-        inst = node.instance
-        while inst is not None:
-            bodies.setdefault(id(inst), (inst, []))[1].append(node)
+        chain, inst = [], node.instance
+        while inst is not None and id(inst) not in enclosing and uses[id(inst)][1] > depth:
+            chain.append(inst)
             inst = inst.parent
+        if inst is None or id(inst) in enclosing:
+            use = None if inst is None else enclosing[id(inst)]
+        else:
+            use = inst if uses[id(inst)][1] == depth else None
+            enclosing[id(inst)] = use
+        for inst in chain:
+            enclosing[id(inst)] = use
+        if use is not None:
+            bodies.setdefault(id(use), (use, []))[1].append(node)
     return bodies
 
 
@@ -119,19 +143,34 @@ def _make_function(inst: Instance, body: list[Node], uniform_flow) -> Function:
     return Function(inst.graph_elem.name, graph, list(params.values()), list(outputs.values()))
 
 
-def _call(graph: Graph, readers: list[Node], inst: Instance, function: Function, uniform_flow) -> None:
+class Readers:
+    """What reads each output: the inputs of `nodes` and the graph's outputs, indexed once per
+    depth, so that each call rewires only its own readers (a scan of the graph per call made
+    many uses quadratic). Calls of one depth never read each other's bodies, so the index holds
+    while they are made."""
+
+    def __init__(self, graph: Graph, nodes: list[Node]):
+        self.inputs: dict[int, list[Input]] = {}
+        for node in nodes:
+            for inp in node.inputs.values():
+                if inp.connection is not None:
+                    self.inputs.setdefault(id(inp.connection), []).append(inp)
+        self.graph_outputs: dict[int, list[str]] = {}
+        for name, out in graph.outputs.items():
+            self.graph_outputs.setdefault(id(out), []).append(name)
+
+
+def _call(graph: Graph, readers: Readers, inst: Instance, impl: GraphFunctionImpl) -> None:
     """The node the body replaced comes back as a call: what read the body's outputs reads it."""
     node = inst.node
     for name, socket in inst.sockets.items():
         if socket.public:  # the node's public input is the shared uniform
             node.inputs[name].bind_socket(socket)
     replaced: dict[int, Output] = {id(inst.outputs[o.name]): o for o in node.outputs.values()}
-    for consumer in readers:
-        if _inside(consumer, inst):
-            continue
-        for inp in consumer.inputs.values():
-            if inp.connection is not None and id(inp.connection) in replaced:
-                inp.connection = replaced[id(inp.connection)]
-    for name, out in list(graph.outputs.items()):
-        graph.outputs[name] = replaced.get(id(out), out)
-    node.impl = GraphFunctionImpl(function, any(uniform_flow(n) for n in function.graph.nodes))
+    for body_output, call_output in replaced.items():
+        for inp in readers.inputs.get(body_output, ()):
+            if id(inp.connection) == body_output and not _inside(inp.node, inst):
+                inp.connection = call_output
+        for name in readers.graph_outputs.get(body_output, ()):
+            graph.outputs[name] = call_output
+    node.impl = impl
