@@ -158,6 +158,7 @@ class Graph:
         self.warnings = [] if warnings is None else warnings
         self.interface: list = []  # the public uniforms (Input | Socket), in listing order
         self.passes: dict[str, int] = {}  # edits each pass made, in pass order
+        self.expanded_size = 0  # nodes once nodegraphs are expanded, as counted before (passes/expand.py)
         self.interface_mode = interface_mode
         self.values_in_source = values_in_source  # uniform initializers hold the document's values, not the nodedef's
         self.environment = environment  # the environment lighting it is generated for (features.ENVIRONMENTS), or either

@@ -6,6 +6,7 @@ expansion limit and by bench/expansion.py.
     nested_nodegraphs(depth)    the same shape written as document nodegraphs connected by `nodegraph=`
     wide_definition(uses)       one small definition, used `uses` times in a chain
     wide_nodegraph(uses)        one document nodegraph whose output `uses` nodes read
+    layered_material(layers)    for contrast, a legitimate large material: standard_surfaces mixed in a tree
 """
 
 HEAD = '<?xml version="1.0"?>\n<materialx version="1.39">\n'
@@ -81,3 +82,25 @@ def wide_nodegraph(uses: int) -> str:
                     for i in range(1, uses))
     return (HEAD + graph + '<sin name="a0" type="float"><input name="in" type="float" nodegraph="NG_shared"/></sin>\n'
             + chain + f'<output name="result" type="float" nodename="a{uses - 1}"/>\n' + TAIL)
+
+
+def layered_material(layers: int) -> str:
+    """`layers` standard_surface shaders (each a nodegraph of the library) mixed pairwise into
+    one material: far larger than any real material, and nothing in it is hostile."""
+    shaders = "".join(
+        f'<standard_surface name="s{i}" type="surfaceshader">'
+        f'<input name="base_color" type="color3" value="{i / layers:.3f}, 0.5, 0.25"/>'
+        f'<input name="specular_roughness" type="float" value="{0.1 + 0.8 * i / layers:.3f}"/></standard_surface>\n'
+        for i in range(layers))
+    mixes, level = "", [f"s{i}" for i in range(layers)]
+    while len(level) > 1:
+        paired = []
+        for fg, bg in zip(level[::2], level[1::2]):
+            name = f"mix{len(mixes.splitlines())}"
+            mixes += (f'<mix name="{name}" type="surfaceshader"><input name="fg" type="surfaceshader" nodename="{fg}"/>'
+                      f'<input name="bg" type="surfaceshader" nodename="{bg}"/>'
+                      f'<input name="mix" type="float" value="0.5"/></mix>\n')
+            paired.append(name)
+        level = paired + level[len(paired) * 2:]
+    return (HEAD + shaders + mixes + '<surfacematerial name="Layered" type="material">'
+            f'<input name="surfaceshader" type="surfaceshader" nodename="{level[0]}"/></surfacematerial>\n' + TAIL)

@@ -5,6 +5,12 @@ Each use gets its own copy of the body (an `Instance`, its nodes named after the
 replaces). The body's interface inputs take the node's bindings: a connection, a value (a
 constant from here on), or a public uniform, which becomes a Socket the body's inputs share.
 Whether identical bodies are written once as a function is decided after the other passes.
+
+Nesting multiplies: a body that uses another definition twice, twelve levels deep, is 4,096
+copies of the innermost body, from a document of a few kilobytes. So the nodes an expansion would
+make are counted first, from each definition's body built once, and a graph over
+MAX_EXPANDED_NODES, or nesting deeper than MAX_NESTING, is refused (too_large) before any copy
+is made.
 """
 from ..element import Element
 from ..errors import ShaderGenError
@@ -12,10 +18,20 @@ from ..graph import Graph, GraphBuilder, Input, Instance, Node, Output, Socket
 from .elide import elide_passthrough_nodes
 from .order import topological_order
 
+# Far above any real material: the largest graph of MaterialX's examples and test suite expands to
+# 147 nodes, with uses nested 3 deep (bench/expansion.py prints both). At the limits a graph still
+# generates in seconds and in a few hundred MB: function sharing compares bodies (nested uses
+# included) depth by depth, so its work grows with the nodes times the nesting.
+# A count past CAPPED_COUNT is reported as "at least" that.
+MAX_EXPANDED_NODES = 50_000
+MAX_NESTING = 32
+CAPPED_COUNT = 10 ** 15
+
 
 def expand_nodegraphs(graph: Graph, builder: GraphBuilder) -> int:
     """Returns how many nodegraph uses were expanded."""
-    pending = [n for n in graph.nodes if n.implementation.category == "nodegraph"]
+    pending = [n for n in graph.nodes if is_nodegraph_use(n)]
+    graph.expanded_size = check_expanded_size(graph, builder)
     replaced: dict[int, Output] = {}  # id(output of an expanded node) -> the body output that replaces it
     nodes = list(graph.nodes)
     expanded: set[int] = set()
@@ -28,7 +44,7 @@ def expand_nodegraphs(graph: Graph, builder: GraphBuilder) -> int:
             if name in instance.outputs:
                 replaced[id(out)] = instance.outputs[name]
         nodes.extend(body)
-        pending.extend(n for n in body if n.implementation.category == "nodegraph")
+        pending.extend(n for n in body if is_nodegraph_use(n))
     if not expanded:
         return 0
 
@@ -50,17 +66,63 @@ def expand_nodegraphs(graph: Graph, builder: GraphBuilder) -> int:
     return len(expanded)
 
 
-def check_recursion(instance: Instance) -> None:
-    """A body that reaches its own node again (directly or through other definitions) would
-    expand forever: a cycle, named along the nesting."""
-    chain, inst = [], instance
-    while inst is not None:
-        chain.insert(0, inst.graph_elem)
-        inst = inst.parent
-    for i, elem in enumerate(chain[:-1]):
-        if elem is instance.graph_elem:
+def is_nodegraph_use(node: Node) -> bool:
+    return node.implementation.category == "nodegraph"
+
+
+def check_expanded_size(graph: Graph, builder: GraphBuilder) -> int:
+    """The nodes the graph will have once every use is expanded (an upper bound: outputs no one
+    reads are dropped afterwards); raises too_large, naming the largest use, over the limit."""
+    sizes: dict[int, int] = {}  # id(nodegraph) -> the nodes one use of it expands to
+    total, largest, largest_size = 0, None, 0
+    for node in graph.nodes:
+        size = use_size(node, builder, sizes) if is_nodegraph_use(node) else 1
+        total = min(total + size, CAPPED_COUNT)
+        if size > largest_size:
+            largest, largest_size = node, size
+    if total > MAX_EXPANDED_NODES:
+        def count(n: int) -> str:
+            return f"at least {n:,}" if n >= CAPPED_COUNT else f"{n:,}"
+        raise ShaderGenError("too_large", f"expanding its nodegraphs would give the graph {count(total)} nodes, over "
+                             f"the limit of {MAX_EXPANDED_NODES:,}; the largest part, '{largest.name}' "
+                             f"({largest.implementation.name}), makes {count(largest_size)}", largest.path)
+    return total
+
+
+def use_size(node: Node, builder: GraphBuilder, sizes: dict[int, int]) -> int:
+    """The nodes one use of `node`'s nodegraph expands to, nested uses expanded too, from each
+    definition's body built once: a depth-first walk over definitions, not over copies. A
+    definition reached again below itself would expand forever (a cycle); nesting deeper than
+    MAX_NESTING is refused (too_large)."""
+    def frame(user: Node) -> list:  # [nodegraph, its nested uses still to count, its size so far]
+        body = body_template(user.implementation, builder, user).nodes
+        nested = [n for n in body if is_nodegraph_use(n)]
+        return [user.implementation, iter(nested), len(body) - len(nested)]
+
+    stack = [] if id(node.implementation) in sizes else [frame(node)]
+    while stack:
+        top = stack[-1]
+        user = next(top[1], None)
+        if user is None:
+            stack.pop()
+            sizes[id(top[0])] = size = min(top[2], CAPPED_COUNT)
+            if stack:
+                stack[-1][2] += size
+            continue
+        elem = user.implementation
+        if id(elem) in sizes:
+            top[2] += sizes[id(elem)]
+            continue
+        chain = [f[0] for f in stack]
+        if any(e is elem for e in chain):
+            cycle = chain[next(i for i, e in enumerate(chain) if e is elem):] + [elem]
             raise ShaderGenError("cycle", "nodegraph implementation instantiates itself: "
-                                 + " -> ".join(e.name for e in chain[i:]), instance.graph_elem.path)
+                                 + " -> ".join(e.name for e in cycle), elem.path)
+        if len(stack) >= MAX_NESTING:
+            raise ShaderGenError("too_large", f"nodegraphs nested more than {MAX_NESTING} deep: "
+                                 + " -> ".join(e.name for e in chain + [elem]), node.path)
+        stack.append(frame(user))
+    return sizes[id(node.implementation)]
 
 
 class Body:
@@ -75,19 +137,22 @@ class Body:
 
 def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
     """Builds one use's body and binds its interface to the node's inputs; returns its nodes."""
-    check_recursion(instance)
     node, elem = instance.node, instance.graph_elem
     instance.sockets = {inp.name: Socket(inp.name, inp.type, inp.value, inp.path, dict(inp.meta), origin=inp,
                                          default=inp.default)
                         for inp in node.inputs.values()}
-    # A body depends only on its definition and the target: built once per library (unless the
-    # document defines something that could change how it resolves), copied for each use.
-    template = outer.scope.library_fact(("body", id(elem), outer.target), lambda: build_body(elem, outer, node))
+    template = body_template(elem, outer, node)
     body = copy_body(template, instance)
     graph.warnings.extend(template.warnings)
     for socket in instance.sockets.values():
         bind_socket(socket, graph)
     return body
+
+
+def body_template(elem: Element, outer: GraphBuilder, node: Node) -> Body:
+    """A body depends only on its definition and the target: built once per library (per document,
+    when the document defines something that could change how it resolves), copied for each use."""
+    return outer.scope.library_fact(("body", id(elem), outer.target), lambda: build_body(elem, outer, node))
 
 
 def build_body(elem: Element, outer: GraphBuilder, node: Node) -> Body:

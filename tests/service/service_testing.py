@@ -119,6 +119,15 @@ class Server:
         self.log.close()
 
 
+def assert_error(response, status: int, code: str) -> dict:
+    """The contract's error object with this status and code; returns its `error`."""
+    assert response.status_code == status, response.text
+    body = response.json()
+    assert set(body) == {"document", "element", "target", "error"}
+    assert body["error"]["code"] == code and body["error"]["message"]
+    return body["error"]
+
+
 def document(name: str) -> str:
     return (DOCS / name).read_text()
 

@@ -9,7 +9,7 @@ import pytest
 from service.models import ShaderRecord
 from shadergen.fingerprint import output_key
 from shadergen.library import library_root
-from service_testing import HOST, Server, document, receive_head
+from service_testing import HOST, assert_error, Server, document, receive_head
 
 XML = {"content-type": "application/xml"}
 MIB = 1024 * 1024
@@ -18,14 +18,6 @@ MIB = 1024 * 1024
 def generate(client, name_or_text: str, **params):
     text = document(name_or_text) if name_or_text.endswith(".mtlx") else name_or_text
     return client.post("/v1/generate", json={"document": text, **params})
-
-
-def assert_error(response, status: int, code: str):
-    assert response.status_code == status, response.text
-    body = response.json()
-    assert set(body) == {"document", "element", "target", "error"}
-    assert body["error"]["code"] == code and body["error"]["message"]
-    return body["error"]
 
 
 # -- endpoints ---------------------------------------------------------------------------------

@@ -6,18 +6,10 @@ import time
 
 import pytest
 
-from service_testing import HOST, Server, document, receive_head
+from service_testing import HOST, assert_error, Server, document, receive_head
 
 XML = {"content-type": "application/xml"}
 JSON = {"content-type": "application/json"}
-
-
-def assert_error(response, status: int, code: str) -> dict:
-    assert response.status_code == status, response.text
-    body = response.json()
-    assert set(body) == {"document", "element", "target", "error"}
-    assert body["error"]["code"] == code and body["error"]["message"]
-    return body["error"]
 
 
 def with_declaration(encoding: str) -> str:

@@ -10,6 +10,8 @@ from pathlib import Path
 import pytest
 from pxr import Sdf, Usd, UsdShade
 
+from service_testing import assert_error
+
 USDA = {"content-type": "model/vnd.usda"}
 USDZ = {"content-type": "model/vnd.usdz+zip"}
 MIB = 1024 * 1024
@@ -47,13 +49,6 @@ def package(folder: Path, text: str, *members: tuple[str, bytes]) -> bytes:
 
 def uniforms(record: dict) -> dict:
     return {v["path"]: v for v in record["blocks"]["pixel"]["PublicUniforms"]}
-
-
-def assert_error(response, status: int, code: str) -> dict:
-    assert response.status_code == status, response.text
-    error = response.json()["error"]
-    assert error["code"] == code and error["message"]
-    return error
 
 
 def test_usda_upload_gives_the_first_or_the_named_material(client):
