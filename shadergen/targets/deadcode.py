@@ -33,25 +33,27 @@ def split_items(lines: list[str]) -> list[tuple[str | None, list[str]]]:
     index = 0
     while index < len(lines):
         line = lines[index]
-        stripped = line.strip()
         index += 1
-        if depth == 0 and not current:
+        if not current:  # between items (an item ends where its braces balance)
+            stripped = line.strip()
             if not stripped or stripped.startswith("//"):
                 pending.append(line)
                 continue
-            guarded = _default_definition(lines, index - 1)
-            if guarded:
-                items.append((guarded, _attached(pending) + lines[index - 1:index + 2]))
-                pending = []
-                index += 2
-                continue
-            if stripped.startswith("#") and not stripped.endswith("\\"):
-                items.append((_name(stripped), _attached(pending) + [line]))
-                pending = []
-                continue
+            if stripped.startswith("#"):
+                guarded = _default_definition(lines, index - 1)
+                if guarded:
+                    items.append((guarded, _attached(pending) + lines[index - 1:index + 2]))
+                    pending = []
+                    index += 2
+                    continue
+                if not stripped.endswith("\\"):
+                    items.append((_name(stripped), _attached(pending) + [line]))
+                    pending = []
+                    continue
         current.append(line)
-        depth += _braces(line)
-        if depth == 0 and (stripped.endswith("}") or stripped.endswith(";")):
+        if "{" in line or "}" in line:
+            depth += _braces(line)
+        if depth == 0 and line.rstrip().endswith(("}", ";")):
             items.append((_name(current[0].strip()), _attached(pending) + current))
             current, pending = [], []
     if current or pending:
@@ -106,7 +108,7 @@ class Section:
         self.uses = [self.defining(words) for words in self.words]
 
     def defining(self, words) -> set[int]:
-        return {k for w in words for k in self.by_name.get(w, ())}
+        return {k for w in self.by_name.keys() & words for k in self.by_name[w]}
 
     def reachable(self, root_words: set[str], edited: dict[int, tuple[str, ...]]) -> tuple[list[int], set[str]]:
         """The indices of the items the roots use, transitively, in their original order, and every

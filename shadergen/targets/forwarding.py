@@ -15,12 +15,13 @@ import re
 from collections import namedtuple
 from functools import lru_cache
 
-from .deadfields import code_of
+from .deadfields import code_text
 
 SIGNATURE = re.compile(r"^\s*(\w+)\s+(\w+)\s*\(([^()]*)\)\s*$", re.S)
 FORWARD = re.compile(r"^\{\s*return\s+(\w+)\s*\((.*)\)\s*;\s*\}$", re.S)
 LITERAL = re.compile(r"^(?:-?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?[uf]?|true|false)$")
 PARAMETER = re.compile(r"^(?:(in|out|inout)\s+)?(?:const\s+)?(\w+)\s+(\w+)$")
+PARENTHESIS = re.compile(r"[()]")
 
 
 # a named tuple, not a dataclass: a cold process would import dataclasses for it alone (see graph.py);
@@ -47,6 +48,8 @@ def without_forwarding(items: list[tuple[str, ...]], root_words: set[str]) -> di
         if functions[k] is not None and functions[k].name in wrappers:
             continue
         text = "\n".join(item)
+        if not any(name in text for name in wrappers):  # most items call none: a substring test says so
+            continue
         new = _calls_replaced(text, pattern, wrappers)
         if new != text:
             edited[k] = tuple(new.split("\n"))
@@ -94,28 +97,29 @@ def _calls_replaced(text: str, pattern: re.Pattern, wrappers: dict[str, Function
 def _closing(text: str, start: int) -> int:
     """Index of the `)` closing the call whose arguments start at `start`, -1 if none."""
     depth = 1
-    for k in range(start, len(text)):
-        depth += {"(": 1, ")": -1}.get(text[k], 0)
+    for m in PARENTHESIS.finditer(text, start):
+        depth += 1 if m.group() == "(" else -1
         if depth == 0:
-            return k
+            return m.start()
     return -1
 
 
 def _split(arguments: str) -> list[str]:
     """Arguments split at the commas outside parentheses and brackets, stripped."""
-    parts, depth, start = [], 0, 0
-    for k, ch in enumerate(arguments + ","):
-        depth += {"(": 1, "[": 1, ")": -1, "]": -1}.get(ch, 0)
-        if ch == "," and depth == 0:
-            parts.append(" ".join(arguments[start:k].split()))
-            start = k + 1
+    parts, held, depth = [], [], 0  # held: the pieces since the last comma outside
+    for piece in arguments.split(","):
+        held.append(piece)
+        depth += piece.count("(") + piece.count("[") - piece.count(")") - piece.count("]")
+        if depth == 0:
+            parts.append(" ".join(",".join(held).split()))
+            held = []
     return [p for p in parts if p] if arguments.strip() else []
 
 
 @lru_cache(maxsize=8192)
 def _function(item: tuple[str, ...]) -> Function | None:
     """The item as a function: its signature, and its body when that only forwards."""
-    code = "\n".join(code_of(line) for line in item).strip()
+    code = code_text(item).strip()
     brace = code.find("{")
     if brace < 0 or code.startswith(("struct", "#", "const")):
         return None
