@@ -121,6 +121,10 @@ def resolve(text: str, features: frozenset[str] | None, macros: frozenset[tuple[
     # one entry per open conditional: None for the compiler's own, else whether its side is kept
     stack: list[bool | None] = []
     for line in text.split("\n"):
+        if "#" not in line:  # most lines: neither a conditional nor a pragma
+            if False not in stack:
+                out.append(line)
+            continue
         m = CONDITIONAL.match(line)
         if m and m.group(1) in ("ifdef", "ifndef") and (m.group(2).startswith(PREFIX) or m.group(2) in decided):
             macro = m.group(2)
@@ -137,6 +141,6 @@ def resolve(text: str, features: frozenset[str] | None, macros: frozenset[tuple[
         elif m and m.group(1) == "endif" and stack:
             if stack.pop() is not None:
                 continue
-        if all(side is not False for side in stack) and not PRAGMA.match(line):
+        if False not in stack and not PRAGMA.match(line):
             out.append(line)
     return "\n".join(out)
