@@ -1,8 +1,11 @@
 """What the generator reads from library sources with its fast scans: derivative calls (a node that
-takes them runs in uniform control flow) and the parameters of a lobe's `_prepare` function."""
+takes them runs in uniform control flow), the parameters of a lobe's `_prepare` function, the names
+an item of a library section calls (dead members) and a call's arguments (forwarding)."""
 import pytest
 
 from shadergen.nodes.base import takes_derivatives
+from shadergen.targets.deadfields import called_names
+from shadergen.targets.forwarding import _split as split_arguments
 from shadergen.targets.glsl import ClosureConvention
 
 
@@ -40,3 +43,24 @@ def test_a_lobes_prepared_state_is_the_type_its_first_prepare_function_writes():
     assert closures.prepared_state(SOURCE, "mx_flat") is None  # writes no state
     assert closures.prepared_state(SOURCE, "flat") is None  # `notmx_flat_prepare` is another name
     assert closures.prepared_state(SOURCE, "mx_missing") is None
+
+
+@pytest.mark.parametrize("code, expected", [
+    ("f(x) + g (y)", {"f", "g"}),
+    ("return mx_eval\n    (a, b);", {"mx_eval"}),  # blanks and a line break before the `(`
+    ("lobe.prepare(x) + _k(1)", {"prepare", "_k"}),
+    ("float y = 2e(1) + (a) * ((b));", set()),  # a word starting with a digit is no name; bare parentheses
+    ("vec3 c = mx_fresnel(ior(x), t[i](0));", {"mx_fresnel", "ior"}),
+])
+def test_called_names_are_whole_words_before_a_parenthesis(code, expected):
+    assert called_names(code) == expected
+
+
+@pytest.mark.parametrize("arguments, expected", [
+    ("in float a, out vec3 b", ["in float a", "out vec3 b"]),
+    ("a, f(b, c[1, 2]), (d,\n   e)", ["a", "f(b, c[1, 2])", "(d, e)"]),
+    ("x, , y", ["x", "y"]),
+    ("  ", []),
+])
+def test_arguments_split_at_commas_outside_parentheses_and_brackets(arguments, expected):
+    assert split_arguments(arguments) == expected
