@@ -45,27 +45,30 @@ float mx_prefiltered_lod(float alpha)
 }
 
 // The lobe's Fresnel as the DFG table's two-point quadrature rule in VdotH sees it
-// (mx_environment_dfg_rule: cosines x, y, weights z, w), evaluated once per shading point.
+// (mx_environment_dfg_rule: cosines x, y, weights z, w), evaluated once per shading point, with
+// the slope of the line through its two points (mx_lobe_fresnel_at).
 struct LobeFresnel
 {
     vec4 rule;
-    vec3 F1;  // the reflectance at rule.x
-    vec3 F2;  // and at rule.y
+    vec3 F1;     // the reflectance at rule.x
+    vec3 F2;     // and at rule.y
+    vec3 slope;  // (F2 - F1) / (rule.y - rule.x)
 };
 
 LobeFresnel mx_lobe_fresnel(float NdotV, float avgAlpha, FresnelData fd)
 {
     vec4 rule = mx_environment_dfg_rule(NdotV, avgAlpha);
-    return LobeFresnel(rule, mx_fresnel_eval(rule.x, fd), mx_fresnel_eval(rule.y, fd));
+    vec3 F1 = mx_fresnel_eval(rule.x, fd);
+    vec3 F2 = mx_fresnel_eval(rule.y, fd);
+    float span = rule.y - rule.x;
+    return LobeFresnel(rule, F1, F2, (F2 - F1) / (abs(span) < 1.0e-3 ? 1.0e-3 : span));
 }
 
 // The reflectance at VdotH `cosine` on the line through the rule's two points: what weights a
 // sample of the lobe without evaluating the Fresnel model per sample.
 vec3 mx_lobe_fresnel_at(LobeFresnel lf, float cosine)
 {
-    float span = lf.rule.y - lf.rule.x;
-    vec3 slope = (lf.F2 - lf.F1) / (abs(span) < 1.0e-3 ? 1.0e-3 : span);
-    return clamp(lf.F1 + slope * (cosine - lf.rule.x), 0.0, 1.0);
+    return clamp(lf.F1 + lf.slope * (cosine - lf.rule.x), 0.0, 1.0);
 }
 
 // The fraction of the light arriving over the lobe that it reflects (or, with fd.refraction, lets
@@ -148,14 +151,20 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
     Vt.z = max(Vt.z, MX_EPS);
-    vec3 Rt = mx_prefiltered_direction(Vt, vec3(0.0, 0.0, 1.0), fd);
-    vec3 lookup = fetch ? mx_envmap_fetch(u_envRadiance, frame * Rt, mx_prefiltered_lod(avgAlpha)) : vec3(0.0);
+    mat3 toMap = mat3(u_envMatrix) * frame;  // a direction in the frame straight to the map's (a rotation)
+    vec3 Rt = normalize(mx_prefiltered_direction(Vt, vec3(0.0, 0.0, 1.0), fd));
+    vec3 lookup = fetch ? mx_envmap_lookup(u_envRadiance, toMap * Rt, mx_prefiltered_lod(avgAlpha)) : vec3(0.0);
     bool anisotropic = alpha.x != alpha.y && !fd.refraction;
     // A lobe narrower than the unfiltered map resolves reads it along R at any view: no samples.
     bool corrected = fetch && max(alpha.x, alpha.y) >= mx_prefiltered_sharpest_alpha();
     int sampleCount = corrected || anisotropic ? max(u_envRadianceSamples, 1) : 0;
     float elongation = sqrt(max(alpha.x, alpha.y) / max(min(alpha.x, alpha.y), MX_EPS));
-    mat3 toR = mx_rotation_from_pole(normalize(Rt));
+    mat3 splitToMap = toMap * mx_rotation_from_pole(Rt);
+    // What every sample of the view shares, computed once: Lambda(V) of both lobes, and G1(V) / (4 V.z)
+    // of the reflection pdf (mx_ggx_reflection_pdf).
+    float lambdaV = mx_ggx_lambda(Vt, alpha);
+    float lambdaVIsotropic = mx_ggx_lambda(Vt, vec2(avgAlpha));
+    float pdfScale = 1.0 / ((1.0 + lambdaV) * 4.0 * Vt.z);
     vec3 lobeRadiance = vec3(0.0), lobeWeights = vec3(0.0), splitRadiance = vec3(0.0);
     float splitWeights = 0.0;
     for (int i = 0; i < sampleCount; i++)
@@ -168,11 +177,11 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
 #else
         vec3 Lt = reflect(-Vt, H);
 #endif
-        float weight = mx_ggx_sample_weight(Vt, Lt, alpha);
+        float weight = mx_ggx_sample_weight_given(lambdaV, Lt, alpha);
         if (anisotropic)
         {
             vec3 Hi = mx_ggx_sample_visible_normal(u, Vt, vec2(avgAlpha));
-            float weightIsotropic = mx_ggx_sample_weight(Vt, reflect(-Vt, Hi), vec2(avgAlpha));
+            float weightIsotropic = mx_ggx_sample_weight_given(lambdaVIsotropic, reflect(-Vt, Hi), vec2(avgAlpha));
             anisotropy += vec4(F * weight - mx_lobe_fresnel_at(lf, clamp(dot(Vt, Hi), MX_EPS, 1.0)) * weightIsotropic,
                                weight - weightIsotropic);
         }
@@ -181,15 +190,15 @@ vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float
         // A sample below the horizon keeps a token weight, so that a lobe whose every sample falls
         // there still reads the environment around it.
         vec3 w = fd.refraction ? vec3(1.0) - F : F * max(weight, 1.0e-4);
-        float pdf = mx_ggx_reflection_pdf(H, Vt, alpha);
-        lobeRadiance += w * mx_envmap_fetch(u_envRadiance, frame * Lt, mx_prefiltered_sample_lod(pdf, sampleCount, elongation));
+        float pdf = mx_ggx_D(H, alpha) * pdfScale;
+        lobeRadiance += w * mx_envmap_lookup(u_envRadiance, toMap * Lt, mx_prefiltered_sample_lod(pdf, sampleCount, elongation));
         lobeWeights += w;
 
         vec3 Hs = mx_ggx_sample_visible_normal(u, vec3(0.0, 0.0, 1.0), vec2(avgAlpha));
         vec3 Ls = reflect(vec3(0.0, 0.0, -1.0), Hs);
         float cosine = max(Ls.z, 1.0e-4);  // a token weight below R's horizon, as above
         float pdfs = mx_ggx_reflection_pdf(Hs, vec3(0.0, 0.0, 1.0), vec2(avgAlpha));
-        splitRadiance += cosine * mx_envmap_fetch(u_envRadiance, frame * (toR * Ls), mx_prefiltered_sample_lod(pdfs, sampleCount, elongation));
+        splitRadiance += cosine * mx_envmap_lookup(u_envRadiance, splitToMap * Ls, mx_prefiltered_sample_lod(pdfs, sampleCount, elongation));
         splitWeights += cosine;
     }
     anisotropy /= float(max(sampleCount, 1));

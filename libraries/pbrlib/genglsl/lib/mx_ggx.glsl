@@ -42,14 +42,19 @@ float mx_ggx_G2(vec3 V, vec3 L, vec2 alpha)
     return 1.0 / (1.0 + mx_ggx_lambda(V, alpha) + mx_ggx_lambda(L, alpha));
 }
 
+// mx_ggx_sample_weight with the view's Lambda(V) given: the samples of one view share it.
+float mx_ggx_sample_weight_given(float lambdaV, vec3 L, vec2 alpha)
+{
+    if (L.z <= 0.0)
+        return 0.0;
+    return (1.0 + lambdaV) / (1.0 + lambdaV + mx_ggx_lambda(L, alpha));
+}
+
 // What a light direction sampled through a visible normal carries, f cos / pdf with F = 1:
 // G2 / G1 (Heitz 2014, sect. 5.3), 0 below the horizon.
 float mx_ggx_sample_weight(vec3 V, vec3 L, vec2 alpha)
 {
-    if (L.z <= 0.0)
-        return 0.0;
-    float lambdaV = mx_ggx_lambda(V, alpha);
-    return (1.0 + lambdaV) / (1.0 + lambdaV + mx_ggx_lambda(L, alpha));
+    return mx_ggx_sample_weight_given(mx_ggx_lambda(V, alpha), L, alpha);
 }
 
 // A visible normal for view V from the uniform point u: the view stretched to the unit-roughness
