@@ -5,7 +5,7 @@ For each material, our shader and the reference's (the oracle's record), both dr
 Renderer on the sphere in the procedural sky, at environment sample counts 1, 4, 16, 64, 256
 (filtered importance sampling) and, ours only, with the prefiltered environment
 (--env-method prefilter: one lookup in the GGX-prefiltered map, our DFG table) and the hybrid
-(--env-method hybrid at 2, 4, 8, 16 samples: that lookup corrected by correlated samples of the
+(--env-method hybrid at 2, 4, 8, 12, 16 samples: that lookup corrected by correlated samples of the
 prefiltered map, a control variate); the reference's GLSL has neither. Ours is generated for each
 method (generate --env-method), as render and thumbnails draw it. Each point is compared with
 the same shader's converged image (--converged FIS samples, 4096 by default), as linear float
@@ -47,7 +47,7 @@ MATERIALS = [os.path.join("{corpus}", EXAMPLES, f"standard_surface_{name}.mtlx")
     os.path.join(HERE, "documents", "open_pbr_coated_metal.mtlx"),
     os.path.join(HERE, "documents", "gltf_pbr_painted.mtlx")]
 SAMPLE_COUNTS = (1, 4, 16, 64, 256)
-HYBRID_COUNTS = (2, 4, 8, 16)
+HYBRID_COUNTS = (2, 4, 8, 12, 16)
 ENV_METHODS = ("fis", "prefilter", "hybrid")
 SHADERS = ("ours", "reference")
 GOAL_SAMPLES, GOAL_DB = 16, 6.0
