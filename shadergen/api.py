@@ -11,7 +11,6 @@ import hashlib
 import json
 import os
 import time
-from pathlib import Path
 
 from .document import Document, parse_document, read_document
 from .element import Element
@@ -136,6 +135,19 @@ class Prepared:
         blocks = dict(record["blocks"], pixel=dict(record["blocks"]["pixel"], PublicUniforms=public))
         return dict(record, document=self.document.path, element=self.element, hash=self.hash, cached=False,
                     blocks=blocks, timings_ms={"generate": round(ms, 3)}, warnings=self.warnings)
+
+
+class DocumentFile(os.PathLike):
+    """A document's path on disk, for `Generator.load` and `records` (where a str is the document
+    itself): pathlib.Path serves as well, but a cold `shadergen generate` does not import pathlib."""
+
+    __slots__ = ("path",)
+
+    def __init__(self, path: str):
+        self.path = path
+
+    def __fspath__(self) -> str:
+        return self.path
 
 
 class Generator:
@@ -300,6 +312,6 @@ def generate_file(path: str, *, target: str = "glsl", element: str | None = None
                   interface: str = "complete", keep=(), environment: str | None = None,
                   lights: bool = True) -> list[dict]:
     """Records for a document file (used by the renderer's CLI)."""
-    return list(default_generator().records(Path(path), target=target, element=element, all=all,
+    return list(default_generator().records(DocumentFile(path), target=target, element=element, all=all,
                                             interface=interface, keep=keep, environment=environment,
                                             lights=lights))

@@ -29,11 +29,31 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
     """Every option's help ends with its default (when it has one worth saying); examples keep
     their line breaks."""
 
+    def __init__(self, prog, indent_increment=2, max_help_position=24, width=None):
+        # argparse makes a formatter for every add_argument (to check its metavar), sized to the
+        # terminal by shutil, whose import (with the compression modules it brings) costs a cold
+        # `generate` more than argparse itself: the width is read here instead, as shutil does.
+        super().__init__(prog, indent_increment, max_help_position, width or terminal_columns() - 2)
+
     def _get_help_string(self, action):
         text = action.help or ""
         if action.default in (None, False, [], argparse.SUPPRESS) or "default" in text or not action.option_strings:
             return text
         return f"{text} (default: %(default)s)"
+
+
+def terminal_columns() -> int:
+    """$COLUMNS, else the width of the terminal on stdout, else 80 (shutil.get_terminal_size's rule)."""
+    try:
+        columns = int(os.environ.get("COLUMNS", 0))
+    except ValueError:
+        columns = 0
+    if columns > 0:
+        return columns
+    try:
+        return os.get_terminal_size(sys.__stdout__.fileno()).columns or 80
+    except (AttributeError, ValueError, OSError):
+        return 80
 
 
 def main(argv: list[str] | None = None) -> int:

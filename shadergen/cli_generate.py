@@ -2,7 +2,6 @@
 import json
 import os
 import sys
-from pathlib import Path
 
 from .features import ENVIRONMENTS
 
@@ -55,7 +54,8 @@ class OutputFiles:
 
     def write(self, record: dict, document: str) -> dict | None:
         """Writes the record's files; returns an error record instead when they are taken."""
-        folder = os.path.join(self.out_dir, Path(document).stem if document != "-" else "stdin")
+        name = os.path.splitext(os.path.basename(document))[0] if document != "-" else "stdin"
+        folder = os.path.join(self.out_dir, name)
         stem = os.path.join(folder, f"{(record['element'] or 'shader').replace('/', '_')}.{record['target']}")
         files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage)}": src for stage, src in record["stages"].items()}
         files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k != "stages"}, indent=1)
@@ -78,7 +78,7 @@ def keep_list(text: str) -> tuple[str, ...]:
 
 
 def run(args) -> int:
-    from .api import default_generator
+    from .api import DocumentFile, default_generator
     from .errors import ShaderGenError
 
     ok = True
@@ -95,7 +95,7 @@ def run(args) -> int:
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:
-            records = gen.records(Path(doc), **options)
+            records = gen.records(DocumentFile(doc), **options)
         for rec in records:
             if "error" not in rec and out is not None:
                 rec = out.write(rec, doc) or rec

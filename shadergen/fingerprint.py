@@ -8,13 +8,14 @@ service's request digest all build on it, so editing any of those files moves ev
 """
 import hashlib
 import os
-from pathlib import Path
 
-PACKAGE = Path(__file__).resolve().parent
+# Paths here are plain strings (any os.PathLike is accepted): a cold `generate` never imports
+# pathlib, which with what it imports costs a few milliseconds of every process start.
+PACKAGE = os.path.dirname(os.path.realpath(__file__))
 KEY_FORMAT = 2  # bump when the layout of what is hashed changes
 
 
-def generator_fingerprint(package: Path = PACKAGE) -> str:
+def generator_fingerprint(package: str = PACKAGE) -> str:
     """The generator's code: a new release must never be served records cached by the old one."""
     h = hashlib.sha256()
     for relative in _code_files(package):
@@ -22,17 +23,17 @@ def generator_fingerprint(package: Path = PACKAGE) -> str:
     return h.hexdigest()
 
 
-def _code_files(package: Path) -> list[str]:
+def _code_files(package: str) -> list[str]:
     """The generator's Python files; the renderer is not part of what a record depends on."""
     return [relative for relative in _files_under(package, ".py") if "render" not in relative.split(os.sep)]
 
 
-def library_files(root: Path) -> list[Path]:
+def library_files(root: str) -> list[str]:
     """Every file of a library folder: definitions, implementations' sources, includes."""
-    return [root / relative for relative in _files_under(root)]
+    return [os.path.join(root, relative) for relative in _files_under(root)]
 
 
-def _files_under(folder: Path, suffix: str = "") -> list[str]:
+def _files_under(folder: str, suffix: str = "") -> list[str]:
     """The files under a folder whose names end with `suffix`, as sorted paths relative to it.
     (os.walk and plain strings: a cold process computes this key on every start, and pathlib's
     rglob costs several times as much.)"""
@@ -43,17 +44,17 @@ def _files_under(folder: Path, suffix: str = "") -> list[str]:
     return sorted(found)
 
 
-def _read(folder: Path, relative: str) -> bytes:
+def _read(folder: str, relative: str) -> bytes:
     with open(os.path.join(folder, relative), "rb") as f:
         return f.read()
 
 
-def file_stamps(root: Path, package: Path = PACKAGE) -> tuple[str, int]:
+def file_stamps(root: str | os.PathLike, package: str | os.PathLike = PACKAGE) -> tuple[str, int]:
     """A digest of the name, size, modification time and inode of every file `output_key` reads,
     and the newest of those times (ns). Equal stamps mean the same files, unless a file was
     rewritten within the clock step of its last modification: a caller trusts stamps only of
     files that were older than that when it read them."""
-    root = Path(root).resolve()
+    root, package = os.path.realpath(root), os.fspath(package)
     h = hashlib.sha256(f"{root}\0{package}\0".encode())
     newest = 0
     for folder, names in ((package, _code_files(package)), (root, _files_under(root))):
@@ -64,8 +65,8 @@ def file_stamps(root: Path, package: Path = PACKAGE) -> tuple[str, int]:
     return h.hexdigest(), newest
 
 
-def output_key(root: Path, package: Path = PACKAGE) -> str:
-    root = Path(root).resolve()
+def output_key(root: str | os.PathLike, package: str | os.PathLike = PACKAGE) -> str:
+    root, package = os.path.realpath(root), os.fspath(package)
     h = hashlib.sha256(f"shadergen-output-key-{KEY_FORMAT}\0".encode())
     h.update(generator_fingerprint(package).encode() + b"\0")
     h.update(str(root).encode() + b"\0")

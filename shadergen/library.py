@@ -13,22 +13,22 @@ import os
 import time
 from contextlib import contextmanager
 from functools import lru_cache
-from pathlib import Path
 
 from .document import parse_document
 from .element import Element
 from .errors import ShaderGenError
 from .fingerprint import PACKAGE, file_stamps, library_files, output_key
 
-DEFAULT_LIBRARY_ROOT = Path(__file__).resolve().parent.parent / "libraries"
+# Folders are plain strings here, as in fingerprint.py: a cold process does not import pathlib.
+DEFAULT_LIBRARY_ROOT = os.path.join(os.path.dirname(PACKAGE), "libraries")
 
 
-def library_root() -> Path:
-    return Path(os.environ.get("SHADERGEN_LIBRARIES", DEFAULT_LIBRARY_ROOT))
+def library_root() -> str:
+    return os.environ.get("SHADERGEN_LIBRARIES", DEFAULT_LIBRARY_ROOT)
 
 
-def cache_dir() -> Path:
-    return Path(os.environ.get("SHADERGEN_CACHE_DIR", Path.home() / ".cache" / "shadergen"))
+def cache_dir() -> str:
+    return os.environ.get("SHADERGEN_CACHE_DIR", os.path.join(os.path.expanduser("~"), ".cache", "shadergen"))
 
 
 class Index:
@@ -71,7 +71,7 @@ class Index:
 class Library(Index):
     """The loaded data libraries of a process, with the hash that names their content."""
 
-    def __init__(self, root: Path, content_hash: str, roots: list[Element]):
+    def __init__(self, root: str, content_hash: str, roots: list[Element]):
         super().__init__()
         self.root = root
         self.content_hash = content_hash
@@ -106,15 +106,14 @@ class Library(Index):
         return id(elem) in self._root_ids
 
     @classmethod
-    def load(cls, root: Path | None = None) -> "Library":
-        root = Path(root or library_root()).resolve()
+    def load(cls, root: str | os.PathLike | None = None) -> "Library":
+        root = os.path.realpath(root or library_root())
         content_hash = remembered_output_key(root)
-        cached = cache_dir() / f"library-{content_hash[:24]}.json"
+        cached = os.path.join(cache_dir(), f"library-{content_hash[:24]}.json")
         with collection_paused():
             roots = _read_cache(cached, root)
             if roots is None:  # the folder is walked for its documents only when they are parsed
-                roots = [parse_document(p.read_bytes(), path=str(p)).root
-                         for p in library_files(root) if p.suffix == ".mtlx"]
+                roots = [parse_document(_read_bytes(p), path=p).root for p in library_files(root) if p.endswith(".mtlx")]
                 _write_cache(cached, roots, root)
             return cls(root, content_hash, roots)
 
@@ -130,14 +129,14 @@ class Library(Index):
 RECENT_NS = 2_000_000_000
 
 
-def remembered_output_key(root: Path, package: Path = PACKAGE) -> str:
+def remembered_output_key(root: str | os.PathLike, package: str | os.PathLike = PACKAGE) -> str:
     """fingerprint.output_key, kept in the cache folder in a file named by the stamps of the files
     it reads: a cold process stats those files instead of reading and hashing them all (a fifth of
     its time). Any edit of a library or generator file changes its stamps, hence the file looked
     for; a damaged file is recomputed and rewritten. A key is kept only when every file is older
     than RECENT_NS, so a later rewrite cannot keep an old stamp."""
     stamps, newest = file_stamps(root, package)
-    path = cache_dir() / f"output-key-{stamps[:32]}.txt"
+    path = os.path.join(cache_dir(), f"output-key-{stamps[:32]}.txt")
     try:
         with open(path, encoding="ascii") as f:
             key, check = f.read().split()
@@ -177,19 +176,23 @@ def _from_json(data: list, source: str | None) -> Element:
 _DIGEST_HEAD = len('["') + 64 + len('",')
 
 
-def _read_cache(path: Path, root: Path) -> list[Element] | None:
+def _read_bytes(path: str) -> bytes:
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def _read_cache(path: str, root: str) -> list[Element] | None:
     try:
-        with open(path, "rb") as f:
-            data = f.read()
+        data = _read_bytes(path)
         payload = data[_DIGEST_HEAD:-1]
         if data[2:_DIGEST_HEAD - 2] != hashlib.sha256(payload).hexdigest().encode():
             return None
-        return [_from_json(d, str(root / src)) for src, d in json.loads(payload)]
+        return [_from_json(d, os.path.join(root, src)) for src, d in json.loads(payload)]
     except (OSError, ValueError, TypeError):
         return None  # missing or corrupt: rebuilt from the .mtlx files
 
 
-def _write_cache(path: Path, roots: list[Element], root: Path) -> None:
+def _write_cache(path: str, roots: list[Element], root: str) -> None:
     relative = [[os.path.relpath(r.source, root), _definitions_to_json(r)] for r in roots]
     payload = json.dumps(relative, separators=(",", ":")).encode()
     try:
@@ -198,12 +201,14 @@ def _write_cache(path: Path, roots: list[Element], root: Path) -> None:
         pass  # a read-only home is not fatal: the next process parses again
 
 
-def write_atomically(path: Path, data: bytes) -> None:
+def write_atomically(path: str | os.PathLike, data: bytes) -> None:
     """`data` as the file `path` (its folder made if need be), written beside it and then renamed:
     concurrent processes never read half a file."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(f".{os.getpid()}.tmp")
-    tmp.write_bytes(data)
+    path = os.fspath(path)
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    tmp = f"{os.path.splitext(path)[0]}.{os.getpid()}.tmp"
+    with open(tmp, "wb") as f:
+        f.write(data)
     os.replace(tmp, path)
 
 

@@ -64,7 +64,7 @@ def computed(name: str, compute) -> np.ndarray:
     from shadergen.library import cache_dir, write_atomically  # the generator's cache, imported only here
 
     digest = hashlib.sha256(Path(__file__).read_bytes() + name.encode()).hexdigest()[:24]
-    path = cache_dir() / "environments" / f"{digest}.npy"
+    path = os.path.join(cache_dir(), "environments", f"{digest}.npy")
     try:
         return np.load(path)
     except (OSError, ValueError, EOFError):

@@ -1,4 +1,5 @@
 import json
+import os
 import subprocess
 import sys
 
@@ -108,3 +109,22 @@ def test_generate_specialized_keeps_the_inputs_named(tmp_path):
     kept = json.loads(p.stdout)
     assert [v["path"] for v in kept["blocks"]["pixel"]["PublicUniforms"]] == ["a/in1", "a/in2"]
     assert "a_out = a_in1 + a_in2;" in kept["stages"]["pixel"]
+
+
+def test_a_cold_generate_imports_no_more_than_it_uses(tmp_path):
+    """Pipelines start `generate` once per document, so its imports are part of every answer:
+    not the renderer or the web stack, and not pathlib or shutil (a few milliseconds each, more
+    than the work of a small document). Run without `site`, so that only the package's own
+    imports count, not what an installation's start-up files load."""
+    src = tmp_path / "d.mtlx"
+    src.write_text(SIN)
+    code = ("import sys; from shadergen.cli import main; code = main(sys.argv[1:]); "
+            "print(' '.join(sorted(sys.modules)), file=sys.stderr); sys.exit(code)")
+    p = subprocess.run([sys.executable, "-S", "-c", code, "generate", str(src), "--out", str(tmp_path / "out")],
+                       capture_output=True, text=True, timeout=300,
+                       env={"PYTHONPATH": os.pathsep.join(p for p in sys.path if p)})
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout)["element"] == "o"
+    loaded = set(p.stderr.split())
+    assert "shadergen.api" in loaded
+    assert not loaded & {"pathlib", "shutil", "numpy", "pydantic", "fastapi", "moderngl", "shadergen.render"}

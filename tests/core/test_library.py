@@ -1,4 +1,5 @@
 import json
+from pathlib import Path
 
 from shadergen.api import Generator
 from shadergen.library import Library, cache_dir
@@ -42,7 +43,7 @@ def test_nodedef_inheritance(gen):
 def test_parsed_library_is_cached_on_disk_and_rebuilt_when_corrupt(tmp_path, monkeypatch):
     monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
     first = Library.load()
-    cached = list(cache_dir().glob("library-*.json"))
+    cached = list(Path(cache_dir()).glob("library-*.json"))
     assert len(cached) == 1 and cached[0].name.startswith(f"library-{first.content_hash[:24]}")
     json.loads(cached[0].read_text())  # a JSON file, never a pickle
     text = cached[0].read_text()
