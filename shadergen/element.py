@@ -8,7 +8,7 @@ class Element:
     __slots__ = ("category", "name", "attrs", "_children", "_pending", "parent", "_by_name", "source")
 
     def __init__(self, category: str, attrs: dict, parent: "Element | None" = None, source: str | None = None,
-                 pending: list | str | None = None):
+                 pending: list | bytes | None = None):
         self.category = category
         self.name = attrs.get("name", "")
         self.attrs = attrs
@@ -25,7 +25,7 @@ class Element:
     def children(self) -> list["Element"]:
         if self._children is None:
             pending = self._pending
-            if isinstance(pending, str):  # the library cache keeps a definition's children as JSON text
+            if isinstance(pending, bytes):  # the library cache keeps a definition's children as JSON text
                 pending = json.loads(pending)
             self._children = [Element(c, a, self, self.source, kids) for c, a, kids in pending]
             self._pending = None

@@ -64,7 +64,7 @@ def test_a_copied_library_emits_its_own_sources(library_copy, tmp_path, monkeypa
         assert MARKER in copy.emit()["stages"]["pixel"], attempt
         assert copy.hash != original.hash
     assert MARKER not in original.emit()["stages"]["pixel"]
-    for cached in (tmp_path / "cache").glob("library-*.json"):  # sources are named inside their library
+    for cached in (tmp_path / "cache").glob("library-*.jsonl"):  # sources are named inside their library
         assert str(DEFAULT_LIBRARY_ROOT) not in cached.read_text() and str(library_copy) not in cached.read_text()
 
 

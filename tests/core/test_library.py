@@ -43,10 +43,12 @@ def test_nodedef_inheritance(gen):
 def test_parsed_library_is_cached_on_disk_and_rebuilt_when_corrupt(tmp_path, monkeypatch):
     monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
     first = Library.load()
-    cached = list(Path(cache_dir()).glob("library-*.json"))
+    cached = list(Path(cache_dir()).glob("library-*.jsonl"))
     assert len(cached) == 1 and cached[0].name.startswith(f"library-{first.content_hash[:24]}")
-    json.loads(cached[0].read_text())  # a JSON file, never a pickle
     text = cached[0].read_text()
+    lines = [json.loads(line) for line in text.splitlines()]  # JSON Lines, never a pickle
+    # the digest, the index (every library file), then each definition's children
+    assert len(lines[0]) == 64 and len(lines[1]) == len(first._root_ids) and len(lines) > 500
     cached[0].write_text("{corrupt")
     again = Library.load()
     assert again.content_hash == first.content_hash and len(again.nodedefs) == len(first.nodedefs)
@@ -54,9 +56,9 @@ def test_parsed_library_is_cached_on_disk_and_rebuilt_when_corrupt(tmp_path, mon
     # Damage that is still JSON (a definition's children, decoded only when read) is caught by the
     # file's digest up front: the library is rebuilt, never broken later.
     assert cached[0].read_text() == text
-    damaged = text.replace('\\"name\\":\\"in\\"', '\\"name\\":\\"in', 1)
+    damaged = text.replace('"name":"in"', '"name":"im"', 1)
     assert damaged != text
-    json.loads(damaged)
+    [json.loads(line) for line in damaged.splitlines()]
     cached[0].write_text(damaged)
     rebuilt = Library.load()
     assert [i.name for i in rebuilt.nodedefs["ND_sin_float"].children] == \
