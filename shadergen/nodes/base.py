@@ -9,6 +9,7 @@ nodes that are called once per context; it is None for ordinary data nodes.
 """
 import os
 import re
+from functools import lru_cache
 
 from ..element import Element
 from ..errors import ShaderGenError
@@ -99,8 +100,10 @@ class SourceFunctionImpl(NodeImpl):
         ctx.call(self.function, node)
 
 
+@lru_cache(maxsize=1024)
 def takes_derivatives(source: str) -> bool:
-    """Whether the source calls dFdx, dFdy, fwidth or texture (as whole names)."""
+    """Whether the source calls dFdx, dFdy, fwidth or texture (as whole names). Memoised: the
+    closures' shared files are included by every lobe's source, and scanned once."""
     return any(starts_word(source, m.start()) for m in DERIVATIVES.finditer(source))
 
 
