@@ -230,11 +230,11 @@ class GraphBuilder:
         version = elem.get("version")
         matches = []
         for nd in candidates:
-            outputs = self.scope.nodedef_outputs(nd)
+            outputs = self.scope.nodedef_output_types(nd)
             if out_type and out_type != "multioutput":
-                if not outputs or outputs[0].get("type", nd.get("type")) != out_type:
-                    if not (not outputs and nd.get("type") == out_type):
-                        continue
+                # the first output's type, else the nodedef's (older documents type the nodedef)
+                if (outputs[0] if outputs and outputs[0] is not None else nd.get("type")) != out_type:
+                    continue
             elif out_type == "multioutput" and len(outputs) < 2:
                 continue
             decls = {i.name: i.get("type") for i in self.scope.nodedef_inputs(nd)}

@@ -71,13 +71,19 @@ class Index:
 class Library(Index):
     """The loaded data libraries of a process, with the hash that names their content."""
 
-    def __init__(self, root: str, content_hash: str, roots: list[Element]):
+    def __init__(self, root: str, content_hash: str, roots: list[Element],
+                 output_types: dict[str, list[str | None]] | None = None):
         super().__init__()
         self.root = root
         self.content_hash = content_hash
         for r in roots:
             self.add(r)
-        self._root_ids = {id(r) for r in roots}  # the roots live as long as the elements under them
+        # nodedef -> the `type` of each output it declares (None where one has none): resolving a
+        # node compares them for every definition of its category, and a definition's children
+        # are decoded only when read (the on-disk cache keeps this table beside them)
+        self.output_types = output_types if output_types is not None else _output_types(self.nodedefs.values())
+        self.roots = roots  # one per library file
+        self._root_ids = {id(r) for r in roots}
         # names a nodegraph implementation is found by (Scope.implementing_graph)
         self.graph_names = set(self.nodegraphs) | {i.get("nodegraph") for impls in self.implementations.values()
                                                    for i in impls if i.get("nodegraph")}
@@ -111,11 +117,14 @@ class Library(Index):
         content_hash = remembered_output_key(root)
         cached = os.path.join(cache_dir(), f"library-{content_hash[:24]}.jsonl")
         with collection_paused():
-            roots = _read_cache(cached, root)
-            if roots is None:  # the folder is walked for its documents only when they are parsed
-                roots = [parse_document(_read_bytes(p), path=p).root for p in library_files(root) if p.endswith(".mtlx")]
-                _write_cache(cached, roots, root)
-            return cls(root, content_hash, roots)
+            read = _read_cache(cached, root)
+            if read is not None:
+                return cls(root, content_hash, *read)
+            # the folder is walked for its documents only when they are parsed
+            library = cls(root, content_hash, [parse_document(_read_bytes(p), path=p).root
+                                               for p in library_files(root) if p.endswith(".mtlx")])
+            _write_cache(cached, library)
+            return library
 
     def target_chain(self, target: str) -> list[str]:
         chain = []
@@ -169,14 +178,18 @@ def _definitions_to_json(root: Element, texts: list[bytes]) -> list:
     return [root.category, root.attrs, definitions]
 
 
+def _output_types(nodedefs) -> dict[str, list[str | None]]:
+    return {nd.name: [o.get("type") for o in nd.children_of("output")] for nd in nodedefs}
+
+
 def _from_json(data: list, source: str | None, texts: list[bytes]) -> Element:
     category, attrs, definitions = data
     return Element(category, attrs, None, source, [[c, a, texts[k] if k >= 0 else []] for c, a, k in definitions])
 
 
 # The cache file is JSON Lines: the sha256 of the lines after it, as a JSON string; the index
-# (every library file with its top-level elements); then each definition's children, one JSON
-# text a line (compact JSON has no raw newline). Children kept as text apart from the index cost
+# (every library file with its top-level elements); the nodedefs' output types
+# (Library.output_types); then each definition's children, one JSON text a line (compact JSON has no raw newline). Children kept as text apart from the index cost
 # a cold process a quarter of what decoding them as JSON strings inside it did (no escapes to
 # undo). The digest is checked before anything is read, so a damaged file is rebuilt instead of
 # failing when a definition's children are decoded later.
@@ -188,22 +201,26 @@ def _read_bytes(path: str) -> bytes:
         return f.read()
 
 
-def _read_cache(path: str, root: str) -> list[Element] | None:
+def _read_cache(path: str, root: str) -> tuple[list[Element], dict[str, list[str | None]]] | None:
+    """(library roots, output types), or None."""
     try:
         data = _read_bytes(path)
         if data[1:_BODY_START - 2] != hashlib.sha256(data[_BODY_START:]).hexdigest().encode():
             return None
         index_end = data.index(b"\n", _BODY_START)
-        texts = data[index_end + 1:].split(b"\n")
-        return [_from_json(d, os.path.join(root, src), texts) for src, d in json.loads(data[_BODY_START:index_end])]
+        types_end = data.index(b"\n", index_end + 1)
+        texts = data[types_end + 1:].split(b"\n")
+        roots = [_from_json(d, os.path.join(root, src), texts) for src, d in json.loads(data[_BODY_START:index_end])]
+        return roots, json.loads(data[index_end + 1:types_end])
     except (OSError, ValueError, TypeError, IndexError):
         return None  # missing or corrupt: rebuilt from the .mtlx files
 
 
-def _write_cache(path: str, roots: list[Element], root: str) -> None:
+def _write_cache(path: str, library: Library) -> None:
     texts: list[bytes] = []
-    index = [[os.path.relpath(r.source, root), _definitions_to_json(r, texts)] for r in roots]
-    body = json.dumps(index, separators=(",", ":")).encode() + b"\n" + b"\n".join(texts)
+    index = [[os.path.relpath(r.source, library.root), _definitions_to_json(r, texts)] for r in library.roots]
+    body = b"\n".join([json.dumps(index, separators=(",", ":")).encode(),
+                       json.dumps(library.output_types, separators=(",", ":")).encode(), b"\n".join(texts)])
     try:
         write_atomically(path, b'"' + hashlib.sha256(body).hexdigest().encode() + b'"\n' + body)
     except OSError:
@@ -350,6 +367,16 @@ class Scope:
             outputs = nd.children_of("output")
             if outputs:
                 return outputs
+        return []
+
+    def nodedef_output_types(self, nodedef: Element) -> list[str | None]:
+        """The `type` of each output of a nodedef (None where one has none), as nodedef_outputs
+        finds them, without decoding a library definition's children (Library.output_types)."""
+        for nd in self.inheritance(nodedef):
+            own = self.library.nodedefs.get(nd.name) is nd
+            types = self.library.output_types[nd.name] if own else [o.get("type") for o in nd.children_of("output")]
+            if types:
+                return types
         return []
 
     def nodedef_inputs(self, nodedef: Element) -> list[Element]:

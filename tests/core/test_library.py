@@ -47,8 +47,9 @@ def test_parsed_library_is_cached_on_disk_and_rebuilt_when_corrupt(tmp_path, mon
     assert len(cached) == 1 and cached[0].name.startswith(f"library-{first.content_hash[:24]}")
     text = cached[0].read_text()
     lines = [json.loads(line) for line in text.splitlines()]  # JSON Lines, never a pickle
-    # the digest, the index (every library file), then each definition's children
-    assert len(lines[0]) == 64 and len(lines[1]) == len(first._root_ids) and len(lines) > 500
+    # the digest, the index (every library file), the nodedefs' output types, then each definition's children
+    assert len(lines[0]) == 64 and len(lines[1]) == len(first.roots) and lines[2] == first.output_types
+    assert len(lines) > 500
     cached[0].write_text("{corrupt")
     again = Library.load()
     assert again.content_hash == first.content_hash and len(again.nodedefs) == len(first.nodedefs)
