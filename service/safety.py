@@ -2,7 +2,8 @@
 
 MaterialX documents never need a DOCTYPE, and every XML bomb (entity expansion) and external
 entity needs one, so a document with a DOCTYPE is refused outright rather than parsed carefully.
-(The generator parses with defusedxml and refuses xi:include as well: this is the first wall.)"""
+(The generator's own parser refuses DTDs, entity declarations and external entities, and xi:include
+as well: this is the first wall.)"""
 import os
 import re
 from pathlib import Path
