@@ -79,13 +79,14 @@ def label(method: str, samples: int) -> str:
     return "prefilter" if method == "prefilter" else f"{method} {samples}"
 
 
-def records(document: str) -> dict[tuple[str, str], dict]:
-    """(shader, env_method) -> record: ours generated for each method, the reference's (FIS only)."""
+def records(document: str, interface: str) -> dict[tuple[str, str], dict]:
+    """(shader, env_method) -> record: ours generated for each method in `interface`, the
+    reference's (FIS only, every input a uniform: as `complete`)."""
     from shadergen.api import generate_file
 
     shaders = {}
     for method in ENV_METHODS:
-        record = generate_file(document, environment=method)[0]
+        record = generate_file(document, environment=method, interface=interface)[0]
         if "error" in record:
             raise SystemExit(f"{document}: {record['error']}")
         shaders[("ours", method)] = record
@@ -99,7 +100,7 @@ def records(document: str) -> dict[tuple[str, str], dict]:
 
 
 def measure(renderer, document: str, args) -> list[dict]:
-    shaders = records(document)
+    shaders = records(document, args.interface)
     render_options = dict(size=args.size, document_dir=os.path.dirname(document))
     converged = {name: renderer.render(shaders[(name, "fis")], env_samples=args.converged, **render_options).rgba
                  for name in SHADERS}
@@ -143,7 +144,7 @@ def fmt(value: float, digits: int = 1) -> str:
 
 def print_tables(all_rows: list[dict], goals: list[dict], args) -> None:
     print(f"# steady frame time and PSNR against each shader's {args.converged}-sample render "
-          f"({args.size}x{args.size}, median of {args.rounds} interleaved rounds of {args.frames} frames)")
+          f"({args.size}x{args.size}, ours {args.interface}, median of {args.rounds} interleaved rounds of {args.frames} frames)")
     print(f"{'material':<28} {'shader':<18} {'point':<10} {'frame ms':>9} {'PSNR dB':>8} {'HDR dB':>7}")
     for r in all_rows:
         print(f"{r['material']:<28} {r['shader']:<18} {label(r['method'], r['samples']):<10} "
@@ -205,7 +206,7 @@ def plot(all_rows: list[dict], path: str, args) -> None:
     for ax in list(axes.flat)[len(materials):]:
         ax.axis("off")
     axes.flat[0].legend(fontsize=7, loc="lower right")
-    fig.suptitle(f"Environment lighting: error against time ({args.size}x{args.size}; dashed: reference's "
+    fig.suptitle(f"Environment lighting: error against time ({args.size}x{args.size}, ours {args.interface}; dashed: reference's "
                  f"{GOAL_SAMPLES}-sample time, dotted: its PSNR + {GOAL_DB:.0f} dB)", fontsize=10)
     fig.tight_layout()
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
@@ -222,6 +223,9 @@ def main() -> int:
     parser.add_argument("--frames", type=int, default=3, help="frames drawn per render (the first is not timed)")
     parser.add_argument("--plot", default=os.path.join(os.path.dirname(HERE), "out", "accuracy_time.png"))
     parser.add_argument("--filter", default="", help="only materials whose file name contains this")
+    parser.add_argument("--interface", default="complete", choices=["complete", "specialized"],
+                        help="our shaders' interface: complete keeps every input a uniform, as the reference's "
+                             "shader does; specialized is what `shadergen render` and thumbnails draw")
     args = parser.parse_args()
 
     from shadergen.render import Renderer
