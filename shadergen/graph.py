@@ -165,21 +165,32 @@ class Graph:
         self.lights = lights  # lit by a light rig too; False: by the environment alone (no light loop)
 
 
+# nodedef input attributes a port's metadata keeps as they are
+META_ATTRIBUTES = ("enum", "enumvalues", "uniform", "defaultgeomprop", "unittype")
+# ui attribute -> its key in a listing's `ui`, in the order listings write them
+UI_ATTRIBUTES = {"uiname": "name", "uifolder": "folder", "uimin": "min", "uimax": "max", "uisoftmin": "softmin",
+                 "uisoftmax": "softmax", "uistep": "step", "uiadvanced": "advanced", "doc": "doc", "enum": "enum",
+                 "enumvalues": "enumvalues"}
+
+
 def input_meta(decl: Element) -> dict:
     """What listings and the syntax need from a nodedef input: enums, uniform flag, ui metadata."""
-    meta = {}
-    for key in ("enum", "enumvalues", "uniform", "defaultgeomprop", "unittype"):
-        if decl.get(key) is not None:
-            meta[key] = decl.get(key)
-    ui = {}
-    for src, dst in (("uiname", "name"), ("uifolder", "folder"), ("uimin", "min"), ("uimax", "max"),
-                     ("uisoftmin", "softmin"), ("uisoftmax", "softmax"), ("uistep", "step"),
-                     ("uiadvanced", "advanced"), ("doc", "doc"), ("enum", "enum"), ("enumvalues", "enumvalues")):
-        if decl.get(src) is not None:
-            ui[dst] = T.parse_ui_hint(dst, decl.get("type"), decl.get(src), decl.path)
+    attrs = decl.attrs
+    meta = {key: attrs[key] for key in META_ATTRIBUTES if attrs.get(key) is not None}
+    ui = ui_hints(decl)
     if ui:
         meta["ui"] = ui
     return meta
+
+
+def ui_hints(decl: Element) -> dict:
+    """An input's ui metadata, typed (types.parse_ui_hint); most document inputs have none."""
+    attrs = decl.attrs
+    if UI_ATTRIBUTES.keys().isdisjoint(attrs):
+        return {}
+    where, type_name = decl.path, attrs.get("type")
+    return {hint: T.parse_ui_hint(hint, type_name, attrs[key], where)
+            for key, hint in UI_ATTRIBUTES.items() if attrs.get(key) is not None}
 
 
 class GraphBuilder:
@@ -442,7 +453,7 @@ class GraphBuilder:
                 if source.get(key) and key not in inp.meta:
                     inp.meta[key] = source.get(key)
             for holder in (authored, source):  # the document's ui metadata overrides the nodedef's
-                ui = input_meta(holder).get("ui")
+                ui = ui_hints(holder)
                 if ui:
                     inp.meta["ui"] = {**inp.meta.get("ui", {}), **ui}
 
