@@ -50,10 +50,22 @@ def engine(tmp_path_factory):
     try:
         wait_until(lambda: proc.poll() is not None or engine_answers(), 90, "dockerd", pause_s=0.5)
         assert proc.poll() is None, Path(log.name).read_text()[-3000:]
+        remove_left_stacks()
         yield
     finally:
         stop(proc, timeout_s=60)
         log.close()
+
+
+def remove_left_stacks() -> None:
+    """The stacks of earlier runs that never came down (a run killed before its teardown) restart
+    with the engine (compose's `restart: unless-stopped`), each an API and workers competing with
+    this run's for the machine: they are removed, whoever left them."""
+    listed = docker("ps", "-a", "--filter", "label=com.docker.compose.project",
+                    "--format", '{{.ID}} {{.Label "com.docker.compose.project"}}').stdout.split("\n")
+    left = [line.split()[0] for line in listed if " shadergen-test-" in line]
+    if left:
+        docker("rm", "--force", *left, timeout_s=300)
 
 
 @pytest.fixture(scope="module")
@@ -95,9 +107,11 @@ def stack(build, compose_command, tmp_path_factory):
         yield compose, client
     finally:
         client.close()
-        logs = tmp_path_factory.mktemp("compose") / "compose.log"
-        logs.write_text(compose("logs --no-color", timeout_s=120).stdout)
-        compose(DOWN + " --timeout 10")
+        try:  # the logs are kept for a failure's diagnosis; not getting them must not leave the stack up
+            logs = tmp_path_factory.mktemp("compose") / "compose.log"
+            logs.write_text(compose("logs --no-color", timeout_s=120).stdout)
+        finally:
+            compose(DOWN + " --timeout 10")
 
 
 def healthy(client: httpx.Client) -> bool:
