@@ -27,6 +27,10 @@ USD_NODEDEFS = {
     "UsdTransform2d": "ND_UsdTransform2d",
     **{f"UsdPrimvarReader_{usd}": f"ND_UsdPrimvarReader_{mx}" for usd, mx in PRIMVAR_TYPES.items()},
 }
+# USD connects values of one underlying type whatever their roles (float3, color3f, normal3f,
+# vector3f, point3f, texCoord3f are one float3): where our nodedefs give the two ends different
+# types of one size, a MaterialX `convert` node between them keeps the graph typed.
+ROLE_CONVERSIONS = {("color3", "vector3"), ("vector3", "color3"), ("color4", "vector4"), ("vector4", "color4")}
 # UsdGeom's name for the primary texture coordinates: a reader of it is our texcoord node, which
 # reads the mesh's first uv set, as Hydra binds the mesh's `st` primvar.
 PRIMARY_UV_PRIMVAR = "st"
@@ -62,6 +66,15 @@ def format_value(value, type_name: str, where: str) -> str:
     return ", ".join(f"{float(v):.7g}" for v in flat)  # float32 precision, as USD holds and GL reads it
 
 
+def enum_value(token: str, decl: Element, where: str) -> str:
+    """The integer of a token USD writes for an enumerated input (opacityMode "presence" -> 1)."""
+    names = decl.get("enum").split(",")
+    values = (decl.get("enumvalues") or ",".join(map(str, range(len(names))))).split(",")
+    if token not in names:
+        raise ShaderGenError("invalid_value", f"'{token}' is not one of {', '.join(names)}", where)
+    return values[names.index(token)].strip()
+
+
 def _flatten(value) -> list:
     if isinstance(value, (bool, int, float, str)):
         return [value]
@@ -85,6 +98,7 @@ class NetworkTranslator:
         self.nodes: dict[str, Element] = {}  # prim path -> its node element
         self.labels: dict[str, str] = {}  # element path -> prim path (or attribute path)
         self.names: set[str] = {c.name for c in root.children}
+        self.conversions: dict[tuple[str, str | None, str], Element] = {}  # (node, output, type) -> convert
 
     def unique_name(self, prim_path: str) -> str:
         base = name = mx_name(prim_path)
@@ -205,7 +219,7 @@ class NetworkTranslator:
                 if name != "sourceColorSpace" or nodedef.get("node") != "UsdUVTexture":
                     self.warnings.append(f"{where}: input '{name}' is not on {nodedef.name}; ignored")
                 continue
-            elem = self.input_element(name, decl.get("type"), sources, where)
+            elem = self.input_element(decl, sources, where)
             if elem is not None:
                 node.add_child(elem)
         if nodedef.get("node") == "UsdUVTexture":
@@ -217,7 +231,8 @@ class NetworkTranslator:
         return bool(varname) and not self.UsdShade.Output.IsOutput(varname[0]) \
             and varname[0].Get() == PRIMARY_UV_PRIMVAR
 
-    def input_element(self, name: str, type_name: str, sources: list, where: str) -> Element | None:
+    def input_element(self, decl: Element, sources: list, where: str) -> Element | None:
+        name, type_name = decl.name, decl.get("type")
         if not sources:
             return None  # neither value nor connection: the nodedef's default
         if len(sources) > 1:
@@ -225,7 +240,9 @@ class NetworkTranslator:
         source = sources[0]
         attrs = {"name": name, "type": type_name}
         if self.UsdShade.Output.IsOutput(source):
-            node, output, _ = self.connection(source, where)
+            node, output, out_type = self.connection(source, where)
+            if (out_type, type_name) in ROLE_CONVERSIONS:
+                node, output = self.role_conversion(node, output, out_type, type_name, where), None
             attrs["nodename"] = node.name
             if output:
                 attrs["output"] = output
@@ -239,12 +256,27 @@ class NetworkTranslator:
             if value not in WRAP_MODES:
                 return None  # useMetadata: no metadata is read, so the nodedef's default
             attrs["value"] = WRAP_MODES[value]
+        elif type_name == "integer" and isinstance(value, str) and decl.get("enum"):
+            attrs["value"] = enum_value(value, decl, where)
         else:
             attrs["value"] = format_value(value, type_name, where)
         colorspace = source.GetColorSpace() if source.HasColorSpace() else None
         if colorspace and type_name in ("color3", "color4", "filename"):
             attrs["colorspace"] = COLORSPACES.get(colorspace, colorspace)
         return Element("input", attrs)
+
+    def role_conversion(self, node: Element, output: str | None, from_type: str, to_type: str, where: str) -> Element:
+        """The convert node reading `node`'s output as `to_type`, one per output and type."""
+        key = (node.name, output, to_type)
+        if key not in self.conversions:
+            convert = Element("convert", {"name": self.unique_name(f"{node.name}_{output or 'out'}_as_{to_type}"),
+                                          "nodedef": f"ND_convert_{from_type}_{to_type}", "type": to_type})
+            source = {"name": "in", "type": from_type, "nodename": node.name}
+            convert.add_child(Element("input", {**source, "output": output} if output else source))
+            self.labels[convert.name] = where
+            self.root.add_child(convert)
+            self.conversions[key] = convert
+        return self.conversions[key]
 
     def texture_colorspace(self, node: Element, values: dict) -> None:
         """UsdUVTexture's sourceColorSpace as the colour space of its file (an explicit one wins

@@ -158,3 +158,83 @@ def write_mtlx(folder: Path, name: str, text: str) -> Path:
     path = folder / name
     path.write_text(text)
     return path
+
+
+# -- connections across roles, and opacity (issue 21) -------------------------------------------
+NORMAL_MAP = "normal.exr"
+TILTED_NORMAL = (0.6, 0.0, 0.8)  # a tangent-space normal leaning towards +u
+
+
+def write_normal_map(folder: Path, normal=TILTED_NORMAL) -> Path:
+    """A 4 x 4 float EXR of one tangent-space normal encoded as (n + 1) / 2, exact in float."""
+    import OpenImageIO as oiio
+
+    pixels = np.empty((4, 4, 3), "f4")
+    pixels[...] = (np.float32(normal) + 1) / 2
+    image = oiio.ImageBuf(oiio.ImageSpec(4, 4, 3, oiio.FLOAT))
+    image.set_pixels(oiio.ROI(0, 4, 0, 4), pixels)
+    path = folder / NORMAL_MAP
+    assert image.write(str(path)), oiio.geterror()
+    return path
+
+
+def role_connections_stage(stage, root: str = "/World/Looks/Roles") -> None:
+    """Connections USD makes across roles of one underlying type, as sample scenes write them:
+    a texture's float3 `rgb` into the surface's normal3f `normal` (a normal map decoded by scale
+    and bias) and a float3 primvar reader of displayColor into the color3f `diffuseColor`."""
+    material = UsdShade.Material.Define(stage, root)
+    surface = _shader(stage, f"{root}/Surface", "UsdPreviewSurface")
+    surface.CreateInput("roughness", Sdf.ValueTypeNames.Float).Set(0.3)
+    texture = _shader(stage, f"{root}/NormalMap", "UsdUVTexture")
+    texture.CreateInput("file", Sdf.ValueTypeNames.Asset).Set(NORMAL_MAP)
+    texture.CreateInput("sourceColorSpace", Sdf.ValueTypeNames.Token).Set("raw")
+    texture.CreateInput("scale", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(2, 2, 2, 1))
+    texture.CreateInput("bias", Sdf.ValueTypeNames.Float4).Set(Gf.Vec4f(-1, -1, -1, 0))
+    rgb = texture.CreateOutput("rgb", Sdf.ValueTypeNames.Float3)
+    surface.CreateInput("normal", Sdf.ValueTypeNames.Normal3f).ConnectToSource(rgb)
+    reader = _shader(stage, f"{root}/DisplayColor", "UsdPrimvarReader_float3")
+    reader.CreateInput("varname", Sdf.ValueTypeNames.Token).Set("displayColor")
+    result = reader.CreateOutput("result", Sdf.ValueTypeNames.Float3)
+    surface.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f).ConnectToSource(result)
+    material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
+
+
+# The same material in MaterialX, where the primvar is read as a colour and the normal is a value.
+ROLE_CONNECTIONS_MTLX = """<?xml version="1.0"?>
+<materialx version="1.39" colorspace="lin_rec709">
+  <geompropvalue name="display_color" type="color3">
+    <input name="geomprop" type="string" value="displayColor" />
+  </geompropvalue>
+  <UsdPreviewSurface name="surface" type="surfaceshader">
+    <input name="diffuseColor" type="color3" nodename="display_color" />
+    <input name="roughness" type="float" value="0.3" />
+    <input name="normal" type="vector3" value="{normal}" />
+  </UsdPreviewSurface>
+  <surfacematerial name="Roles" type="material">
+    <input name="surfaceshader" type="surfaceshader" nodename="surface" />
+  </surfacematerial>
+</materialx>
+"""
+
+
+def opacity_stage(stage, opacity: float = 1.0, threshold: float | None = None, mode: str | None = None,
+                  texture: str | None = None, root: str = "/World/Looks/Glass") -> None:
+    """A red UsdPreviewSurface of `opacity` (or, with `texture`, the red channel of that image
+    read raw), with opacityThreshold and opacityMode where given."""
+    material = UsdShade.Material.Define(stage, root)
+    surface = _shader(stage, f"{root}/Surface", "UsdPreviewSurface")
+    surface.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f).Set(Gf.Vec3f(0.8, 0.1, 0.1))
+    surface.CreateInput("roughness", Sdf.ValueTypeNames.Float).Set(0.1)
+    opacity_input = surface.CreateInput("opacity", Sdf.ValueTypeNames.Float)
+    if texture:
+        image = _shader(stage, f"{root}/Opacity", "UsdUVTexture")
+        image.CreateInput("file", Sdf.ValueTypeNames.Asset).Set(texture)
+        image.CreateInput("sourceColorSpace", Sdf.ValueTypeNames.Token).Set("raw")
+        opacity_input.ConnectToSource(image.CreateOutput("r", Sdf.ValueTypeNames.Float))
+    else:
+        opacity_input.Set(opacity)
+    if threshold is not None:
+        surface.CreateInput("opacityThreshold", Sdf.ValueTypeNames.Float).Set(threshold)
+    if mode is not None:
+        surface.CreateInput("opacityMode", Sdf.ValueTypeNames.Token).Set(mode)
+    material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
