@@ -111,7 +111,8 @@ class GlslTarget:
         if type_name in ("vector4", "color4"):
             return v
         if type_name in ("surfaceshader", "material", "volumeshader"):
-            return f"{vec4}({v}.color, 1.0)"
+            # colour is premultiplied (the surface scaled it by its opacity); alpha is what it covers
+            return f"{vec4}({v}.color, 1.0 - dot({v}.transparency, {self.convert('1.0 / 3.0', 'vector3')}))"
         return f"{vec4}(0.0, 0.0, 0.0, 1.0)"
 
     # -- closure calling convention ----------------------------------------------------------------

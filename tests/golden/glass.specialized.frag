@@ -1155,5 +1155,5 @@ void main()
         glass_surface_out.transparency = mix(vec3(1.0), glass_surface_out.transparency, surfaceOpacity);
     }
     material Glass_out = glass_surface_out;
-    out1 = vec4(Glass_out.color, 1.0);
+    out1 = vec4(Glass_out.color, 1.0 - dot(Glass_out.transparency, vec3(1.0 / 3.0)));
 }

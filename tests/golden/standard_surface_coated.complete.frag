@@ -2292,5 +2292,5 @@ void main()
         SR_coated_shader_out.transparency = mix(vec3(1.0), SR_coated_shader_out.transparency, surfaceOpacity);
     }
     material Coated_out = SR_coated_shader_out;
-    out1 = vec4(Coated_out.color, 1.0);
+    out1 = vec4(Coated_out.color, 1.0 - dot(Coated_out.transparency, vec3(1.0 / 3.0)));
 }
