@@ -31,6 +31,9 @@ USD_NODEDEFS = {
 # vector3f, point3f, texCoord3f are one float3): where our nodedefs give the two ends different
 # types of one size, a MaterialX `convert` node between them keeps the graph typed.
 ROLE_CONVERSIONS = {("color3", "vector3"), ("vector3", "color3"), ("color4", "vector4"), ("vector4", "color4")}
+# MaterialX nodedefs that 1.39 renamed, which USD written for 1.38 still names (`space`, gone in 1.39,
+# is then an input the nodedef lacks and is ignored with a warning).
+RENAMED_NODEDEFS = {"ND_normalmap": "ND_normalmap_float"}
 # UsdGeom's name for the primary texture coordinates: a reader of it is our texcoord node, which
 # reads the mesh's first uv set, as Hydra binds the mesh's `st` primvar.
 PRIMARY_UV_PRIMVAR = "st"
@@ -116,8 +119,10 @@ class NetworkTranslator:
         output = next((o for o in (material.GetOutput(n) for n in SURFACE_OUTPUTS) if o), None)
         sources = output.GetValueProducingAttributes(shaderOutputsOnly=True) if output else []
         if not sources:
+            others = [o.GetBaseName() for o in material.GetOutputs() if o.GetBaseName().endswith(":surface")]
+            elsewhere = f" (only outputs:{others[0]}, a render context not translated here)" if others else ""
             raise ShaderGenError("invalid_document", "the material has no connected outputs:mtlx:surface or "
-                                 "outputs:surface", where)
+                                 "outputs:surface" + elsewhere, where)
         node, _, out_type = self.connection(sources[0], where)
         if out_type != "surfaceshader":
             raise ShaderGenError("type_mismatch", f"the material's surface is a {out_type}, not a surfaceshader",
@@ -190,7 +195,7 @@ class NetworkTranslator:
         if not shader_id:
             raise ShaderGenError("unknown_node", "the shader has no info:id (sourceAsset and sourceCode shaders "
                                  "are not translated)", where)
-        nodedef = self.scope.nodedef(USD_NODEDEFS.get(shader_id, shader_id))
+        nodedef = self.scope.nodedef(USD_NODEDEFS.get(shader_id, RENAMED_NODEDEFS.get(shader_id, shader_id)))
         if nodedef is None:
             raise ShaderGenError("unknown_node", f"shader id '{shader_id}' is neither a UsdPreviewSurface node nor "
                                  "a MaterialX nodedef", where)
@@ -247,7 +252,7 @@ class NetworkTranslator:
             if output:
                 attrs["output"] = output
             return Element("input", attrs)
-        value = source.Get()
+        value = self.authored_value(source, where)
         if value is None:
             return None
         if type_name == "filename":
@@ -264,6 +269,16 @@ class NetworkTranslator:
         if colorspace and type_name in ("color3", "color4", "filename"):
             attrs["colorspace"] = COLORSPACES.get(colorspace, colorspace)
         return Element("input", attrs)
+
+    def authored_value(self, attr, where: str):
+        """The attribute's value; one that is animated is read at its first time sample, the frame a
+        viewer opens the stage at (its default value, which is all a plain Get reads, is often unset)."""
+        from pxr import Usd
+
+        if attr.GetNumTimeSamples() == 0:
+            return attr.Get()
+        self.warnings.append(f"{where}: animated; the value at its first time sample is used")
+        return attr.Get(Usd.TimeCode.EarliestTime())
 
     def role_conversion(self, node: Element, output: str | None, from_type: str, to_type: str, where: str) -> Element:
         """The convert node reading `node`'s output as `to_type`, one per output and type."""
