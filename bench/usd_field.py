@@ -101,9 +101,10 @@ def main() -> None:
     generated = sum(r["generated"] for r in materials)
     drawn = sum(r["drawn"] for r in materials)
     missing = sum(r.get("missing_textures", 0) > 0 for r in materials)
+    empty = sum(r["element"] is None and r["code"] == "no_renderable_element" for r in rows)
     pct = (lambda k: f"{100 * k / n:.0f}%") if n else (lambda k: "-")
     print(f"usd_field: {n} materials in {len(files)} files | generated {pct(generated)} | drawn {pct(drawn)} | "
-          f"drawn without some texture {missing}")
+          f"drawn without some texture {missing} | files without a material {empty}")
 
 
 if __name__ == "__main__":
