@@ -91,9 +91,9 @@ class NetworkTranslator:
     """Adds node elements to `root` for the shader prims materials reach, each prim once."""
 
     def __init__(self, scope: Scope, root: Element, asset_value, warnings: list[str]):
-        from pxr import UsdShade  # imported here: only USD documents pay for usd-core
+        from pxr import Usd, UsdShade  # imported here: only USD documents pay for usd-core
 
-        self.UsdShade = UsdShade
+        self.Usd, self.UsdShade = Usd, UsdShade
         self.scope = scope
         self.root = root
         self.asset_value = asset_value  # (attribute, Sdf.AssetPath, where) -> filename string
@@ -273,12 +273,10 @@ class NetworkTranslator:
     def authored_value(self, attr, where: str):
         """The attribute's value; one that is animated is read at its first time sample, the frame a
         viewer opens the stage at (its default value, which is all a plain Get reads, is often unset)."""
-        from pxr import Usd
-
         if attr.GetNumTimeSamples() == 0:
             return attr.Get()
         self.warnings.append(f"{where}: animated; the value at its first time sample is used")
-        return attr.Get(Usd.TimeCode.EarliestTime())
+        return attr.Get(self.Usd.TimeCode.EarliestTime())
 
     def role_conversion(self, node: Element, output: str | None, from_type: str, to_type: str, where: str) -> Element:
         """The convert node reading `node`'s output as `to_type`, one per output and type."""
