@@ -4,9 +4,10 @@ A shader prim becomes one node element: `info:id` names either a UsdPreviewSurfa
 (`UsdPreviewSurface`, `UsdUVTexture`, `UsdPrimvarReader_*`, `UsdTransform2d`, onto our nodedefs of
 the same nodes) or a MaterialX nodedef (`ND_standard_surface_surfaceshader`, ...). Connections are
 followed through node graphs and material interfaces with UsdShade's own resolution, so a node
-element holds either a value or a `nodename` connection. Node names are the prim paths made into
-MaterialX names; `labels` maps every element path back to the prim path users know it by, and every
-error names a prim path as its `where`.
+element holds either a value or a `nodename` connection (through a `convert` node where USD
+connects one underlying type across roles, a float3 into a color3f or normal3f). Node names are the
+prim paths made into MaterialX names; `labels` maps every element path back to the prim path users
+know it by, and every error names a prim path as its `where`.
 """
 import os
 
