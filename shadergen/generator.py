@@ -133,8 +133,9 @@ class EmitContext:
             self.add_variable(s, "PrivateUniforms", Variable(name, type_name))
         return name
 
-    def app_data(self, name: str, type_name: str) -> str:
-        self.add_variable(VERTEX, "AppData", Variable(name, type_name))
+    def app_data(self, name: str, type_name: str, value: object = None) -> str:
+        """A vertex stream; `value`, in the listing, is what the stream holds where a mesh lacks it."""
+        self.add_variable(VERTEX, "AppData", Variable(name, type_name, value))
         return name
 
     def vertex_data(self, name: str, type_name: str, vertex_expression: str) -> str:

@@ -116,8 +116,12 @@ class Node:
         self.facts: dict = {}  # what the passes learned for emission (e.g. "transmission")
 
     def input_value(self, name: str, default=None):
+        """An input's value as the node's code is generated with it: its own, or inside an expanded
+        nodegraph the value of the interface input it reads (which `complete` publishes, but a
+        setting such as a primvar's name is written into the code all the same)."""
         inp = self.inputs.get(name)
-        return default if inp is None or inp.value is None else inp.value
+        value = None if inp is None else inp.value if inp.socket is None else inp.socket.value
+        return default if value is None else value
 
     def upstream(self) -> list["Node"]:
         return [inp.connection.node for inp in self.inputs.values() if inp.connection is not None]

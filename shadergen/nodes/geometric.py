@@ -99,7 +99,8 @@ GEOMPROP_TYPES = ("integer", "float", "color3", "color4", "vector2", "vector3", 
 class GeomPropValue(NodeImpl):
     """A named primvar: a vertex stream `i_geomprop_<name>`; booleans cannot be vertex attributes,
     so they come from a uniform `u_geomprop_<name>` instead (and stay editable, as uniforms are).
-    For streams the primvar name and `default` are fixed when the shader is generated."""
+    For streams the primvar name and `default` are fixed when the shader is generated: the listing
+    gives the stream `default` as its value, what a renderer binds for a mesh without the primvar."""
     fixed_inputs = frozenset({"geomprop", "default"})
 
     def emit_function_call(self, node, ctx):
@@ -108,7 +109,7 @@ class GeomPropValue(NodeImpl):
         if out.type == "boolean":
             ctx.assign(out, ctx.private_uniform(f"u_geomprop_{name}", out.type))
             return
-        attr = ctx.app_data(f"i_geomprop_{name}", out.type)
+        attr = ctx.app_data(f"i_geomprop_{name}", out.type, node.input_value("default"))
         if out.type == "integer":  # integer varyings would need `flat`: carry it as a float
             carried = ctx.vertex_data(f"geomprop_{name}", "float", ctx.target.convert(attr, "float"))
             ctx.assign(out, ctx.target.convert(carried, "integer"))

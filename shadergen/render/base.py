@@ -3,6 +3,7 @@ programs by source digest, meshes, environments, file textures, the request's ch
 framebuffer turned into a RenderResult. A renderer (GL: renderer.py, WebGPU: wgpu_renderer.py)
 lives as long as its worker process and supplies the API's own objects.
 """
+import json
 import os
 import statistics
 import time
@@ -13,7 +14,7 @@ import numpy as np
 
 from .environment import Environment
 from .errors import RenderError
-from .geometry import Mesh, load_mesh
+from .geometry import Mesh, load_mesh, primvar_defaults, with_constant_streams
 from .textures import TextureCache
 
 MAX_IMAGE_SIDE = 8192
@@ -86,11 +87,16 @@ class SceneRenderer:
         self._programs.move_to_end(key)
         return program, compile_link_ms, reused
 
-    def _mesh(self, spec: str) -> tuple[str, Mesh]:
+    def _mesh(self, spec: str, record: dict) -> tuple[str, Mesh]:
+        """The mesh under its cache key, with the record's values for the primvars it lacks (in
+        the key too: programs cache their vertex arrays by it)."""
         key = spec if spec in ("sphere", "plane") else f"{os.path.abspath(spec)}@{mtime(spec)}"
         if key not in self._meshes:
             self._meshes[key] = load_mesh(spec)
-        return key, self._meshes[key]
+        defaults = primvar_defaults(self._meshes[key], record)
+        if not defaults:
+            return key, self._meshes[key]
+        return f"{key} {json.dumps(defaults, sort_keys=True)}", with_constant_streams(self._meshes[key], defaults)
 
     def _environment(self, env, upload) -> tuple[Environment, EnvironmentTextures]:
         """The environment (None: the procedural sky; a lat-long file path; or an Environment) and

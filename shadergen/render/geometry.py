@@ -42,6 +42,22 @@ class Mesh:
                           f"{self.name!r} does not have (it has {have})", name)
 
 
+def primvar_defaults(mesh: Mesh, record: dict) -> dict[str, list]:
+    """Stream name -> value of each primvar the record reads and the mesh lacks that the record's
+    listing gives a value: a geompropvalue's `default`, what MaterialX returns where the geometry
+    does not define the property (a UsdPrimvarReader's fallback). Those without one stay zero."""
+    return {v["name"]: np.atleast_1d(v["value"]).astype(float).tolist()
+            for v in record["blocks"]["vertex"].get("AppData", [])
+            if v["name"].startswith("i_geomprop_") and v.get("value") is not None and v["name"] not in mesh.streams}
+
+
+def with_constant_streams(mesh: Mesh, values: dict[str, list]) -> Mesh:
+    """The mesh with a stream of one value at every vertex for each of `values`."""
+    count = len(mesh.streams["i_position"])
+    constant = {name: np.tile(np.float32(value), (count, 1)) for name, value in values.items()}
+    return Mesh(mesh.name, {**mesh.streams, **constant}, mesh.indices)
+
+
 def _fit_columns(data: np.ndarray, components: int, fill: float) -> np.ndarray:
     """Truncate or pad (with `fill`) to the width the shader declares, e.g. a vec3 texcoord."""
     have = data.shape[1]

@@ -68,7 +68,7 @@ class Renderer(SceneRenderer):
         warnings: list[str] = []
         program, compile_link_ms, reused = self._program(source_digest(vertex, pixel),
                                                          lambda: Program(ctx, vertex, pixel, element))
-        vao = program.vertex_array(ctx, *self._mesh(mesh))
+        vao = program.vertex_array(ctx, *self._mesh(mesh, record))
         environment, textures = self._environment(env, functools.partial(upload, ctx))
         radiance = textures.radiance if env_method == "fis" else self._prefiltered(ctx, textures)
         if document_dir is None and isinstance(record.get("document"), str):

@@ -62,7 +62,7 @@ class WgpuRenderer(SceneRenderer):
         device = wgpu_device(self.lp_threads)
         program, compile_link_ms, reused = self._program(source_digest(vertex, pixel),
                                                          lambda: WgslPipeline(device, record, element))
-        vertex_buffers, index_buffer, index_count = program.vertex_buffers(device, *self._mesh(mesh))
+        vertex_buffers, index_buffer, index_count = program.vertex_buffers(device, *self._mesh(mesh, record))
         make = functools.partial(upload, device)
         environment, env_textures = self._environment(env, make)
         if document_dir is None and isinstance(record.get("document"), str):

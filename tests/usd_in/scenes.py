@@ -163,6 +163,7 @@ def write_mtlx(folder: Path, name: str, text: str) -> Path:
 # -- connections across roles, and opacity (issue 21) -------------------------------------------
 NORMAL_MAP = "normal.exr"
 TILTED_NORMAL = (0.6, 0.0, 0.8)  # a tangent-space normal leaning towards +u
+DISPLAY_COLOR_FALLBACK = (0.8, 0.3, 0.1)  # what the primvar reader gives on a mesh without displayColor
 
 
 def write_normal_map(folder: Path, normal=TILTED_NORMAL) -> Path:
@@ -194,19 +195,18 @@ def role_connections_stage(stage, root: str = "/World/Looks/Roles") -> None:
     surface.CreateInput("normal", Sdf.ValueTypeNames.Normal3f).ConnectToSource(rgb)
     reader = _shader(stage, f"{root}/DisplayColor", "UsdPrimvarReader_float3")
     reader.CreateInput("varname", Sdf.ValueTypeNames.Token).Set("displayColor")
+    reader.CreateInput("fallback", Sdf.ValueTypeNames.Float3).Set(Gf.Vec3f(*DISPLAY_COLOR_FALLBACK))
     result = reader.CreateOutput("result", Sdf.ValueTypeNames.Float3)
     surface.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f).ConnectToSource(result)
     material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
 
 
-# The same material in MaterialX, where the primvar is read as a colour and the normal is a value.
+# The same material in MaterialX on a mesh without displayColor (the sphere): the reader's fallback
+# as the diffuse colour, and the normal map's normal as a value.
 ROLE_CONNECTIONS_MTLX = """<?xml version="1.0"?>
 <materialx version="1.39" colorspace="lin_rec709">
-  <geompropvalue name="display_color" type="color3">
-    <input name="geomprop" type="string" value="displayColor" />
-  </geompropvalue>
   <UsdPreviewSurface name="surface" type="surfaceshader">
-    <input name="diffuseColor" type="color3" nodename="display_color" />
+    <input name="diffuseColor" type="color3" value="{diffuse}" />
     <input name="roughness" type="float" value="0.3" />
     <input name="normal" type="vector3" value="{normal}" />
   </UsdPreviewSurface>

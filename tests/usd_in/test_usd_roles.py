@@ -9,8 +9,8 @@ from functools import partial
 
 import pytest
 
-from .scenes import (ROLE_CONNECTIONS_MTLX, TILTED_NORMAL, role_connections_stage, write_mtlx, write_normal_map,
-                     write_scene)
+from .scenes import (DISPLAY_COLOR_FALLBACK, ROLE_CONNECTIONS_MTLX, TILTED_NORMAL, role_connections_stage, write_mtlx,
+                     write_normal_map, write_scene)
 from .test_usd_render import MIN_PSNR_DB, psnr, render
 
 
@@ -26,8 +26,10 @@ def roles(tmp_path_factory):
     folder = tmp_path_factory.mktemp("roles")
     write_normal_map(folder)
     usd = write_scene(folder, "roles.usda", role_connections_stage)
-    tilted = write_mtlx(folder, "tilted.mtlx", ROLE_CONNECTIONS_MTLX.format(normal="%g, %g, %g" % TILTED_NORMAL))
-    flat = write_mtlx(folder, "flat.mtlx", ROLE_CONNECTIONS_MTLX.format(normal="0, 0, 1"))
+    diffuse = "%g, %g, %g" % DISPLAY_COLOR_FALLBACK
+    tilted = write_mtlx(folder, "tilted.mtlx", ROLE_CONNECTIONS_MTLX.format(normal="%g, %g, %g" % TILTED_NORMAL,
+                                                                            diffuse=diffuse))
+    flat = write_mtlx(folder, "flat.mtlx", ROLE_CONNECTIONS_MTLX.format(normal="0, 0, 1", diffuse=diffuse))
     return folder, usd, tilted, flat
 
 
@@ -38,9 +40,14 @@ def test_connections_across_roles_generate_through_convert_nodes(gen, roles, tar
     assert "error" not in rec, rec["error"]
     pixel = rec["stages"]["pixel"]
     assert "NormalMap_rgb_as_vector3" in pixel and "DisplayColor_out_as_color3" in pixel
+    # the stream is the primvar the reader names (its varname reaches the geompropvalue inside the
+    # reader's nodegraph through an interface input, which `complete` publishes), its value the fallback
+    [stream] = [v for v in rec["blocks"]["vertex"]["AppData"] if v["name"].startswith("i_geomprop_")]
+    assert stream["name"] == "i_geomprop_displayColor" and stream["value"] == pytest.approx(DISPLAY_COLOR_FALLBACK)
 
 
 def test_a_normal_map_and_a_colour_primvar_across_roles_draw_like_materialx(gen, renderer, roles):
+    """On the sphere, which has no displayColor, the primvar reader gives its fallback."""
     folder, usd, tilted, flat = roles
     ours = render(gen, renderer, usd, folder)
     same, other = psnr(ours, render(gen, renderer, tilted, folder)), psnr(ours, render(gen, renderer, flat, folder))
