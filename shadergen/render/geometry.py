@@ -1,6 +1,7 @@
 """Meshes to draw a material on: UV sphere, plane, Wavefront OBJ, with every vertex stream a
 MaterialX shader may declare (the seed's app-data names: i_position, i_normal, i_tangent,
 i_bitangent, i_texcoord_N, i_color_N, i_geomprop_NAME)."""
+import math
 import os
 import re
 from dataclasses import dataclass
@@ -46,9 +47,16 @@ def primvar_defaults(mesh: Mesh, record: dict) -> dict[str, list]:
     """Stream name -> value of each primvar the record reads and the mesh lacks that the record's
     listing gives a value: a geompropvalue's `default`, what MaterialX returns where the geometry
     does not define the property (a UsdPrimvarReader's fallback). Those without one stay zero."""
-    return {v["name"]: np.atleast_1d(v["value"]).astype(float).tolist()
-            for v in record["blocks"]["vertex"].get("AppData", [])
-            if v["name"].startswith("i_geomprop_") and v.get("value") is not None and v["name"] not in mesh.streams}
+    defaults = {}
+    for v in record.get("blocks", {}).get("vertex", {}).get("AppData", []):
+        name, value = (v.get("name"), v.get("value")) if isinstance(v, dict) else (None, None)
+        if not (isinstance(name, str) and name.startswith("i_geomprop_")) or value is None or name in mesh.streams:
+            continue
+        numbers = value if isinstance(value, list) else [value]
+        if not 1 <= len(numbers) <= 4 or not all(isinstance(x, (int, float)) and math.isfinite(x) for x in numbers):
+            raise RenderError("invalid_record", f"AppData {name}: value must be 1 to 4 finite numbers", name)
+        defaults[name] = [float(x) for x in numbers]
+    return defaults
 
 
 def with_constant_streams(mesh: Mesh, values: dict[str, list]) -> Mesh:

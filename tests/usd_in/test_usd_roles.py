@@ -73,3 +73,16 @@ def test_connections_of_different_underlying_types_stay_refused(gen, tmp_path):
     stage.GetRootLayer().Save()
     [rec] = list(gen.records(tmp_path / "scalar.usda", all=True))
     assert rec["error"]["code"] == "type_mismatch" and rec["error"]["where"] == "/M/Surface.inputs:diffuseColor"
+
+
+@pytest.mark.parametrize("value", ["red", [1, 2, 3, 4, 5], [float("nan")], [[1]]])
+def test_a_record_whose_stream_value_is_not_numbers_is_an_invalid_record(gen, renderer, roles, value):
+    from shadergen.render.errors import RenderError
+
+    _, usd, _, _ = roles
+    [rec] = list(gen.records(usd, all=True))
+    [stream] = [v for v in rec["blocks"]["vertex"]["AppData"] if v["name"] == "i_geomprop_displayColor"]
+    stream["value"] = value
+    with pytest.raises(RenderError) as error:
+        renderer.render(rec, size=16)
+    assert error.value.code == "invalid_record" and error.value.where == "i_geomprop_displayColor"
