@@ -11,6 +11,7 @@ import posixpath
 import re
 from contextlib import contextmanager
 
+from .archives import check_usdz
 from .document import Document
 from .element import Element
 from .errors import ShaderGenError
@@ -147,6 +148,7 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
     if document_format == "usdz":
         if not data.startswith(b"PK\x03\x04"):
             raise ShaderGenError("invalid_document", "the upload is not a usdz package (a zip archive)", "<document>")
+        check_usdz(data)  # stored members only, a directory that agrees with the bytes: before usd-core reads any
         import tempfile  # here, like usd-core and the translator: a MaterialX-only process never loads them
 
         with tempfile.TemporaryDirectory(prefix="shadergen-usdz-") as folder:

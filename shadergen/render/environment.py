@@ -83,6 +83,8 @@ def _read_map(path: str) -> np.ndarray:
     try:
         image = read_image(path)
     except RenderError as exc:
+        if exc.code == "too_large":  # a limit of the renderer, not a fault of the file
+            raise
         raise RenderError("invalid_environment", exc.message, path) from exc
     if image.shape[2] < 3:  # a grey map lights in grey
         image = np.repeat(image[..., :1], 3, axis=2)

@@ -6,6 +6,7 @@ is treated as premultiplied by alpha, as MaterialX's surface shaders write it (c
 opacity), so supersampling averages it directly and compositing adds the background behind it.
 """
 import os
+import re
 import struct
 import zlib
 
@@ -13,29 +14,50 @@ import numpy as np
 
 from .errors import RenderError
 
-MAX_PIXELS = 8192 * 8192  # a texture or environment larger than this is refused, not read into memory
+# Images are read as float32: an image of more values (width x height x depth x channels) than
+# fit the renderer's default texture budget (512 MiB) is refused from its header, before a pixel is
+# decoded, so a small file declaring a huge image (a PNG of 60000 x 60000) costs nothing.
+MAX_IMAGE_VALUES = (512 << 20) // 4
+# OpenImageIO refuses some such headers itself, in open (a PNG header claiming gigabytes from a
+# small file; anything over its own limits:imagesize_MB): the same refusal, told by its message.
+_OIIO_SIZE_REFUSAL = re.compile(r"claims an? [\d.]+ MB image|size [\d.]+ MB exceeds the [\d.]+ MB limit")
 
 
-def read_image(path: str) -> np.ndarray:
+def read_image(path: str, name: str | None = None, max_values: int = MAX_IMAGE_VALUES) -> np.ndarray:
     """Any format OpenImageIO reads, as float32 (h, w, c) top row first; 8-bit files give
-    value / 255 with no colour conversion (colour spaces are the shader's business)."""
+    value / 255 with no colour conversion (colour spaces are the shader's business). `name` is
+    what errors call the file (a package member read from a temporary copy), `path` by default.
+    An image of more than `max_values` values is refused as too_large."""
     import OpenImageIO as oiio
 
+    name = name or path
     image = oiio.ImageInput.open(path)
     if image is None:
-        raise RenderError("invalid_image", f"cannot read image: {oiio.geterror() or path}", path)
+        why = _oiio_error(oiio, path, name)
+        if _OIIO_SIZE_REFUSAL.search(why):
+            raise RenderError("too_large", f"{name}: the image's header declares more than the renderer reads "
+                              f"(its limit: {max_values} values): {why}", name)
+        raise RenderError("invalid_image", f"cannot read image {name}: {why}", name)
     try:
         spec = image.spec()
-        if spec.width * spec.height > MAX_PIXELS:
-            raise RenderError("invalid_image", f"image of {spec.width} x {spec.height} pixels is larger than the "
-                              f"renderer reads ({MAX_PIXELS} pixels)", path)
+        values = spec.width * spec.height * max(spec.depth, 1) * spec.nchannels
+        if values > max_values:
+            depth = f" x {spec.depth}" if spec.depth > 1 else ""
+            raise RenderError("too_large", f"{name}: an image of {spec.width} x {spec.height}{depth} pixels x "
+                              f"{spec.nchannels} channels is more than the renderer reads (its limit: {max_values} "
+                              "values)", name)
         pixels = image.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT)
+        if pixels is None:
+            raise RenderError("invalid_image", f"cannot decode image {name}: {_oiio_error(image, path, name)}", name)
     finally:
         image.close()
-    if pixels is None:
-        raise RenderError("invalid_image", f"cannot decode image: {oiio.geterror() or path}", path)
     pixels = np.asarray(pixels, "f4")
     return pixels[..., None] if pixels.ndim == 2 else pixels
+
+
+def _oiio_error(source, path: str, name: str) -> str:
+    """OpenImageIO's message with the file called by `name` (not a temporary copy's path)."""
+    return (source.geterror() or "unknown format or unreadable file").replace(path, name)
 
 
 # the linear grey a thumbnail's transparent pixels are composited over

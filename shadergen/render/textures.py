@@ -25,6 +25,10 @@ ADDRESS_MODE_ORDER = ("constant", "clamp", "periodic", "mirror")  # the enum's i
 FILTER_TYPE_ORDER = ("closest", "linear", "cubic")
 UNRESOLVABLE_TOKENS = ("<UDIM>", "<UVTILE>")
 _SWIZZLE = {1: "RRR1", 2: "RRRG"}  # grey and grey-alpha images read as grey
+# Failures that refuse the render instead of showing the image node's default: a file the server
+# will not read (an image over the limit, a package that is not a valid usdz) is no missing file,
+# and a default colour would hide it behind a thumbnail that looks right.
+REFUSALS = ("too_large", "invalid_document")
 
 
 @dataclass(frozen=True)
@@ -111,10 +115,12 @@ class TextureCache:
     first out when over `budget_bytes` (trimmed between renders, never during one), and 1 x 1
     textures of constant colours for missing files and unbound samplers. `upload` makes a
     texture of the drawing API from a float32 (h, w, c) image; a texture has `width`, `height`,
-    `components` and `release()`."""
+    `components` and `release()`. An image of more float32 values than the budget holds is
+    refused (too_large) from its header."""
 
     def __init__(self, budget_bytes: int = 512 << 20):
         self.budget_bytes = budget_bytes
+        self.max_values = budget_bytes // 4
         self._files: OrderedDict[tuple, object] = OrderedDict()
         self._constants: dict[tuple, object] = {}
 
@@ -126,10 +132,10 @@ class TextureCache:
         texture = self._files.get(key)
         if texture is None:
             if member is None:
-                image = read_image(path)
+                image = read_image(path, max_values=self.max_values)
             else:
                 with member_file(package, member) as copy:
-                    image = read_image(copy)
+                    image = read_image(copy, member, self.max_values)
             texture = upload(image)
             self._files[key] = texture
         self._files.move_to_end(key)
@@ -149,6 +155,8 @@ class TextureCache:
             try:
                 return self.file(upload, request.path), None
             except RenderError as exc:
+                if exc.code in REFUSALS:
+                    raise
                 problem = f"{request.path}: {exc.message}"
         warning = f"texture for {request.name} unusable, using its default colour: {problem}" if problem else None
         return self.constant(upload, request.sampling.border), warning
