@@ -1,0 +1,117 @@
+"""Issue 21, item 2 (sizes): what an upload makes the live service read is bounded before it is read.
+A usdz whose texture is a deflate bomb (256 MiB of zeros in a 260 kB body) is refused as not a
+valid usdz, and no process of the server reaches a higher peak of memory by anything like the
+bomb's size; a package whose directory lies about a member's size is refused; a PNG whose header
+declares 60000 x 60000 pixels is refused as too_large, in a package and in the texture roots; a
+legitimate package still renders its own texture."""
+from required_tools import require_module
+
+require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
+
+import pytest
+
+from faults_testing import wait_ready
+from hostile_packages import LAYER, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
+    with_directory_size
+from service_testing import Server, assert_error, descendants, is_png
+
+pytestmark = pytest.mark.usefixtures("renderer_required")
+
+USDZ = {"content-type": "model/vnd.usdz+zip"}
+TEXTURE = "textures/wood.png"
+BOMB_BYTES = 256 << 20
+HUGE = 60000
+
+
+@pytest.fixture(scope="module")
+def roots(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("roots")
+    (folder / "huge.png").write_bytes(huge_png_header(HUGE, HUGE))
+    return folder
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory, roots):
+    srv = Server(tmp_path_factory.mktemp("uploadbounds"), workers=1, render_workers=1,
+                 env={"SHADERGEN_TEXTURE_ROOTS": str(roots)})
+    yield srv
+    srv.close()
+
+
+@pytest.fixture(scope="module")
+def warm(server) -> None:
+    """A legitimate package drawn first: every process that reads uploads is started and has read
+    one, so that peaks measured afterwards are the hostile uploads' alone."""
+    wait_ready(server.client)
+    assert_renders(server, textured_package(png(8, 8, (230, 20, 20))))
+
+
+def peak_rss_kib(server) -> dict[int, int]:
+    """VmHWM (peak resident memory) of the server and of every process under it."""
+    peaks = {}
+    for pid in [server.proc.pid, *descendants(server.proc.pid)]:
+        try:
+            status = open(f"/proc/{pid}/status").read()
+        except OSError:
+            continue  # gone between the listing and the read
+        peaks[pid] = int(status.split("VmHWM:")[1].split()[0])
+    return peaks
+
+
+def textured_package(texture: bytes) -> bytes:
+    return usdz([(LAYER, textured_layer(TEXTURE).encode()), (TEXTURE, texture)])
+
+
+def assert_renders(server, package: bytes) -> bytes:
+    r = server.client.post("/v1/thumbnails", params={"size": 48}, content=package, headers=USDZ)
+    assert r.status_code == 200 and is_png(r.content, 48), r.text
+    return r.content
+
+
+def test_a_stored_package_renders_its_own_texture(server, warm):
+    """Two packages that differ only in their texture's colour give two thumbnails (each its own)."""
+    red = assert_renders(server, textured_package(png(8, 8, (230, 20, 20))))
+    blue = assert_renders(server, textured_package(png(8, 8, (20, 20, 230))))
+    assert red != blue
+
+
+def test_a_deflate_bomb_member_is_refused_unread(server, warm):
+    bomb = deflate_bomb_package(TEXTURE, BOMB_BYTES)
+    assert len(bomb) < 1 << 20
+    before = peak_rss_kib(server)
+    for route in ("/v1/generate", "/v1/thumbnails"):
+        error = assert_error(server.client.post(route, content=bomb, headers=USDZ), 400, "invalid_document")
+        assert error["where"] == TEXTURE and "compressed" in error["message"]
+    after = peak_rss_kib(server)
+    assert set(after) == set(before)  # no process died or was replaced on the way
+    growth_kib = {pid: after[pid] - before[pid] for pid in before}
+    assert max(growth_kib.values()) * 1024 < BOMB_BYTES // 8, growth_kib
+    assert "Traceback" not in server.log_text()
+
+
+@pytest.mark.parametrize("local_header_too", [False, True])
+def test_a_directory_that_understates_a_member_is_refused(server, warm, local_header_too):
+    """In the directory only: the directory and the member's header disagree (found before usd-core
+    reads the upload); in both: the member's bytes fail its checksum when the render worker copies
+    the stated 100 bytes of it."""
+    lying = with_directory_size(textured_package(png(64, 64, (20, 20, 230))), TEXTURE, 100, local_header_too)
+    error = assert_error(server.client.post("/v1/thumbnails", content=lying, headers=USDZ), 400, "invalid_document")
+    assert error["where"] == TEXTURE
+
+
+def test_a_huge_image_header_is_refused_in_a_package(server, warm):
+    r = server.client.post("/v1/thumbnails", content=textured_package(huge_png_header(HUGE, HUGE)), headers=USDZ)
+    error = assert_error(r, 413, "too_large")
+    assert error["where"] == TEXTURE and "limit" in error["message"]
+
+
+def test_a_huge_image_header_is_refused_in_the_texture_roots(server, warm, roots):
+    document = """<?xml version="1.0"?>
+<materialx version="1.39">
+  <image name="tex" type="color3"><input name="file" type="filename" value="huge.png" /></image>
+  <output name="out" type="color3" nodename="tex" />
+</materialx>"""
+    r = server.client.post("/v1/thumbnails", json={"document": document, "size": 32})
+    error = assert_error(r, 413, "too_large")
+    assert error["where"].endswith("huge.png") and "limit" in error["message"]
+    assert "Traceback" not in server.log_text()
