@@ -32,8 +32,9 @@ _LOCAL_HEADER = struct.Struct("<4sHHHHHLLLHH")
 _LOCAL_SIGNATURE = b"PK\x03\x04"
 _ZIP64_SIZE = 0xFFFFFFFF  # a local header's sizes when the real ones are in its zip64 extra field
 _ENCRYPTED, _UTF8_NAME = 0x1, 0x800  # general purpose flags
-# what zipfile and the checks raise on a malformed archive (UnicodeDecodeError is a ValueError)
-_MALFORMED = (zipfile.BadZipFile, zipfile.LargeZipFile, ValueError, EOFError, struct.error)
+# what zipfile and the checks raise on a malformed archive (UnicodeDecodeError is a ValueError;
+# NotImplementedError for a directory entry that asks for a zip version zipfile does not know)
+_MALFORMED = (zipfile.BadZipFile, zipfile.LargeZipFile, ValueError, EOFError, struct.error, NotImplementedError)
 
 
 def _invalid(error: type[ShaderGenError], message: str, where: str) -> ShaderGenError:
