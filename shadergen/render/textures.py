@@ -13,7 +13,7 @@ import numpy as np
 
 from .errors import RenderError
 from .context import gl_extras
-from .imageio import read_image
+from .imageio import MAX_IMAGE_VALUES, read_image
 from .packages import has_member, member_file, split_member
 from .values import numbers
 
@@ -115,12 +115,12 @@ class TextureCache:
     first out when over `budget_bytes` (trimmed between renders, never during one), and 1 x 1
     textures of constant colours for missing files and unbound samplers. `upload` makes a
     texture of the drawing API from a float32 (h, w, c) image; a texture has `width`, `height`,
-    `components` and `release()`. An image of more float32 values than the budget holds is
-    refused (too_large) from its header."""
+    `components` and `release()`. An image of more than `max_image_values` values is refused
+    (too_large) from its header."""
 
-    def __init__(self, budget_bytes: int = 512 << 20):
+    def __init__(self, budget_bytes: int = 512 << 20, max_image_values: int = MAX_IMAGE_VALUES):
         self.budget_bytes = budget_bytes
-        self.max_values = budget_bytes // 4
+        self.max_image_values = max_image_values
         self._files: OrderedDict[tuple, object] = OrderedDict()
         self._constants: dict[tuple, object] = {}
 
@@ -132,10 +132,10 @@ class TextureCache:
         texture = self._files.get(key)
         if texture is None:
             if member is None:
-                image = read_image(path, max_values=self.max_values)
+                image = read_image(path, max_values=self.max_image_values)
             else:
                 with member_file(package, member) as copy:
-                    image = read_image(copy, member, self.max_values)
+                    image = read_image(copy, member, self.max_image_values)
             texture = upload(image)
             self._files[key] = texture
         self._files.move_to_end(key)

@@ -102,14 +102,14 @@ def test_a_huge_image_header_is_refused_beside_a_layer_and_as_an_environment(gen
     assert caught.value.code == "too_large"
 
 
-def test_the_limit_counts_channels_and_follows_the_texture_budget(tmp_path):
+def test_the_limit_counts_channels(tmp_path):
     from shadergen.render.textures import TextureCache
 
     (tmp_path / "wide.png").write_bytes(png(64, 64, RED))  # 64 x 64 x 3 = 12288 values
-    cache = TextureCache(budget_bytes=4 * 12288)
-    assert cache.file(lambda image: image, str(tmp_path / "wide.png")).shape == (64, 64, 3)
+    upload = lambda image: image  # noqa: E731: the image itself stands for its texture
+    assert TextureCache(max_image_values=12288).file(upload, str(tmp_path / "wide.png")).shape == (64, 64, 3)
     with pytest.raises(RenderError) as caught:
-        TextureCache(budget_bytes=4 * 12287).file(lambda image: image, str(tmp_path / "wide.png"))
+        TextureCache(max_image_values=12287).file(upload, str(tmp_path / "wide.png"))
     assert caught.value.code == "too_large" and "limit: 12287 values" in caught.value.message
 
 
