@@ -10,7 +10,7 @@ require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh 
 
 import pytest
 
-from faults_testing import wait_ready
+from faults_testing import poll_job, wait_ready
 from hostile_packages import LAYER, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
     with_directory_size
 from service_testing import Server, assert_error, descendants, is_png
@@ -100,9 +100,16 @@ def test_a_directory_that_understates_a_member_is_refused(server, warm, local_he
 
 
 def test_a_huge_image_header_is_refused_in_a_package(server, warm):
-    r = server.client.post("/v1/thumbnails", content=textured_package(huge_png_header(HUGE, HUGE)), headers=USDZ)
-    error = assert_error(r, 413, "too_large")
+    package = textured_package(huge_png_header(HUGE, HUGE))
+    error = assert_error(server.client.post("/v1/thumbnails", content=package, headers=USDZ), 413, "too_large")
     assert error["where"] == TEXTURE and "limit" in error["message"]
+    # as a job: failed with the same error, and its thumbnail answered as that error
+    accepted = server.client.post("/v1/thumbnails", params={"async": "true", "size": 40}, content=package,
+                                  headers=USDZ)
+    assert accepted.status_code == 202, accepted.text
+    status = poll_job(server.client, accepted.json()["id"])
+    assert status["state"] == "failed" and status["error"]["code"] == "too_large", status
+    assert_error(server.client.get(f"/v1/jobs/{status['id']}/thumbnail"), 413, "too_large")
 
 
 def test_a_huge_image_header_is_refused_in_the_texture_roots(server, warm, roots):
