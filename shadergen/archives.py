@@ -8,17 +8,21 @@ reader of ours decompresses anything, so a deflate bomb has nothing to expand in
 member's data is a slice of the package. The members together hold at most the package's own
 size (for an upload, the request-body limit) and no member expands (its ratio is 1).
 
-A zip's directory can lie, so before any member is read it is checked against the bytes: each
-member's local header (what usd-core reads) agrees with the directory (what zipfile reads) on
-method, sizes, checksum and name, its data ends before the directory starts, and no two members'
-data overlap (overlapping members are how a small zip claims a large total). Reading a member then
+A zip's directory can lie, so before any member is read it is checked against the bytes. usd-core
+walks the members' local headers from the start of the file; zipfile (the renderer's reader) goes
+by the central directory. The package must read the same both ways: the members lie back to back
+from the first byte to the directory, each local header agreeing with its directory entry on
+method, sizes, checksum and name. So no two members overlap (how a small zip claims a large
+total), no member hides between others, and none runs past the package. Reading a member then
 yields at most its checked size: zipfile stops at the directory's size and compares the CRC at the
-end, so a directory that understates a member gives a checksum error, never more bytes.
+end, so a directory that understates a member gives a checksum error, never more bytes. An upload
+is read through once to compare every member with its checksum, which usd-core does not.
 
 Alignment is not required: usd-core opens unaligned packages (what `zip -0` writes), and it only
 makes mapping faster; it bounds nothing.
 """
 import io
+import os
 import shutil
 import struct
 import zipfile
@@ -42,10 +46,12 @@ def _invalid(error: type[ShaderGenError], message: str, where: str) -> ShaderGen
 
 
 def check_usdz(data: bytes, where: str = "<document>") -> None:
-    """Refuse (invalid_document, at the member concerned) a package that is not a valid usdz:
-    not a zip, a compressed or encrypted member, or a directory that disagrees with the data."""
-    with open_usdz(io.BytesIO(data), where):
-        pass
+    """Refuse (invalid_document, at the member concerned) an uploaded package that is not a valid
+    usdz: not a zip, a compressed or encrypted member, a directory that disagrees with the data,
+    or a member whose bytes fail its checksum (usd-core reads members without checking it)."""
+    with open_usdz(io.BytesIO(data), where) as archive, open(os.devnull, "wb") as sink:
+        for info in archive.infolist():
+            copy_member(archive, info.filename, sink)
 
 
 @contextmanager
@@ -68,7 +74,7 @@ def open_usdz(file, where: str, error: type[ShaderGenError] = ShaderGenError):
 
 def _check_members(archive: zipfile.ZipFile, error: type[ShaderGenError]) -> None:
     file = archive.fp
-    data_end = 0
+    data_end, previous = 0, None
     for info in sorted(archive.infolist(), key=lambda i: i.header_offset):
         name = info.filename
         if info.compress_type != zipfile.ZIP_STORED:
@@ -81,6 +87,8 @@ def _check_members(archive: zipfile.ZipFile, error: type[ShaderGenError]) -> Non
                            name)
         if info.header_offset < data_end:
             raise _invalid(error, f"{name} overlaps the member before it", name)
+        if info.header_offset > data_end:
+            raise _unlisted(error, info.header_offset - data_end, previous, name)
         file.seek(info.header_offset)
         header = file.read(_LOCAL_HEADER.size)
         if len(header) < _LOCAL_HEADER.size:
@@ -96,6 +104,17 @@ def _check_members(archive: zipfile.ZipFile, error: type[ShaderGenError]) -> Non
         if data_end > archive.start_dir:
             raise _invalid(error, f"{name} declares {info.file_size} bytes, more than the package holds before its "
                            f"directory ({archive.start_dir} bytes)", name)
+        previous = name
+    if data_end < archive.start_dir:
+        raise _unlisted(error, archive.start_dir - data_end, previous, "the directory")
+
+
+def _unlisted(error: type[ShaderGenError], count: int, before: str | None, after: str) -> ShaderGenError:
+    """Bytes between two members (or the last member and the directory) that the directory does
+    not list: a member usd-core would find and zipfile would not, or one whose size is understated."""
+    if before is None:
+        return _invalid(error, f"{count} bytes the directory does not list precede {after}", after)
+    return _invalid(error, f"{before} is followed by {count} bytes the directory does not list", before)
 
 
 def copy_member(archive: zipfile.ZipFile, member: str, out, error: type[ShaderGenError] = ShaderGenError) -> None:

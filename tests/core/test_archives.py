@@ -100,3 +100,14 @@ def test_truncations_and_byte_flips_are_refused_or_pass(usd_core_package):
             assert exc.code == "invalid_document", exc
             outcomes["refused"] += 1
     assert outcomes["refused"] > 1000 and outcomes["passed"] > 0, outcomes
+
+
+def test_an_upload_whose_member_fails_its_checksum_is_refused(usd_core_package):
+    with zipfile.ZipFile(io.BytesIO(usd_core_package)) as archive:
+        info = archive.getinfo(LAYER)
+        data_start = info.header_offset + 30 + len(LAYER) + struct.unpack_from(
+            "<H", usd_core_package, info.header_offset + 28)[0]
+    flipped = bytearray(usd_core_package)
+    flipped[data_start + 3] ^= 0x20  # "#usda" -> "#usDa": a layer usd-core would read as it is
+    error = refusal(bytes(flipped))
+    assert error.where == LAYER and "CRC" in error.message

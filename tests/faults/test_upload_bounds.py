@@ -91,9 +91,8 @@ def test_a_deflate_bomb_member_is_refused_unread(server, warm):
 
 @pytest.mark.parametrize("local_header_too", [False, True])
 def test_a_directory_that_understates_a_member_is_refused(server, warm, local_header_too):
-    """In the directory only: the directory and the member's header disagree (found before usd-core
-    reads the upload); in both: the member's bytes fail its checksum when the render worker copies
-    the stated 100 bytes of it."""
+    """In the directory only, the directory and the member's header disagree; in both, the rest of
+    the member lies unlisted before the directory: either way found before usd-core reads the upload."""
     lying = with_directory_size(textured_package(png(64, 64, (20, 20, 230))), TEXTURE, 100, local_header_too)
     error = assert_error(server.client.post("/v1/thumbnails", content=lying, headers=USDZ), 400, "invalid_document")
     assert error["where"] == TEXTURE

@@ -66,7 +66,7 @@ def test_a_deflate_bomb_member_is_refused_unread(gen, renderer, tmp_path):
 @pytest.mark.parametrize("local_header_too", [False, True])
 def test_a_directory_that_understates_a_member_is_refused(gen, renderer, tmp_path, local_header_too):
     """Told in the directory only, the directory disagrees with the member's own header; told in
-    both, the member's bytes disagree with its checksum: either way at most the stated size is read."""
+    both, the rest of the member lies between members unlisted: either way nothing of it is read."""
     honest = usdz([(LAYER, textured_layer(TEXTURE).encode()), (TEXTURE, png(64, 64, RED))])
     path = tmp_path / "scene.usdz"
     path.write_bytes(with_directory_size(honest, TEXTURE, 100, local_header_too))
