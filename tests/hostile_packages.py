@@ -74,8 +74,8 @@ def with_directory_size(package: bytes, member: str, size: int, local_header_too
     data = bytearray(package)
     with zipfile.ZipFile(io.BytesIO(package)) as archive:
         info = archive.getinfo(member)
-        directory = archive.start_dir
-    entry, name = directory, member.encode()
+        entry = archive.start_dir
+    name = member.encode()
     while data[entry + 46:entry + 46 + len(name)] != name:  # walk the directory to the member's entry
         name_length, extra_length, comment_length = struct.unpack_from("<HHH", data, entry + 28)
         entry += 46 + name_length + extra_length + comment_length
