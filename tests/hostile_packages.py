@@ -1,12 +1,13 @@
-"""Files that are small to send but large, or lying, once read: usdz packages and PNGs built with
-zipfile and struct, for the tests of the archive and image bounds (renderer and live service).
+"""Files that are small to send but large, lying or unreadable, once read: usdz packages and images
+built with zipfile, struct and OpenImageIO, for the tests of the archive and image bounds (renderer and live service).
 
     textured_layer(texture)             a usda layer of one material drawing a texture
     usdz(members, compressed=())        a zip of (name, bytes) members, stored unless named in `compressed`
     deflate_bomb_package(texture, n)    that layer, and its texture n zero bytes deflated (about n / 1000 sent)
     with_directory_size(package, ...)   the package with a member's size in its directory (and local header) changed
-    png(width, height, rgb)        a real PNG of one colour
-    huge_png_header(w, h)          a PNG of a few hundred bytes whose header declares w x h pixels
+    png(width, height, rgb)             a real PNG of one colour
+    huge_png_header(w, h)               a PNG of a few hundred bytes whose header declares w x h pixels
+    deep_exr()                          a deep OpenEXR, which OpenImageIO's Python binding cannot read safely
 """
 import io
 import struct
@@ -96,6 +97,27 @@ def huge_png_header(width: int, height: int) -> bytes:
     """A PNG whose header declares width x height RGB pixels and whose data is a few bytes: any
     reader that decodes before looking at the header allocates width x height x 3 bytes or more."""
     return _png(width, height, zlib.compress(bytes(64)))
+
+
+def deep_exr() -> bytes:
+    """A 4 x 4 deep OpenEXR (three samples a pixel), written by OpenImageIO."""
+    import os
+    import tempfile
+
+    import OpenImageIO as oiio
+
+    spec = oiio.ImageSpec(4, 4, 2, oiio.FLOAT)
+    spec.deep, spec.channelnames = True, ("A", "Z")
+    deep = oiio.DeepData()
+    deep.init(spec)
+    for pixel in range(16):
+        deep.set_samples(pixel, 3)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "deep.exr")
+        out = oiio.ImageOutput.create(path)
+        assert out.open(path, spec) and out.write_deep_image(deep), out.geterror()
+        out.close()
+        return open(path, "rb").read()
 
 
 def _png(width: int, height: int, idat: bytes) -> bytes:

@@ -42,6 +42,8 @@ def read_image(path: str, name: str | None = None, max_values: int = MAX_IMAGE_V
         raise RenderError("invalid_image", f"cannot read image {name}: {why}", name)
     try:
         spec = image.spec()
+        if spec.deep:  # reading one through the Python binding corrupts the heap (OpenImageIO 3.2)
+            raise RenderError("invalid_image", f"{name} is a deep image (samples per pixel), not a texture", name)
         values = spec.width * spec.height * max(spec.depth, 1) * spec.nchannels
         if values > max_values:
             depth = f" x {spec.depth}" if spec.depth > 1 else ""

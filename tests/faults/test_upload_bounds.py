@@ -3,15 +3,15 @@ A usdz whose texture is a deflate bomb (256 MiB of zeros in a 260 kB body) is re
 valid usdz, and no process of the server reaches a higher peak of memory by anything like the
 bomb's size; a package whose directory lies about a member's size is refused; a PNG whose header
 declares 60000 x 60000 pixels is refused as too_large, in a package and in the texture roots; a
-legitimate package still renders its own texture."""
+deep image is refused unread; a legitimate package still renders its own texture."""
 from required_tools import require_module
 
 require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
 
 import pytest
 
-from faults_testing import poll_job, wait_ready
-from hostile_packages import LAYER, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
+from faults_testing import poll_job, processes, wait_ready
+from hostile_packages import LAYER, deep_exr, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
     with_directory_size
 from service_testing import Server, assert_error, descendants, is_png
 
@@ -109,6 +109,14 @@ def test_a_huge_image_header_is_refused_in_a_package(server, warm):
     status = poll_job(server.client, accepted.json()["id"])
     assert status["state"] == "failed" and status["error"]["code"] == "too_large", status
     assert_error(server.client.get(f"/v1/jobs/{status['id']}/thumbnail"), 413, "too_large")
+
+
+def test_a_deep_image_in_a_package_shows_the_default_colour_and_kills_nothing(server, warm):
+    """A deep EXR once aborted the render worker (OpenImageIO's binding corrupts the heap reading one)."""
+    workers = processes(server, "service.workers.render_worker")
+    package = usdz([(LAYER, textured_layer("textures/deep.exr").encode()), ("textures/deep.exr", deep_exr())])
+    assert_renders(server, package)
+    assert processes(server, "service.workers.render_worker") == workers
 
 
 def test_a_huge_image_header_is_refused_in_the_texture_roots(server, warm, roots):

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from hostile_packages import LAYER, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
+from hostile_packages import LAYER, deep_exr, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
     with_directory_size
 from shadergen.api import Generator
 from shadergen.render import Environment, RenderError
@@ -122,3 +122,15 @@ def test_the_command_line_gives_an_error_record(tmp_path):
     error = json.loads(run.stdout)["error"]
     assert error["code"] == "too_large" and error["where"].endswith("huge.png")
     assert not (tmp_path / "out.png").exists()
+
+
+def test_a_deep_image_is_refused_before_it_is_read(tmp_path):
+    """Read through OpenImageIO's Python binding, a deep image corrupts the heap (the process aborts
+    in free()): it is refused from its header, in a process of its own here, so that a regression
+    fails this test instead of ending the session."""
+    (tmp_path / "deep.exr").write_bytes(deep_exr())
+    run = subprocess.run([sys.executable, "-c", "from shadergen.render.imageio import read_image\n"
+                          "from shadergen.render import RenderError\n"
+                          "try:\n    read_image('deep.exr')\nexcept RenderError as exc:\n    print(exc.code)\n"],
+                         capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert (run.returncode, run.stdout.strip()) == (0, "invalid_image"), run.stderr
