@@ -61,7 +61,11 @@ def read_image(path: str, name: str | None = None, max_values: int = MAX_IMAGE_V
 
 def _oiio_error(source, path: str, name: str) -> str:
     """OpenImageIO's message with the file called by `name` (not a temporary copy's path)."""
-    return (source.geterror() or "unknown format or unreadable file").replace(path, name)
+    try:
+        message = source.geterror()
+    except UnicodeDecodeError:  # the message quotes bytes of a corrupt file (an EXR attribute's name)
+        message = "a corrupt file (OpenImageIO's message about it is not UTF-8)"
+    return (message or "unknown format or unreadable file").replace(path, name)
 
 
 # the linear grey a thumbnail's transparent pixels are composited over
