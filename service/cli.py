@@ -20,6 +20,15 @@ def add_arguments(parser) -> None:
     parser.add_argument("--access-log", action="store_true", help="log every request")
 
 
+def proxy_options(settings) -> dict:
+    """X-Forwarded-For (and -Proto) are believed only from the proxies the operator names in
+    SHADERGEN_TRUSTED_PROXIES. uvicorn alone believes them from 127.0.0.1 (or FORWARDED_ALLOW_IPS):
+    any local client could then name the address that its failures count against (fairness.py)."""
+    if not settings.trusted_proxies:
+        return {"proxy_headers": False}
+    return {"proxy_headers": True, "forwarded_allow_ips": settings.trusted_proxies}
+
+
 def _exit(signum, frame):
     raise SystemExit(0)
 
@@ -46,7 +55,8 @@ def run(args) -> int:
     signal.signal(signal.SIGTERM, _exit)
     try:
         uvicorn.run("service.main:create_app", factory=True, host=args.host, port=args.port,
-                    http=BoundedHttpToolsProtocol, workers=args.workers, access_log=args.access_log, timeout_graceful_shutdown=10)
+                    http=BoundedHttpToolsProtocol, workers=args.workers, access_log=args.access_log,
+                    timeout_graceful_shutdown=10, **proxy_options(settings))
     finally:
         if pool is not None:
             pool.stop()

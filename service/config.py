@@ -7,6 +7,22 @@ from pathlib import Path
 from pydantic import BaseModel, Field
 
 ENV_PREFIX = "SHADERGEN_"
+LIST_SEPARATORS = {"texture_roots": os.pathsep, "trusted_proxies": ","}  # as PATH, and as uvicorn's FORWARDED_ALLOW_IPS
+
+
+def _physical_mib() -> int:
+    return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") >> 20
+
+
+def _default_generate_memory_mib() -> int:
+    # an eighth of the machine each (`shadergen serve` starts 2 API workers with one generator
+    # each, beside one render worker at a quarter): every child at its limit leaves half the memory
+    return min(1024, _physical_mib() // 8)
+
+
+def _default_render_memory_mib() -> int:
+    # a 1024 px thumbnail peaks at about 310 MiB resident on llvmpipe
+    return min(2048, _physical_mib() // 4)
 
 
 def _default_cache_url() -> str:
@@ -28,6 +44,16 @@ class Settings(BaseModel):
     generate_processes: int = 1
     generate_queue_size: int = 64
     generate_timeout_s: float = 10.0
+    # resident memory (MiB) one generator / render process may reach: past it the process is
+    # killed, replaced, and its request answered 413 too_large; 0 = no limit
+    generate_memory_mib: int = Field(default_factory=_default_generate_memory_mib, ge=0)
+    render_memory_mib: int = Field(default_factory=_default_render_memory_mib, ge=0)
+    memory_poll_s: float = Field(0.05, gt=0)
+    # every child process sends a heartbeat this often; one not heard from for ready_deadline_s
+    # is not answering: /readyz is 503 while no generator (or no render process) answers, and
+    # requests are refused at once with 503 instead of waiting behind it
+    heartbeat_s: float = Field(1.0, gt=0)
+    ready_deadline_s: float = Field(10.0, gt=0)
     max_body_bytes: int = 2 * 1024 * 1024
     # a request's body must arrive within this, its line and headers within head_timeout_s and
     # head_max_bytes: a slow or endless upload cannot hold a worker's memory or a connection
@@ -46,7 +72,17 @@ class Settings(BaseModel):
     topology_sharing: bool = True
     # colon-separated directories that textures named by documents may come from
     texture_roots: list[str] = Field(default_factory=list)
+    # comma-separated addresses (or networks) of reverse proxies whose X-Forwarded-For names the
+    # client; empty: no proxy is trusted and the client is the connection's peer (uvicorn alone
+    # would trust 127.0.0.1, letting any local client choose the address its failures count against)
+    trusted_proxies: list[str] = Field(default_factory=list)
     retry_after_s: int = 2
+
+    def child_limits(self, memory_mib: int):
+        from .workers.pool import ChildLimits  # here: config is imported by everything, the pool by few
+
+        return ChildLimits(memory_bytes=memory_mib << 20, silent_s=self.ready_deadline_s,
+                           memory_poll_s=self.memory_poll_s)
 
     @classmethod
     def from_env(cls, environ: dict[str, str] | None = None) -> "Settings":
@@ -56,14 +92,14 @@ class Settings(BaseModel):
             raw = environ.get(ENV_PREFIX + name.upper())
             if raw is None:
                 continue
-            values[name] = [p for p in raw.split(os.pathsep) if p] if name == "texture_roots" else raw
+            values[name] = [p for p in raw.split(LIST_SEPARATORS[name]) if p] if name in LIST_SEPARATORS else raw
         return cls.model_validate(values)
 
     def to_env(self) -> dict[str, str]:
         """The environment that reproduces these settings in a child process."""
         env = {}
         for name, value in self.model_dump().items():
-            env[ENV_PREFIX + name.upper()] = os.pathsep.join(value) if isinstance(value, list) else str(value)
+            env[ENV_PREFIX + name.upper()] = LIST_SEPARATORS[name].join(value) if isinstance(value, list) else str(value)
         return env
 
 

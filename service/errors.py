@@ -9,6 +9,8 @@ from fastapi.responses import JSONResponse
 from pydantic import ValidationError
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
+from .config import get_settings
+
 log = logging.getLogger(__name__)
 
 # codes answered with another status than 422 ("the document or request is wrong")
@@ -24,9 +26,16 @@ STATUS_BY_CODE = {
     "too_many_failures": 429,
     "queue_full": 503,
     "unavailable": 503,
+    # the server's own time limit (a generation or render job, an answer from the render pool):
+    # not the client's fault, and worth trying again
+    "timeout": 504,
     "internal_error": 500,
     "worker_crashed": 500,
 }
+
+
+# statuses that say "the server cannot now, try again": they always carry Retry-After
+RETRY_STATUSES = frozenset((503, 504))
 
 
 class ServiceError(Exception):
@@ -37,6 +46,8 @@ class ServiceError(Exception):
         super().__init__(message)
         self.code, self.message, self.where = code, message, where
         self.status = status or STATUS_BY_CODE.get(code, 422)
+        if self.status in RETRY_STATUSES and "Retry-After" not in (headers or {}):
+            headers = {**(headers or {}), "Retry-After": str(get_settings().retry_after_s)}
         self.element, self.target, self.headers = element, target, headers
 
     @classmethod
@@ -46,8 +57,8 @@ class ServiceError(Exception):
 
     @classmethod
     def from_job(cls, exc, retry_after_s: int) -> "ServiceError":
-        """A job back end's JobError: a full queue or an absent pool is worth trying again."""
-        retry = exc.code in ("queue_full", "unavailable")
+        """A job back end's JobError: a full queue, an absent pool or a time-out is worth trying again."""
+        retry = STATUS_BY_CODE.get(exc.code) in RETRY_STATUSES
         return cls(exc.code, exc.message, exc.where, headers={"Retry-After": str(retry_after_s)} if retry else None)
 
 

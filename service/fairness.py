@@ -18,10 +18,11 @@ back: only failures are rationed.
 Only the API's work is rationed (paths under /v1/): health probes, metrics scrapes and the
 editor's static files always answer. What counts as a failure is a 4xx the request caused, except 404 (asking for a shader or job that
 is not there is a normal question) and 429 (the ledger's own refusals must not deepen the debt, or
-a client could never get out of it). The address is the client as uvicorn reports it: behind a
-reverse proxy, the one its X-Forwarded-For names when uvicorn trusts the proxy (on 127.0.0.1 by
-default, elsewhere named in FORWARDED_ALLOW_IPS). Each API worker keeps its own ledger, so nothing is shared on
-the hot path; a client's allowance is per worker."""
+a client could never get out of it); the server's own failures (5xx: a time-out is 504, a hung or
+busy pool 503) are never the client's. The address is the connection's peer, or behind a reverse
+proxy the one its X-Forwarded-For names, believed only from the proxies the operator names in
+SHADERGEN_TRUSTED_PROXIES (none by default: see service/cli.py). Each API worker keeps its own
+ledger, so nothing is shared on the hot path; a client's allowance is per worker."""
 import asyncio
 import math
 import time

@@ -23,7 +23,8 @@ class Services:
         store = open_store(settings.cache, settings.cache_max_bytes)
         pool = ProcessPool("service.workers.gen_worker", size=settings.generate_processes,
                            queue_size=settings.generate_queue_size, timeout_s=settings.generate_timeout_s,
-                           env=settings.to_env())
+                           env=settings.to_env(), limits=settings.child_limits(settings.generate_memory_mib),
+                           name="generator")
         await pool.start()
         generation = GenerationService(pool, store, settings.retry_after_s)
         try:

@@ -204,8 +204,9 @@ class LocalJobs(JobBackend):
             reply, _ = await self._request({"op": "depth"}, QUERY_TIMEOUT_S)
         except JobError as exc:
             return False, exc.message
-        detail = f'{reply["alive"]}/{reply["workers"]} render processes, {reply["depth"]} jobs queued'
-        return reply["alive"] == reply["workers"], detail
+        detail = (f'{reply["alive"]}/{reply["workers"]} render processes, {reply["answering"]} answering '
+                  f'within {reply["deadline_s"]:g} s, {reply["depth"]} jobs queued')
+        return reply["alive"] == reply["workers"] and reply["answering"] > 0, detail
 
     async def close(self) -> None:
         for follower in list(self._followers):

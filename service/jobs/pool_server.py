@@ -16,7 +16,7 @@ import time
 from ..config import get_settings
 from ..metrics import PROGRAMS, RENDER_SECONDS
 from ..workers import protocol
-from ..workers.pool import Job, JobTimeout, PoolError, ProcessPool, QueueFull, WorkerCrashed
+from ..workers.pool import Job, JobTimeout, PoolError, ProcessPool, QueueFull, Unavailable, WorkerCrashed
 
 log = logging.getLogger("service.render_pool")
 
@@ -60,7 +60,8 @@ class PoolServer:
     async def handle(self, message: dict) -> tuple[dict, bytes]:
         op = message.get("op")
         if op == "depth":
-            return {"depth": self.pool.depth, "workers": self.pool.size, "alive": self.pool.alive}, b""
+            return {"depth": self.pool.depth, "workers": self.pool.size, "alive": self.pool.alive,
+                    "answering": self.pool.answering, "deadline_s": self.pool.limits.silent_s}, b""
         if op == "status":
             job = self.jobs.get(message.get("id", ""))
             if job is not None:
@@ -80,6 +81,8 @@ class PoolServer:
                                            attempts=message.get("attempts", 0))
                 except QueueFull as exc:
                     return {"error": {"code": "queue_full", "message": f"render queue full: {exc}"}}, b""
+                except Unavailable as exc:
+                    return {"error": {"code": "unavailable", "message": f"render refused: {exc}"}}, b""
                 self.jobs[job.id] = job
             if not message.get("wait"):
                 return {"id": job.id, "state": job.state}, b""
@@ -113,7 +116,8 @@ async def serve(socket_path: str, restarted: bool) -> None:
     settings = get_settings()
     pool = ProcessPool("service.workers.render_worker", size=settings.render_workers,
                        queue_size=settings.render_queue_size, timeout_s=settings.render_timeout_s,
-                       on_result=observe_render)
+                       on_result=observe_render, limits=settings.child_limits(settings.render_memory_mib),
+                       name="render")
     await pool.start(wait=False)
     server = PoolServer(pool, restarted)
     unix = await asyncio.start_unix_server(server.serve_connection, path=socket_path)

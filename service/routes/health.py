@@ -26,11 +26,14 @@ router.head("/healthz", response_model=Health, include_in_schema=False)(healthz)
 
 
 @router.get("/readyz", response_model=Readiness, responses={503: {"model": Readiness}},
-            summary="Readiness: 503 while the generator pool, the render pool or the cache is down")
+            summary="Readiness: 503 while the generator pool, the render pool or the cache is down, "
+                    "or no generator or render process answered its heartbeat within the deadline")
 async def readyz(services: ServicesDep) -> JSONResponse:
     pool = services.generation.pool
-    generator = ComponentReadiness(ready=pool.alive == pool.size,
-                                   detail=f"{pool.alive}/{pool.size} generator processes, {pool.depth} jobs queued")
+    # a child that runs but sends no heartbeat (stopped, wedged) is as good as none
+    generator = ComponentReadiness(ready=pool.alive == pool.size and pool.answering > 0,
+                                   detail=f"{pool.alive}/{pool.size} generator processes, {pool.answering} answering "
+                                          f"within {pool.limits.silent_s:g} s, {pool.depth} jobs queued")
     render_ready, render_detail = await services.jobs.health()
     try:
         await services.store.aread(READINESS_PROBE_KEY)
