@@ -1,0 +1,118 @@
+"""Issue 21, item 5: readiness from answers. A child stopped with SIGSTOP keeps its pipes open and
+looks alive; only its heartbeats stop. Readiness must go 503 within the deadline, requests must
+be refused at once (503 with Retry-After) rather than queued behind it, a job it held ends at its
+time limit as 504, and the pool recovers: on SIGCONT, or by replacing a child silent as long as a
+job's time limit."""
+import os
+import signal
+from contextlib import contextmanager
+
+import pytest
+
+from faults_testing import processes, readiness, wait_ready
+from service_testing import Server, assert_error, document, is_png, wait_until
+
+GEN, RENDER = "service.workers.gen_worker", "service.workers.render_worker"
+DEADLINE_S, GENERATE_TIMEOUT_S, RENDER_TIMEOUT_S = 2, 6, 8
+pytestmark = pytest.mark.usefixtures("renderer_required")
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    srv = Server(tmp_path_factory.mktemp("hung"), workers=1, render_workers=1, env={
+        "SHADERGEN_READY_DEADLINE_S": str(DEADLINE_S), "SHADERGEN_HEARTBEAT_S": "0.25",
+        "SHADERGEN_GENERATE_TIMEOUT_S": str(GENERATE_TIMEOUT_S), "SHADERGEN_RENDER_TIMEOUT_S": str(RENDER_TIMEOUT_S)})
+    yield srv
+    srv.close()
+
+
+def one(server, module: str) -> int:
+    pids = wait_until(lambda: processes(server, module), 60, module)
+    assert len(pids) == 1, pids
+    return pids[0]
+
+
+@contextmanager
+def stopped(pid: int):
+    os.kill(pid, signal.SIGSTOP)
+    try:
+        yield
+    finally:
+        try:
+            os.kill(pid, signal.SIGCONT)
+        except ProcessLookupError:
+            pass  # replaced meanwhile
+
+
+def not_ready(client, component: str) -> dict:
+    """Readiness 503 with `component` not ready; the wait is bounded by a few deadlines."""
+    body = wait_until(lambda: (r := readiness(client))[0] == 503 and not r[1][component]["ready"] and r[1],
+                      5 * DEADLINE_S, f"{component} not ready", pause_s=0.05)
+    assert "0 answering" in body[component]["detail"], body
+    return body
+
+
+def assert_refused_now(response) -> None:
+    assert_error(response, 503, "unavailable")
+    assert int(response.headers["Retry-After"]) > 0
+    assert "answered within" in response.json()["error"]["message"]
+
+
+def generate(client, value: float):
+    return client.post("/v1/generate", json={"document": document("ramp.mtlx").replace("0.5", repr(value))})
+
+
+def test_stopped_generator_fails_fast_and_recovers_on_sigcont_or_replacement(server):
+    client = server.client
+    wait_ready(client)
+    child = one(server, GEN)
+    with stopped(child):
+        body = not_ready(client, "generator")
+        assert body["render"]["ready"] and body["cache"]["ready"], body
+        assert_refused_now(generate(client, 0.211))
+    wait_ready(client)  # SIGCONT: heard from again
+    assert one(server, GEN) == child
+    assert generate(client, 0.212).status_code == 200
+    with stopped(child):
+        not_ready(client, "generator")
+        # silent as long as a job's time limit: killed and replaced
+        wait_until(lambda: child not in processes(server, GEN), DEADLINE_S + GENERATE_TIMEOUT_S + 30, "replacement")
+    wait_ready(client)
+    assert one(server, GEN) != child
+    assert generate(client, 0.213).status_code == 200
+
+
+def thumbnail(client, value: float, size: int = 32, **params):
+    """A thumbnail of a material no other request drew."""
+    return client.post("/v1/thumbnails", params=params,
+                       json={"document": document("ramp.mtlx").replace("0.5", repr(value)), "size": size})
+
+
+def test_stopped_render_worker_fails_fast_its_job_times_out_504_and_it_is_replaced(server):
+    client = server.client
+    wait_ready(client)
+    worker = one(server, RENDER)
+    with stopped(worker):
+        not_ready(client, "render")
+        assert_refused_now(thumbnail(client, 0.311))
+    wait_ready(client)
+    assert one(server, RENDER) == worker
+    r = thumbnail(client, 0.312)
+    assert r.status_code == 200 and is_png(r.content, 32), r.text
+    # stopped in the middle of a job: the job ends at its time limit, a server-side 504
+    accepted = thumbnail(client, 0.313, size=1024, **{"async": "true"})
+    assert accepted.status_code == 202, accepted.text
+    job = accepted.json()["id"]
+    wait_until(lambda: client.get(f"/v1/jobs/{job}").json()["state"] == "running", 60, "running", pause_s=0.01)
+    with stopped(worker):
+        not_ready(client, "render")
+        status = wait_until(lambda: (s := client.get(f"/v1/jobs/{job}").json())["state"] == "failed" and s,
+                            RENDER_TIMEOUT_S + 30, "the job's time limit")
+    assert status["error"]["code"] == "timeout", status
+    r = client.get(f"/v1/jobs/{job}/thumbnail")
+    assert_error(r, 504, "timeout")
+    assert int(r.headers["Retry-After"]) > 0
+    wait_ready(client)
+    assert one(server, RENDER) != worker
+    r = thumbnail(client, 0.314)
+    assert r.status_code == 200 and is_png(r.content, 32), r.text
