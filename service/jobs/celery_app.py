@@ -5,6 +5,9 @@ import os
 
 import redis
 from celery import Celery
+from celery.signals import worker_process_init, worker_process_shutdown
+
+from .celery_child import ProcessGuard
 
 TASK = "shadergen.render_thumbnail"
 QUEUE = "shadergen-render"
@@ -40,6 +43,9 @@ def redelivery_options(render_timeout_s: float) -> dict:
 def register_tasks(app: Celery, settings, processes: int) -> None:
     attempts = redis.Redis.from_url(settings.broker)
     renderer = None  # one per worker process, made on its first job: EGL contexts do not survive fork
+    guard = ProcessGuard(attempts, settings.render_memory_mib << 20, settings.memory_poll_s)
+    worker_process_init.connect(lambda **_: guard.start(), weak=False)
+    worker_process_shutdown.connect(lambda **_: guard.stop(), weak=False)
 
     @app.task(name=TASK, bind=True)
     def render_thumbnail(task, request: dict) -> dict:
@@ -47,6 +53,9 @@ def register_tasks(app: Celery, settings, processes: int) -> None:
         key = ATTEMPTS_KEY + task.request.id
         attempt = attempts.incr(key)
         attempts.expire(key, ATTEMPTS_TTL_S)
+        too_large = guard.over_limit_before(task.request.id) if attempt > 1 else None
+        if too_large is not None:  # its last attempt went over the memory limit: not tried again
+            return {"error": {"code": "too_large", "message": too_large, "where": None}}
         if attempt > 2:
             return {"error": {"code": "worker_crashed",
                               "message": "render worker died on this job twice; giving up", "where": None}}
@@ -60,7 +69,11 @@ def register_tasks(app: Celery, settings, processes: int) -> None:
             renderer = Renderer(texture_roots=settings.texture_roots, search_paths=settings.texture_roots,
                                 max_programs=programs_kept(settings), lp_threads=lp_threads_for(processes))
 
-        reply, png = render(renderer, request)
+        guard.task_id = task.request.id
+        try:
+            reply, png = render(renderer, request)
+        finally:
+            guard.task_id = None
         if "error" in reply:
             return reply
         return {**reply, "png": base64.b64encode(png).decode(), "attempt": attempt}

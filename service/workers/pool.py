@@ -28,6 +28,7 @@ import uuid
 from dataclasses import dataclass, field
 
 from . import protocol, scratch
+from .memory import resident_bytes
 from .child import HEARTBEAT
 
 log = logging.getLogger(__name__)
@@ -143,12 +144,9 @@ class ChildProcess:
         limit = self.limits.memory_bytes
         if not limit:
             return
-        statm, page = f"/proc/{self.proc.pid}/statm", os.sysconf("SC_PAGE_SIZE")
         while self.proc.returncode is None:
-            try:
-                with open(statm) as f:
-                    rss = int(f.read().split()[1]) * page
-            except (OSError, ValueError, IndexError):
+            rss = resident_bytes(self.proc.pid)
+            if rss is None:
                 return  # reaped meanwhile
             if rss > limit:
                 self.over_memory = rss
