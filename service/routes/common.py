@@ -4,7 +4,7 @@ from fastapi import Response
 from ..models import ErrorResponse
 
 # every route may answer these with the contract's error object
-ERRORS = {status: {"model": ErrorResponse} for status in (400, 403, 404, 408, 413, 415, 422, 503)}
+ERRORS = {status: {"model": ErrorResponse} for status in (400, 403, 404, 408, 413, 415, 422, 503, 504)}
 
 JSON = "application/json"
 USD_TYPES = {"model/vnd.usda": "usda", "model/vnd.usdz+zip": "usdz"}  # media type -> document format
