@@ -28,7 +28,7 @@ import uuid
 from dataclasses import dataclass, field
 
 from . import protocol, scratch
-from .memory import resident_bytes
+from . import memory
 from .child import HEARTBEAT
 
 log = logging.getLogger(__name__)
@@ -98,6 +98,7 @@ class ChildProcess:
         self.folder: str | None = None
         self.last_answer = 0.0
         self.over_memory: int | None = None  # the RSS the watchdog killed it at
+        self.busy = False  # a job was sent and its reply has not come
         self._replies: asyncio.Queue = asyncio.Queue()
         self._answered = asyncio.Event()
         self._watchers: list[asyncio.Task] = []
@@ -145,7 +146,7 @@ class ChildProcess:
         if not limit:
             return
         while self.proc.returncode is None:
-            rss = resident_bytes(self.proc.pid)
+            rss = memory.resident_bytes(self.proc.pid)
             if rss is None:
                 return  # reaped meanwhile
             if rss > limit:
@@ -162,8 +163,16 @@ class ChildProcess:
 
     @property
     def answering(self) -> bool:
-        """Alive, and heard from (a heartbeat or a reply) within the silence deadline."""
-        return self.alive and time.monotonic() - self.last_answer <= self.limits.silent_s
+        """Alive, and heard from (a heartbeat or a reply) within the silence deadline; or busy
+        with a job and not stopped. A job that holds the GIL in C delays the heartbeat thread
+        (compiling a complete standard_surface on llvmpipe: 4.1 s without one, measured): such a
+        child is at work, bounded by the job's time limit, not hung. Stopped (SIGSTOP, a
+        debugger) it answers nothing and is not."""
+        if not self.alive:
+            return False
+        if time.monotonic() - self.last_answer <= self.limits.silent_s:
+            return True
+        return self.busy and not memory.stopped(self.proc.pid)
 
     async def wait_answering(self, timeout_s: float) -> bool:
         """Wait until the child is heard from again; False if it is not within `timeout_s`."""
@@ -177,13 +186,14 @@ class ChildProcess:
     async def wait_silent(self) -> None:
         """Return once the child has been silent past the deadline."""
         while self.answering:
-            await asyncio.sleep(self.last_answer + self.limits.silent_s - time.monotonic() + 0.01)
+            await asyncio.sleep(max(self.last_answer + self.limits.silent_s - time.monotonic(), 0.1) + 0.01)
 
     async def call(self, message: dict, payload: bytes, timeout_s: float) -> tuple[dict, bytes]:
         assert self.proc is not None
         try:
             if not self.alive:
                 raise ConnectionError
+            self.busy = True
             self.proc.stdin.write(protocol.encode(message, payload))
             await self.proc.stdin.drain()
             return await asyncio.wait_for(self._reply(), timeout_s)
@@ -196,6 +206,8 @@ class ChildProcess:
             if self.over_memory is not None:
                 raise MemoryExceeded(self.limits.memory_bytes, self.over_memory) from None
             raise WorkerCrashed(f"the worker process died ({_describe_exit(status)})") from None
+        finally:
+            self.busy = False
 
     async def kill(self) -> int | None:
         """Kill (if still running), reap, and remove the child's temporary folder."""

@@ -99,8 +99,10 @@ def test_stopped_render_worker_fails_fast_its_job_times_out_504_and_it_is_replac
     assert one(server, RENDER) == worker
     r = thumbnail(client, 0.312)
     assert r.status_code == 200 and is_png(r.content, 32), r.text
-    # stopped in the middle of a job: the job ends at its time limit, a server-side 504
-    accepted = thumbnail(client, 0.313, size=1024, **{"async": "true"})
+    # stopped in the middle of a job (the first of its topology: compiled, then drawn at 1024 px,
+    # seconds of work): the job ends at its time limit, a server-side 504
+    accepted = client.post("/v1/thumbnails", params={"async": "true"},
+                           json={"document": document("marble.mtlx"), "size": 1024})
     assert accepted.status_code == 202, accepted.text
     job = accepted.json()["id"]
     wait_until(lambda: client.get(f"/v1/jobs/{job}").json()["state"] == "running", 60, "running", pause_s=0.01)
