@@ -10,8 +10,21 @@ ENV_PREFIX = "SHADERGEN_"
 LIST_SEPARATORS = {"texture_roots": os.pathsep, "trusted_proxies": ","}  # as PATH, and as uvicorn's FORWARDED_ALLOW_IPS
 
 
+# where a container's memory limit is read (cgroup v2, v1): the machine's memory is not the container's
+CGROUP_MEMORY_LIMITS = ("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes")
+
+
 def _physical_mib() -> int:
-    return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") >> 20
+    """The memory this process may use: the machine's, or its container's limit if smaller."""
+    limit = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    for path in CGROUP_MEMORY_LIMITS:
+        try:
+            text = Path(path).read_text().strip()
+        except OSError:
+            continue
+        if text.isdigit():  # "max" (v2) or a huge number (v1) when there is no limit
+            limit = min(limit, int(text))
+    return limit >> 20
 
 
 def _default_generate_memory_mib() -> int:
@@ -21,8 +34,9 @@ def _default_generate_memory_mib() -> int:
 
 
 def _default_render_memory_mib() -> int:
-    # a 1024 px thumbnail peaks at about 310 MiB resident on llvmpipe
-    return min(2048, _physical_mib() // 4)
+    # resident at the peak, on llvmpipe: a 1024 px thumbnail 310 MB; one whose texture is a 4096 px
+    # PNG 1.4 GB (decoded to float32, with its mipmaps), so two such textures fit
+    return min(3072, _physical_mib() // 4)
 
 
 def _default_cache_url() -> str:
@@ -99,7 +113,8 @@ class Settings(BaseModel):
         """The environment that reproduces these settings in a child process."""
         env = {}
         for name, value in self.model_dump().items():
-            env[ENV_PREFIX + name.upper()] = LIST_SEPARATORS[name].join(value) if isinstance(value, list) else str(value)
+            text = LIST_SEPARATORS[name].join(value) if isinstance(value, list) else str(value)
+            env[ENV_PREFIX + name.upper()] = text
         return env
 
 

@@ -16,10 +16,10 @@ waits as told, never notices the ledger. A request served on a token that did no
 back: only failures are rationed.
 
 Only the API's work is rationed (paths under /v1/): health probes, metrics scrapes and the
-editor's static files always answer. What counts as a failure is a 4xx the request caused, except 404 (asking for a shader or job that
-is not there is a normal question) and 429 (the ledger's own refusals must not deepen the debt, or
-a client could never get out of it); the server's own failures (5xx: a time-out is 504, a hung or
-busy pool 503) are never the client's. The address is the connection's peer, or behind a reverse
+editor's static files always answer. What counts as a failure is a 4xx the request caused, except
+404 (asking for a shader or job that is not there is a normal question) and 429 (the ledger's own
+refusals must not deepen the debt, or a client could never get out of it); the server's own
+failures (5xx: a time-out is 504, a hung or busy pool 503) are never the client's. The address is the connection's peer, or behind a reverse
 proxy the one its X-Forwarded-For names, believed only from the proxies the operator names in
 SHADERGEN_TRUSTED_PROXIES (none by default: see service/cli.py). Each API worker keeps its own
 ledger, so nothing is shared on the hot path; a client's allowance is per worker."""

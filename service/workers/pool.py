@@ -27,8 +27,7 @@ import time
 import uuid
 from dataclasses import dataclass, field
 
-from . import protocol, scratch
-from . import memory
+from . import memory, protocol, scratch
 from .child import HEARTBEAT
 
 log = logging.getLogger(__name__)
