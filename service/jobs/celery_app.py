@@ -43,7 +43,7 @@ def redelivery_options(render_timeout_s: float) -> dict:
 def register_tasks(app: Celery, settings, processes: int) -> None:
     attempts = redis.Redis.from_url(settings.broker)
     renderer = None  # one per worker process, made on its first job: EGL contexts do not survive fork
-    guard = ProcessGuard(attempts, settings.render_memory_mib << 20, settings.memory_poll_s)
+    guard = ProcessGuard(attempts, settings)
     worker_process_init.connect(lambda **_: guard.start(), weak=False)
     worker_process_shutdown.connect(lambda **_: guard.stop(), weak=False)
 
@@ -69,11 +69,11 @@ def register_tasks(app: Celery, settings, processes: int) -> None:
             renderer = Renderer(texture_roots=settings.texture_roots, search_paths=settings.texture_roots,
                                 max_programs=programs_kept(settings), lp_threads=lp_threads_for(processes))
 
-        guard.task_id = task.request.id
+        guard.begin(task.request.id)
         try:
             reply, png = render(renderer, request)
         finally:
-            guard.task_id = None
+            guard.end()
         if "error" in reply:
             return reply
         return {**reply, "png": base64.b64encode(png).decode(), "attempt": attempt}

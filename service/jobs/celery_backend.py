@@ -13,6 +13,7 @@ from kombu.exceptions import OperationalError
 
 from . import JobBackend, JobError, JobState, RenderResult
 from .celery_app import QUEUE, TASK, make_celery
+from .celery_child import ALIVE_KEY, PROCESSES_KEY
 
 JOB_KEY = "shadergen:job:"
 JOB_TTL_S = 3600
@@ -36,10 +37,35 @@ class CeleryJobs(JobBackend):
         self.max_depth = settings.render_queue_size
         # queueing, a lost worker's job coming back (twice the time limit), and the render itself
         self.wait_s = settings.render_timeout_s * 4
+        self.deadline_s = settings.ready_deadline_s
 
     async def depth(self) -> int:
         with broker_errors():
             return await self.redis.llen(QUEUE)
+
+    async def answering_processes(self) -> int:
+        """Render processes whose heartbeat has not expired (celery_child.py); the names of the
+        others are dropped from the set."""
+        names = await self.redis.smembers(PROCESSES_KEY)
+        if not names:
+            return 0
+        alive = await self.redis.mget([ALIVE_KEY.encode() + name for name in names])
+        dead = [name for name, value in zip(names, alive) if value is None]
+        if dead:
+            await self.redis.srem(PROCESSES_KEY, *dead)
+        return len(names) - len(dead)
+
+    async def health(self) -> tuple[bool, str]:
+        """Ready while the broker answers and some render process sent a heartbeat: jobs still
+        queue without one (a worker may be on its way), but nothing would render them now."""
+        try:
+            with broker_errors():
+                depth = await self.depth()
+                answering = await self.answering_processes()
+        except JobError as exc:
+            return False, exc.message
+        return answering > 0, (f"{answering} render processes answering within {self.deadline_s:g} s, "
+                               f"{depth} jobs queued")
 
     async def submit(self, request: dict) -> str:
         if await self.depth() >= self.max_depth:

@@ -1,6 +1,11 @@
 """What each Celery prefork process of `shadergen worker` sets up for itself when it starts: a
 private temporary folder (see service/workers/scratch.py; the folders of processes no longer
-running are removed first) and a watchdog of its own resident memory.
+running are removed first), heartbeats on Redis, and a watchdog of its own resident memory.
+
+Heartbeats: a key per process that expires unless renewed, `ready_deadline_s` after the last
+beat while idle, and only at the job's time limit while a job runs (a job holding the GIL in C
+delays the beats; Celery kills a job at its time limit anyway), and the process's name in a set
+that the API reads for its readiness (celery_backend.answering_processes).
 
 Celery's prefork pool has no per-process memory bound that acts during a task
 (worker_max_memory_per_child replaces a process only after its task ends), so the watchdog is a
@@ -12,8 +17,10 @@ allocates without releasing it is seen when it returns (the local pool's watchdo
 process and has no such blind spot)."""
 import json
 import logging
+import math
 import os
 import signal
+import socket
 import tempfile
 import threading
 import time
@@ -25,36 +32,79 @@ log = logging.getLogger(__name__)
 
 TOO_LARGE_KEY = "shadergen:too_large:"
 TOO_LARGE_TTL_S = 3600
+ALIVE_KEY = "shadergen:render-alive:"  # + a process's name: present while it beats
+PROCESSES_KEY = "shadergen:render-processes"  # the names of every process that ever beat, until seen dead
+
+
+def process_name(pid: int) -> str:
+    return f"{socket.gethostname()}:{pid}"
 
 
 class ProcessGuard:
-    def __init__(self, redis_client, memory_bytes: int, poll_s: float):
-        self.redis, self.memory_bytes, self.poll_s = redis_client, memory_bytes, poll_s
+    def __init__(self, redis_client, settings):
+        self.redis = redis_client
+        self.memory_bytes, self.poll_s = settings.render_memory_mib << 20, settings.memory_poll_s
+        self.heartbeat_s = settings.heartbeat_s
+        self.idle_ttl_s = max(1, math.ceil(settings.ready_deadline_s))
+        self.busy_ttl_s = math.ceil(settings.render_timeout_s + settings.ready_deadline_s)
         self.folder: str | None = None
+        self.name = ""
         self.task_id: str | None = None  # the task running now, named in the record if it goes over
 
     def start(self) -> None:
         """In the prefork process, before its first task."""
-        scratch.sweep()
+        dead = scratch.sweep()
         self.folder = scratch.make()
         os.environ.update(scratch.env_for(self.folder))
         tempfile.tempdir = self.folder  # tempfile read TMPDIR once already, in the parent
-        if self.memory_bytes:
-            threading.Thread(target=self._watch, name="memory-watchdog", daemon=True).start()
+        self.name = process_name(os.getpid())
+        # a process killed mid-job left a heartbeat that lasts to the job's time limit: not alive
+        self._forget(*(process_name(pid) for pid in dead))
+        threading.Thread(target=self._watch, name="process-guard", daemon=True).start()
 
     def stop(self) -> None:
         scratch.remove(self.folder)
+        self._forget(self.name)
+
+    def _forget(self, *names: str) -> None:
+        if not names:
+            return
+        try:
+            self.redis.delete(*(ALIVE_KEY + name for name in names))
+        except Exception:  # Redis away: the keys expire on their own
+            pass
+
+    def begin(self, task_id: str) -> None:
+        self.task_id = task_id
+        self.beat()
+
+    def end(self) -> None:
+        self.task_id = None
+        self.beat()
+
+    def beat(self) -> None:
+        ttl_s = self.busy_ttl_s if self.task_id else self.idle_ttl_s
+        try:
+            with self.redis.pipeline() as pipe:
+                pipe.set(ALIVE_KEY + self.name, self.task_id or "", ex=ttl_s).sadd(PROCESSES_KEY, self.name).execute()
+        except Exception:  # Redis away: readiness says the broker is down anyway
+            pass
 
     def _watch(self) -> None:
+        last_beat = 0.0
         while True:
-            rss = memory.resident_bytes()
+            rss = memory.resident_bytes() if self.memory_bytes else None
             if rss is not None and rss > self.memory_bytes:
                 self._die(rss)
-            time.sleep(self.poll_s)
+            if time.monotonic() - last_beat >= self.heartbeat_s:
+                self.beat()
+                last_beat = time.monotonic()
+            time.sleep(min(self.poll_s, self.heartbeat_s))
 
     def _die(self, rss: int) -> None:
         message = too_large(MemoryExceeded(self.memory_bytes, rss), "render")["message"]
         log.warning("render process %s: %s; killed", os.getpid(), message)
+        self._forget(self.name)
         if self.task_id is not None:
             try:
                 self.redis.set(TOO_LARGE_KEY + self.task_id, json.dumps(message), ex=TOO_LARGE_TTL_S)

@@ -272,9 +272,9 @@ class ProcessPool:
 
     async def start(self, wait: bool = True) -> None:
         """wait: return once every child has started (and loaded what it loads first)."""
-        removed = await asyncio.to_thread(scratch.sweep)  # what children of killed pools left behind
-        if removed:
-            log.info("removed %d temporary folders of processes no longer running", removed)
+        dead = await asyncio.to_thread(scratch.sweep)  # what children of killed pools left behind
+        if dead:
+            log.info("removed the temporary folders of %d processes no longer running", len(set(dead)))
         self._tasks = [asyncio.create_task(self._supervise(i)) for i in range(self.size)]
         self._tasks.append(asyncio.create_task(self._refuse_while_hung()))
         if wait:

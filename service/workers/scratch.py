@@ -41,12 +41,12 @@ def _running(pid: int) -> bool:
     return True
 
 
-def sweep() -> int:
-    """Remove the folders whose owner is no longer running; returns how many."""
-    removed = 0
+def sweep() -> list[int]:
+    """Remove the folders whose owner is no longer running; returns those owners."""
+    owners = []
     for folder in Path(tempfile.gettempdir()).glob(PREFIX + "*"):
         owner = folder.name[len(PREFIX):].split("-", 1)[0]
         if owner.isdigit() and not _running(int(owner)):
             shutil.rmtree(folder, ignore_errors=True)
-            removed += 1
-    return removed
+            owners.append(int(owner))
+    return owners

@@ -149,6 +149,10 @@ def test_redis_down_serves_uncached_and_answers_503_where_it_must(redis_server, 
     wait_ready(client)
     assert generate(client, uncached(0.76))["cached"] is False
     assert generate(client, uncached(0.76))["cached"] is True  # the cache is used again
-    wait_ready(celery_server.client)
+    # the broker and the cache are back; no `shadergen worker` runs beside this server, so its
+    # render back end is not ready (no render process sends heartbeats), and says so
+    body = wait_until(lambda: (r := readiness(celery_server.client))[1]["cache"]["ready"] and r[1], 30, "cache back")
+    assert body["generator"]["ready"] and not body["render"]["ready"], body
+    assert body["render"]["detail"].startswith("0 render processes answering"), body
     for srv in (redis_server, celery_server):
         assert "Traceback" not in srv.log_text()

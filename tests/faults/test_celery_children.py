@@ -1,18 +1,21 @@
-"""Issue 21, item 2, for Celery's render workers (`shadergen worker`): a render over the memory
-limit answers 413 `too_large` (its process killed, replaced, the task not run a third time), and a
-process killed mid-job (SIGKILL) leaves nothing in its temporary folder once a new one starts."""
+"""Issue 21, items 2 and 5, for Celery's render workers (`shadergen worker`): a render over the
+memory limit answers 413 `too_large` (its process killed, replaced, the task not run again), a
+process killed mid-job (SIGKILL) leaves nothing in its temporary folder once a new one starts, and
+readiness follows the processes' heartbeats (SIGSTOP: 503 within the deadline; SIGCONT: ready)."""
+import os
+import signal
 import subprocess
 import sys
 import threading
 
 import pytest
 
-from faults_testing import kill
+from faults_testing import kill, readiness, wait_ready
 from service_testing import (DOCS, ROOT, RedisServer, Server, assert_error, cmdline, descendants, document,
                              is_png, stop, wait_until)
 from test_child_memory import USDZ, big_texture, temporary_files, textured_usdz
 
-RENDER_MIB = 600
+RENDER_MIB, DEADLINE_S = 600, 2
 pytestmark = pytest.mark.usefixtures("renderer_required")
 
 
@@ -27,7 +30,7 @@ def stack(tmp_path_factory):
     redis_server = RedisServer(tmp)
     env = {"SHADERGEN_BROKER": redis_server.url, "SHADERGEN_CACHE": redis_server.url,
            "SHADERGEN_RENDER_MEMORY_MIB": str(RENDER_MIB), "SHADERGEN_TEXTURE_ROOTS": str(textures),
-           "TMPDIR": str(tmp / "tmp")}
+           "TMPDIR": str(tmp / "tmp"), "SHADERGEN_READY_DEADLINE_S": str(DEADLINE_S), "SHADERGEN_HEARTBEAT_S": "0.25"}
     srv = Server(tmp, workers=1, env=env)
     srv.tmp = tmp / "tmp"
     log = tmp / "worker.log"
@@ -83,3 +86,20 @@ def test_celery_render_process_killed_mid_job_leaves_nothing(stack, tmp_path):
     # tried again on a fresh process, which goes over the limit decoding the 4096 px texture
     assert_error(answer["r"], 413, "too_large")
     wait_until(lambda: not temporary_files(stack), 30, "the killed process's files removed")
+
+
+def test_celery_readiness_follows_the_render_processes_heartbeats(stack):
+    client = stack.client
+    body = wait_ready(client)
+    assert body["render"]["detail"].startswith("1 render processes answering"), body
+    (process,) = render_processes(stack)
+    os.kill(process, signal.SIGSTOP)
+    try:
+        body = wait_until(lambda: (r := readiness(client))[0] == 503 and r[1], 5 * DEADLINE_S, "readiness 503")
+        assert not body["render"]["ready"] and body["render"]["detail"].startswith("0 render processes"), body
+        assert body["generator"]["ready"] and body["cache"]["ready"], body
+    finally:
+        os.kill(process, signal.SIGCONT)
+    wait_ready(client)
+    r = client.post("/v1/thumbnails", json={"document": document("textured.mtlx"), "size": 24}, timeout=180)
+    assert r.status_code == 200 and is_png(r.content, 24), r.text
