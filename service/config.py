@@ -4,7 +4,7 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, Field, model_validator
 
 ENV_PREFIX = "SHADERGEN_"
 LIST_SEPARATORS = {"texture_roots": os.pathsep, "trusted_proxies": ","}  # as PATH, and as uvicorn's FORWARDED_ALLOW_IPS
@@ -91,6 +91,14 @@ class Settings(BaseModel):
     # would trust 127.0.0.1, letting any local client choose the address its failures count against)
     trusted_proxies: list[str] = Field(default_factory=list)
     retry_after_s: int = 2
+
+    @model_validator(mode="after")
+    def _deadline_spans_heartbeats(self) -> "Settings":
+        # a deadline within two heartbeats would call a healthy child silent between two of them
+        if self.ready_deadline_s < 2 * self.heartbeat_s:
+            raise ValueError(f"ready_deadline_s ({self.ready_deadline_s:g}) must be at least twice "
+                             f"heartbeat_s ({self.heartbeat_s:g})")
+        return self
 
     def child_limits(self, memory_mib: int):
         from .workers.pool import ChildLimits  # here: config is imported by everything, the pool by few

@@ -120,3 +120,13 @@ def test_a_childs_temporary_folder_goes_with_it_and_dead_owners_folders_are_swep
         assert not any(Path(tempfile.gettempdir()).glob(f"{scratch.PREFIX}{os.getpid()}-*"))
 
     run(main())
+
+
+def test_a_readiness_deadline_within_two_heartbeats_is_refused():
+    from pydantic import ValidationError
+
+    from service.config import Settings
+
+    with pytest.raises(ValidationError, match="at least twice heartbeat_s"):
+        Settings.from_env({"SHADERGEN_HEARTBEAT_S": "1", "SHADERGEN_READY_DEADLINE_S": "1.5"})
+    assert Settings.from_env({"SHADERGEN_HEARTBEAT_S": "0.25", "SHADERGEN_READY_DEADLINE_S": "2"}).ready_deadline_s == 2
