@@ -190,6 +190,8 @@ class ComponentReadiness(BaseModel):
 
 class Readiness(BaseModel):
     status: Literal["ready", "not_ready"]
-    generator: ComponentReadiness = Field(description="this API worker's generator processes")
-    render: ComponentReadiness = Field(description="the render pool (or the Celery broker)")
+    generator: ComponentReadiness = Field(description="this API worker's generator processes: all running, and "
+                                          "one heard from (a heartbeat) within the readiness deadline")
+    render: ComponentReadiness = Field(description="the render pool (or the Celery broker), and a render process "
+                                       "heard from within the readiness deadline")
     cache: ComponentReadiness = Field(description="the shared cache answers a lookup")
