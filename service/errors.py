@@ -10,6 +10,7 @@ from pydantic import ValidationError
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from .config import get_settings
+from .workers.pool import JobTimeout, PoolError, QueueFull, WorkerCrashed
 
 log = logging.getLogger(__name__)
 
@@ -81,6 +82,12 @@ def from_validation_error(exc: RequestValidationError | ValidationError) -> Serv
     return ServiceError("invalid_request", first.get("msg", "invalid request"), where)
 
 
+def from_pool_error(exc: PoolError) -> ServiceError:
+    code = ("timeout" if isinstance(exc, JobTimeout) else "queue_full" if isinstance(exc, QueueFull)
+            else "worker_crashed" if isinstance(exc, WorkerCrashed) else "unavailable")
+    return ServiceError(code, str(exc))
+
+
 def install_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(ServiceError)
     async def service_error(_: Request, exc: ServiceError):
@@ -89,6 +96,12 @@ def install_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(RequestValidationError)
     async def validation_error(_: Request, exc: RequestValidationError):
         return error_response(from_validation_error(exc))
+
+    @app.exception_handler(PoolError)
+    async def pool_error(_: Request, exc: PoolError):
+        # a pool's failure that no service turned into its own error (the node definitions,
+        # asked of a generator once): the server's trouble, never a 500 for a full or hung pool
+        return error_response(from_pool_error(exc))
 
     @app.exception_handler(StarletteHTTPException)
     async def http_error(_: Request, exc: StarletteHTTPException):

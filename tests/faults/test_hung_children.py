@@ -70,6 +70,7 @@ def test_stopped_generator_fails_fast_and_recovers_on_sigcont_or_replacement(ser
         body = not_ready(client, "generator")
         assert body["render"]["ready"] and body["cache"]["ready"], body
         assert_refused_now(generate(client, 0.211))
+        assert_refused_now(client.get("/v1/nodedefs"))  # asked of a generator once, on first use
     wait_ready(client)  # SIGCONT: heard from again
     assert one(server, GEN) == child
     assert generate(client, 0.212).status_code == 200
