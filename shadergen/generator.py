@@ -6,8 +6,6 @@ the node calls in topological order (nodes scoped to a conditional branch inside
 assign the shader outputs, then assemble each stage's text: header, type definitions, variable
 blocks, functions, main. The graph arrives finished (passes/): emission only walks it.
 """
-import re
-
 from .errors import ShaderGenError
 from .features import LIGHTS_FEATURE, environment_macros, graph_features, resolve
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
@@ -15,30 +13,51 @@ from .library import Scope
 from .nodes.lobes import closure_nodes, emit_lobes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
+from .targets.names import identifier
 
 CLOSURES = ("BSDF", "EDF", "VDF")
 CONDITIONS = {"ifgreater": "greater", "ifgreatereq": "greatereq", "ifequal": "equal"}
 
 
 class Namer:
-    """One namer per shader: valid identifiers, no reserved words or gl_ prefix, no clashes."""
+    """One namer per shader (naga's shape): every name the code declares is an identifier of every
+    target (targets/names.py), no reserved word, no clash. Fresh names (`__call__`: uniforms,
+    outputs, functions, locals, each a new variable) also keep off the prefixes the targets' own
+    names use; claimed names (`claim`: the seed's uniforms, app data and vertex data, which several
+    nodes ask for by one name) are the same variable for the same wanted name."""
 
-    def __init__(self, reserved: set[str], reserved_prefixes: tuple[str, ...]):
+    def __init__(self, reserved: frozenset[str], reserved_prefixes: tuple[str, ...],
+                 reserved_suffixes: tuple[str, ...] = ()):
         self.reserved = reserved
         self.reserved_prefixes = reserved_prefixes
+        self.reserved_suffixes = reserved_suffixes
         self.used: set[str] = set()
+        self.claimed: dict[str, str] = {}  # wanted -> its name, for claimed names
+        self.claimed_used: set[str] = set()
 
     def __call__(self, wanted: str) -> str:
-        # most names are identifiers already (node and input names): only the others are cleaned
-        name = wanted if wanted.isascii() and wanted.isidentifier() else re.sub(r"\W", "_", wanted) or "v"
-        if name[0].isdigit() or name.startswith(self.reserved_prefixes):
+        name = identifier(wanted)
+        if name.startswith(self.reserved_prefixes):
             name = "v_" + name
-        base, n = name, 1
-        while name in self.used or name in self.reserved:
-            name = f"{base}{n}"
-            n += 1
-        self.used.add(name)
-        return name
+        if name.endswith(self.reserved_suffixes):
+            name += "_v"
+        return _unique(name, lambda n: n in self.used or n in self.reserved, self.used)
+
+    def claim(self, wanted: str) -> str:
+        # a claimed name is the seed's (`u_time`, RESERVED for fresh names) or prefixed by its kind
+        # (`i_geomprop_<name>`, `texcoord_0`): no keyword, only other claimed names to avoid
+        if wanted not in self.claimed:
+            self.claimed[wanted] = _unique(identifier(wanted), self.claimed_used.__contains__, self.claimed_used)
+        return self.claimed[wanted]
+
+
+def _unique(name: str, taken, used: set[str]) -> str:
+    base, n = name, 1
+    while taken(name):
+        name = f"{base}{n}"
+        n += 1
+    used.add(name)
+    return name
 
 
 class EmitContext:
@@ -50,7 +69,7 @@ class EmitContext:
         self.syntax = target.syntax
         self.scope = scope
         self.stages = {VERTEX: Stage(VERTEX), PIXEL: Stage(PIXEL)}
-        self.namer = Namer(self.syntax.reserved, self.syntax.reserved_prefixes)
+        self.namer = Namer(self.syntax.reserved, self.syntax.reserved_prefixes, self.syntax.reserved_suffixes)
         self.closure = None  # shading context for BSDF nodes (see nodes/base.py)
         self.vars: dict[int, str] = {}  # id(Output | Input | Socket) -> expression naming its value
         self.used_types: set[str] = set()
@@ -129,18 +148,21 @@ class EmitContext:
         return self.stages[stage].blocks[block].add(var)
 
     def private_uniform(self, name: str, type_name: str, stages=(PIXEL,)) -> str:
+        name = self.namer.claim(name)
         for s in stages:
             self.add_variable(s, "PrivateUniforms", Variable(name, type_name))
         return name
 
     def app_data(self, name: str, type_name: str, value: object = None) -> str:
         """A vertex stream; `value`, in the listing, is what the stream holds where a mesh lacks it."""
+        name = self.namer.claim(name)
         self.add_variable(VERTEX, "AppData", Variable(name, type_name, value))
         return name
 
     def vertex_data(self, name: str, type_name: str, vertex_expression: str) -> str:
         """A value computed per vertex and interpolated: declared in both stages, assigned once in
         the vertex stage's main. Returns how the pixel stage reads it."""
+        name = self.namer.claim(name)
         for s in (VERTEX, PIXEL):
             self.add_variable(s, "VertexData", Variable(name, type_name))
         member = self.syntax.vertex_data_member(name)

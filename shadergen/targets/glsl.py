@@ -7,6 +7,7 @@ import re
 from functools import lru_cache
 
 from ..types import TYPES, default_value
+from .names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
 
 # Closure and shader types are structs in the hardware targets (the PBR library fills them in).
 STRUCTS = {
@@ -43,16 +44,6 @@ TYPE_NAMES = {
     "vector2": "vec2", "vector3": "vec3", "vector4": "vec4", "matrix33": "mat3", "matrix44": "mat4",
     "string": "int", "filename": "sampler2D", "geomname": "int",
 }
-RESERVED = set("""
-attribute const uniform varying buffer shared coherent volatile restrict readonly writeonly layout centroid flat
-smooth noperspective patch sample break continue do for while switch case default if else subroutine in out inout
-float double int void bool true false invariant precise discard return mat2 mat3 mat4 mat2x2 mat2x3 mat2x4 mat3x2
-mat3x3 mat3x4 mat4x2 mat4x3 mat4x4 vec2 vec3 vec4 ivec2 ivec3 ivec4 bvec2 bvec3 bvec4 dvec2 dvec3 dvec4 uint uvec2
-uvec3 uvec4 lowp mediump highp precision sampler1D sampler2D sampler3D samplerCube sampler2DShadow struct common
-partition active asm class union enum typedef template this resource goto inline noinline public static extern
-external interface long short half fixed unsigned superp input output filter sizeof cast namespace using main
-texture sample output input
-""".split())
 
 
 def _float(x: float) -> str:
@@ -75,8 +66,10 @@ class Syntax:
     precision: tuple[str, ...] = ()
     uniform_initializers = True
     vertex_data_block = True  # interface blocks for vertex -> pixel data
+    # one spelling of every name in every target (names.py): a client binds the same names in each
     reserved = RESERVED
-    reserved_prefixes = ("gl_", "__")
+    reserved_prefixes = RESERVED_PREFIXES
+    reserved_suffixes = RESERVED_SUFFIXES
     struct_types = frozenset(STRUCTS)  # types declared as structs (closures, shaders, lights)
 
     def type_name(self, type_name: str) -> str:

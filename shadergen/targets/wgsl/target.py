@@ -17,7 +17,7 @@ from ...shader import PIXEL, VERTEX, Variable, Writer
 from ..deadcode import used_functions
 from ..glsl import LIGHT_DATA_MEMBERS, STRUCTS, TYPE_NAMES, ClosureConvention, Syntax, _float
 from ..glsl_target import PLACEHOLDER, GlslTarget
-from .builtins import HELPERS, RUNTIME_TYPES, WGSL_RESERVED, WGSL_TYPES
+from .builtins import HELPERS, RUNTIME_TYPES, WGSL_TYPES
 from .layout import uniform_layout
 from .translate import FRAGMENT_BUILTINS, Translator, Untranslatable
 
@@ -44,7 +44,6 @@ def wgsl_type(type_name: str) -> str:
 class WgslSyntax(Syntax):
     name = "wgsl"
     uniform_initializers = False  # values come from the listing, through the uniform buffer
-    reserved = WGSL_RESERVED | {"vd", "pu", "vu", "vin", "vertexMain", "fragmentMain"}
 
     def type_name(self, type_name: str) -> str:
         return wgsl_type(type_name)
