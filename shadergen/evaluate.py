@@ -8,6 +8,8 @@ operation GLSL leaves undefined) is not folded. Matrices are not evaluated.
 import math
 import struct
 
+from .types import INT32_RANGE
+
 VECTOR_SIZES = {"float": 1, "color3": 3, "color4": 4, "vector2": 2, "vector3": 3, "vector4": 4}
 
 
@@ -277,6 +279,8 @@ def _evaluate(category: str, i: dict, out_type: str):
 def _typed(value, type_name: str):
     """The value as the output type holds it (float32 components); NotFoldable when it is not finite."""
     if type_name == "integer":
+        if int(value) not in INT32_RANGE:  # the GPU's int wraps; computed there, not here
+            raise NotFoldable
         return int(value)
     if type_name == "boolean":
         return bool(value)

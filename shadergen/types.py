@@ -5,6 +5,7 @@ float/int/bool/str for scalars and strings, tuples of floats for vectors, colour
 matrices (row-major), None for closures and shaders.
 """
 import math
+import struct
 from collections import namedtuple
 
 from .errors import ShaderGenError
@@ -58,7 +59,8 @@ def type_desc(name: str, where: str | None = None) -> TypeDesc:
 
 
 def parse_value(type_name: str, text: str | None, where: str | None = None):
-    """Parse a MaterialX value string of the given type; None when there is no value."""
+    """Parse a MaterialX value string of the given type; None when there is no value. A number a
+    shader cannot hold (not finite, beyond a 32-bit float or integer) is an `invalid_value`."""
     if text is None:
         return None
     t = type_desc(type_name, where)
@@ -84,8 +86,14 @@ def parse_value(type_name: str, text: str | None, where: str | None = None):
         if len(parts) != t.size:
             raise ValueError(text)
         return parts
+    except OutOfRange as e:
+        raise ShaderGenError("invalid_value", f"'{text.strip()}' is not a valid {type_name} value: {e}", where) from None
     except ValueError:
         raise ShaderGenError("invalid_value", f"'{text}' is not a valid {type_name} value", where) from None
+
+
+class OutOfRange(ValueError):
+    """A number beyond what a shading language's 32-bit types hold."""
 
 
 INT32_RANGE = range(-2**31, 2**31)
@@ -95,16 +103,33 @@ def _shader_int(text: str) -> int:
     """An integer a shader can hold: shading languages have 32-bit ints, so 10**400 is no value."""
     value = int(text.strip())
     if value not in INT32_RANGE:
-        raise ValueError(text)
+        raise OutOfRange(f"{value} is beyond a 32-bit integer ({INT32_RANGE.start} to {INT32_RANGE.stop - 1})")
     return value
 
 
 def _shader_float(text: str) -> float:
-    """A finite float: `1e400` parses to inf, which no shading language can write as a literal."""
+    """A float a shader can hold. `1e400` parses to inf, which no shading language can write as a
+    literal; `1e39` is finite here but beyond float32 (GPUs compute it as inf, WGSL refuses it as a
+    literal). Refused rather than clamped: a value that silently became another is a material the
+    user did not write, and the listing would disagree with the source."""
     value = float(text.strip())
     if not math.isfinite(value):
         raise ValueError(text)
+    if not is_float32(value):
+        raise OutOfRange(f"beyond a 32-bit float (magnitudes up to {FLOAT32_MAX:.8g})")
     return value
+
+
+FLOAT32_MAX = struct.unpack("<f", b"\xff\xff\x7f\x7f")[0]
+
+
+def is_float32(value: float) -> bool:
+    """Whether a finite value rounds to a finite float32 (what naga requires of a literal)."""
+    try:
+        struct.pack("<f", value)
+    except OverflowError:
+        return False
+    return True
 
 
 def default_value(type_name: str):
