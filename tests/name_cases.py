@@ -12,13 +12,17 @@ count give the same cases everywhere.
         records = ...                              # generate every element, every target
         problems = checker.problems(records)       # [] when every record generated and compiled
 
-Used by tests/core/test_name_fuzz.py and by `bench/fuzz.py --kind names` (which sends the cases to
-a live service: CONTENT_TYPES).
+Used by tests/core/test_name_fuzz.py, tests/faults/test_name_faults.py and `bench/fuzz.py --kind
+names`, whose kinds are (count, seed -> (label, body)) and (client, body -> answer): here
+`http_cases` and `post_case`, the answer judged by `judge_answer` (a compile failure is no HTTP
+status, so the contract's judge alone would not see it).
 """
 import os
 import random
+import shutil
 import subprocess
 import tempfile
+import threading
 from dataclasses import dataclass
 from xml.sax.saxutils import quoteattr
 
@@ -184,6 +188,7 @@ class ShaderChecker:
     def __init__(self, glslang: str, wgsl_errors):
         self.glslang = glslang
         self.wgsl_errors = wgsl_errors
+        self.wgsl_lock = threading.Lock()  # one validator child, one module at a time
 
     def problems(self, labelled_records) -> list[str]:
         """[(label, record)] -> a line per record that is an error or whose source a checker rejects."""
@@ -197,8 +202,9 @@ class ShaderChecker:
                 (wgsl if record["target"] == "wgsl" else glsl)[name] = (stage, source)
         found += self._glslang(glsl)
         if wgsl:
-            found += [f"{name}: {message[:600]}" for name, message in
-                      self.wgsl_errors({name: source for name, (_, source) in wgsl.items()}).items()]
+            with self.wgsl_lock:
+                rejected = self.wgsl_errors({name: source for name, (_, source) in wgsl.items()})
+            found += [f"{name}: {message[:600]}" for name, message in rejected.items()]
         return found
 
     def _glslang(self, shaders: dict[str, tuple[str, str]]) -> list[str]:
@@ -233,3 +239,45 @@ def generate_records(gen, case: NameCase, targets=TARGETS, interfaces=INTERFACES
             for record in gen.records(case.document, target=target, interface=interface, all=True,
                                       document_format=case.format):
                 yield case.label, record
+
+
+# -- over HTTP, for bench/fuzz.py ------------------------------------------------------------------
+@dataclass
+class NameAnswer:
+    status_code: int  # the first status other than 200 among the case's answers, else 200
+    problems: list[str]
+
+
+def http_cases(count: int, seed: int):
+    """(label, case) pairs, as bench/fuzz.py's kinds yield them."""
+    for case in name_cases(seed, count):
+        yield case.label, case
+
+
+_CHECKER: ShaderChecker | None = None
+
+
+def post_case(client, case: NameCase, timeout_s: float = 120) -> NameAnswer:
+    """The case sent to /v1/generate for every target and interface (the service answers the first
+    element); every answer must be a 200 whose record compiles."""
+    global _CHECKER
+    if _CHECKER is None:
+        from shadergen.render.wgpu_device import wgsl_errors
+        _CHECKER = ShaderChecker(shutil.which("glslangValidator") or "glslangValidator", wgsl_errors)
+    status, problems, records = 200, [], []
+    for target in TARGETS:
+        for interface in INTERFACES:
+            r = client.post("/v1/generate", params={"target": target, "interface": interface},
+                            content=case.document, headers={"content-type": CONTENT_TYPES[case.format]},
+                            timeout=timeout_s)
+            if r.status_code != 200:
+                status = r.status_code if status == 200 else status
+                problems.append(f"{target} {interface}: {r.status_code} {r.text[:300]}")
+                continue
+            records.append((case.label, r.json()))
+    return NameAnswer(status, problems + _CHECKER.problems(records))
+
+
+def judge_answer(answer: NameAnswer) -> str | None:
+    """Why a case failed (None when every answer generated and compiled)."""
+    return "; ".join(answer.problems)[:2000] or None
