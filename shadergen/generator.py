@@ -13,7 +13,7 @@ from .library import Scope
 from .nodes.lobes import closure_nodes, emit_lobes
 from .shader import PIXEL, VERTEX, Stage, Variable, Writer
 from .targets.deadcode import identifiers
-from .targets.names import identifier
+from .targets.names import identifier, library_identifiers
 
 CLOSURES = ("BSDF", "EDF", "VDF")
 CONDITIONS = {"ifgreater": "greater", "ifgreatereq": "greatereq", "ifequal": "equal"}
@@ -35,13 +35,13 @@ class Namer:
         self.claimed: dict[str, str] = {}  # wanted -> its name, for claimed names
         self.claimed_used: set[str] = set()
 
-    def __call__(self, wanted: str) -> str:
+    def __call__(self, wanted: str, avoid: frozenset[str] = frozenset()) -> str:
         name = identifier(wanted)
         if name.startswith(self.reserved_prefixes):
             name = "v_" + name
         if name.endswith(self.reserved_suffixes):
             name += "_v"
-        return _unique(name, lambda n: n in self.used or n in self.reserved, self.used)
+        return _unique(name, lambda n: n in self.used or n in self.reserved or n in avoid, self.used)
 
     def claim(self, wanted: str) -> str:
         # a claimed name is the seed's (`u_time`, RESERVED for fresh names) or prefixed by its kind
@@ -110,7 +110,9 @@ class EmitContext:
         # Value-free source (complete, reduced): initialised to the nodedef's value, so materials that
         # differ only in values share one source; the values reach the program from the listing.
         initializer = value if self.values_in_source else listing_value(port, port.default, self.syntax)
-        name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}")
+        # a uniform is a global every library function could see: none of their names (names.py)
+        avoid = library_identifiers(self.scope.library.root)
+        name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}", avoid)
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
             ui=port.meta.get("ui"), initializer=initializer,

@@ -70,6 +70,35 @@ def test_names_that_collide_once_cleaned_stay_apart_and_bind_by_the_listing(gen)
     assert in2 == ["a_b_in2", "a_b_in21", "a_b_in22"]
 
 
+def test_a_uniform_named_like_a_library_variable_is_not_read_inside_the_library(gen, checker):
+    """WGSL reads uniforms through their buffer by name wherever the name stands: a uniform `a_in`
+    (node `a`, input `in`) was read inside the noise library's `mx_hn_final(a_in: u32, ...)`, the
+    copy of its parameter `a` (now `a__in`); a uniform `edge_color` (node `edge`, input `color`)
+    would be read for the parameter `edge_color` of mx_artistic_ior."""
+    text = doc('<nodegraph name="g"><absval name="a" type="float"><input name="in" type="float" value="0.5"/></absval>'
+               '<noise2d name="nz" type="float"/>'
+               '<add name="s" type="float"><input name="in1" type="float" nodename="a"/>'
+               '<input name="in2" type="float" nodename="nz"/></add>'
+               '<output name="out" type="float" nodename="s"/></nodegraph>')
+    records = [("a_in", r) for t in ("glsl", "essl", "wgsl") for r in gen.records(text, target=t)]
+    assert not checker.problems(records)
+    names = {v["path"]: v["name"] for v in records[-1][1]["blocks"]["pixel"]["PublicUniforms"]}
+    assert names["g/a/in"] == "a_in"
+    text = doc('<oren_nayar_diffuse_bsdf name="edge" type="BSDF"/><artistic_ior name="ai" type="multioutput"/>'
+               '<conductor_bsdf name="metal" type="BSDF"><input name="ior" type="color3" nodename="ai" output="ior"/>'
+               '<input name="extinction" type="color3" nodename="ai" output="extinction"/></conductor_bsdf>'
+               '<mix name="m" type="BSDF"><input name="fg" type="BSDF" nodename="edge"/>'
+               '<input name="bg" type="BSDF" nodename="metal"/></mix>'
+               '<surface name="surf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="m"/></surface>'
+               '<surfacematerial name="mat" type="material">'
+               '<input name="surfaceshader" type="surfaceshader" nodename="surf"/></surfacematerial>')
+    record = gen.prepare(text, target="wgsl").emit()
+    assert not checker.problems([("edge_color", record)])
+    assert "mx_artistic_ior" in record["stages"]["pixel"]
+    names = {v["path"]: v["name"] for v in record["blocks"]["pixel"]["PublicUniforms"]}
+    assert names["edge/color"] == "edge_color1"
+
+
 @pytest.mark.parametrize("wanted,spelled", [
     ("SR_carpaint_base_color", "SR_carpaint_base_color"),  # the common case is untouched
     ("Ω材質", "_u03A9_u6750_u8CEA"), ("node_Ω", "node_u03A9"), ("a-b", "a_b"), ("a.b c", "a_b_c"),

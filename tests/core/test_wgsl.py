@@ -82,7 +82,7 @@ def test_glsl_implicit_conversions_are_spelled_out():
     out = translate("vec3 h(vec3 c, int n, float x) { x = mod(x, 2.0); return clamp(c, 0.0, 1.0) * n + x; }")
     assert "clamp(c, vec3f(0.0), vec3f(1.0))" in out  # WGSL has no scalar bounds for a vector
     assert "f32(n)" in out  # nor int -> float conversions
-    assert "var x: f32 = x_in;" in out  # nor writable parameters
+    assert "var x: f32 = x__in;" in out  # nor writable parameters (a copy no uniform is named like)
     assert "floor(" in out  # GLSL's mod floors; WGSL's % truncates
 
 

@@ -951,8 +951,9 @@ class Translator:
         for q, t, n in params:
             if q == "in":
                 if n in assigned:  # WGSL parameters are immutable: work on a copy
-                    texts.append(f"{n}_in: {param_type(declared[n])}")
-                    copies.append(f"    var {safe_name(n)}: {param_type(declared[n])} = {n}_in;")
+                    # `__`: no uniform has it in its name (targets/names.py), so none is read here
+                    texts.append(f"{n}__in: {param_type(declared[n])}")
+                    copies.append(f"    var {safe_name(n)}: {param_type(declared[n])} = {n}__in;")
                 else:
                     texts.append(f"{safe_name(n)}: {param_type(declared[n])}")
             else:
