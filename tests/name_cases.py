@@ -94,8 +94,8 @@ class Names:
 # -- MaterialX -----------------------------------------------------------------------------------
 def mtlx_document(rng: random.Random) -> str:
     """A document defining its own node (nodedef and nodegraph, used three times alike so that it is
-    written as a function), a node graph with interface inputs, a geometric property, and either a
-    material on a surface shader or only graph outputs: every name drawn."""
+    written as a function), a node graph with interface inputs, a geometric property, a texture,
+    and either a material on a surface shader or only graph outputs: every name drawn."""
     name = Names(rng, lambda n: "/" not in n)
     q = quoteattr
     category = f"fz_{rng.randrange(10**6)}"  # an XML element name: drawn names would not all parse
@@ -125,9 +125,11 @@ def mtlx_document(rng: random.Random) -> str:
         nodes.append(f'<{category} name={q(use)} type="color3"><input name={q(p1)} type="color3" {source}/>'
                      f'<input name={q(p2)} type="float" value="{0.5 + k / 4}"/></{category}>')
         previous = use
-    last = name()
+    image, last = name(), name()  # a texture: a filename uniform, in WGSL a texture and `<name>_sampler`
+    nodes.append(f'<image name={q(image)} type="color3"><input name="file" type="filename" value="checker.png"/>'
+                 '</image>')
     nodes.append(f'<add name={q(last)} type="color3"><input name="in1" type="color3" nodename={q(previous)}/>'
-                 f'<input name="in2" type="color3" nodename={q(gp_node)}/></add>')
+                 f'<input name="in2" type="color3" nodename={q(image)}/></add>')
     nodes.append(f'<output name={q(graph_out)} type="color3" nodename={q(last)}/>')
     parts.append(f'<nodegraph name={q(g)}>{"".join(nodes)}</nodegraph>')
     if rng.random() < 0.7:
@@ -144,7 +146,8 @@ def mtlx_document(rng: random.Random) -> str:
 def usda_document(rng: random.Random) -> bytes:
     """A layer of one or two materials (prim and input names drawn, where usd-core allows them),
     each a UsdPreviewSurface whose roughness is a primvar (its name drawn) scaled inside a NodeGraph
-    by the graph's interface input, and whose colour is an input of the material's interface."""
+    by the graph's interface input, whose colour is an input of the material's interface and whose
+    emission a texture."""
     from pxr import Sdf, Usd, UsdShade
 
     valid = Sdf.Path.IsValidIdentifier
@@ -175,6 +178,10 @@ def usda_document(rng: random.Random) -> bytes:
         tint = material.CreateInput(Names(rng, valid)(), Sdf.ValueTypeNames.Color3f)
         tint.Set((0.3, 0.5, 0.7))
         surface.CreateInput("diffuseColor", Sdf.ValueTypeNames.Color3f).ConnectToSource(tint)
+        texture = UsdShade.Shader.Define(stage, f"{material_path}/{inside()}")
+        texture.CreateIdAttr("UsdUVTexture")
+        texture.CreateInput("file", Sdf.ValueTypeNames.Asset).Set("checker.png")
+        surface.CreateInput("emissiveColor", Sdf.ValueTypeNames.Color3f).ConnectToSource(texture.ConnectableAPI(), "rgb")
         material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
     return stage.GetRootLayer().ExportToString().encode()
 
