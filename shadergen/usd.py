@@ -1,8 +1,10 @@
 """USD stage (usd-core) -> Document: the UsdShade material networks of a .usda, .usdc or .usdz.
 
-A file named by its path composes as any USD tool opens it. An upload is confined to itself: a
-text layer may refer to no other file, a usdz package only to layers inside the package, and an
-asset path that leaves a package is refused as a texture outside the roots is. Each material
+A file named by its path composes as any USD tool opens it. An upload is confined to itself
+before any stage is composed (usd_confine.py): a text layer may refer to no other file, a usdz
+package only to its own members, and a texture that leaves a package is refused as a texture
+outside the roots is. References and payloads to MaterialX documents are composed as usdMtlx
+would compose them, with our reader (usd_mtlx.py). Each material
 becomes a `surfacematerial` element (see usd_network.py for the networks); the document's
 `labels` give every element its prim path, which records and errors use as `element`/`where`.
 """
@@ -37,10 +39,13 @@ def _pxr():
 
 @contextmanager
 def usd_errors(where: str):
-    """usd-core's errors (Tf.ErrorException) as invalid_document, at the prim they name if any."""
+    """usd-core's errors (Tf.ErrorException) as invalid_document, at the prim they name if any;
+    text of a layer that is not UTF-8 (a crate's tokens), which usd-core hands Python as it is."""
     _, Tf, _, _ = _pxr()
     try:
         yield
+    except UnicodeDecodeError as exc:
+        raise ShaderGenError("invalid_document", f"malformed USD: text that is not UTF-8 ({exc.reason})", where) from None
     except Tf.ErrorException as exc:
         first = str(exc).strip().split("\n\tError in ")[0]
         message = first.split(" : '", 1)[-1].rstrip("'").strip()
@@ -93,46 +98,60 @@ class AssetPaths:
         return os.path.relpath(anchored, self.document_dir) if inside else anchored
 
 
-def _confine_to_package(layer, package: str) -> None:
-    """Every layer the package's root layer composes (sublayers, references, payloads) must lie
-    inside the package; checked before the stage opens any of them."""
-    Sdf, _, _, _ = _pxr()
-    todo, seen = [layer], set()
+def _composed_layers(layer) -> list:
+    """The layer and those it composes as usd-core would open them (a file on the command line
+    composes as USD tools open it), for the MaterialX arcs in any of them; one that does not open
+    is left to the stage, which reports it as a composition error."""
+    Sdf, Tf, _, _ = _pxr()
+    layers, todo = {layer.identifier: layer}, [layer]
     while todo:
         current = todo.pop()
         for dep in current.GetCompositionAssetDependencies():
             anchored = anchor(current, dep)
-            if package_member(anchored, package) is None:
-                raise ShaderGenError("path_not_allowed", f"layer '{dep}' leaves the usdz package", dep)
-            if anchored not in seen:
-                seen.add(anchored)
-                with usd_errors(dep):
-                    sub = Sdf.Layer.FindOrOpen(anchored)
-                if sub is not None:
-                    todo.append(sub)
+            if anchored in layers or dep.lower().endswith(".mtlx"):
+                continue
+            try:
+                sub = Sdf.Layer.FindOrOpen(anchored)
+            except Tf.ErrorException:
+                sub = None
+            if sub is not None:
+                layers[anchored] = sub
+                todo.append(sub)
+    return list(layers.values())
+
+
+def _open_package(package: str) -> tuple:
+    """The package's root layer and every layer of it, each checked to stay inside it."""
+    from .usd_confine import confine_package
+
+    layers = confine_package(package)
+    root = next((layer for layer in layers if layer.identifier == package), None)
+    if root is None:
+        raise ShaderGenError("invalid_document", "the package holds no USD layer", "<document>")
+    return root, layers
 
 
 def read_usd(path: str, library: Library) -> Document:
     Sdf, _, _, _ = _pxr()
     if not os.path.isfile(path):
         raise ShaderGenError("invalid_document", "cannot read document: no such file", path)
-    with usd_errors(path):
-        layer = Sdf.Layer.FindOrOpen(os.path.abspath(path))
-    if layer is None:
-        raise ShaderGenError("invalid_document", "cannot open the USD layer", path)
     absolute = os.path.abspath(path)
     if path.lower().endswith(".usdz"):
-        _confine_to_package(layer, absolute)
-        assets = AssetPaths(package=absolute, label=os.path.basename(path))
-    else:
-        assets = AssetPaths(document_dir=os.path.dirname(absolute))
-    return _translate(layer, library, path, assets)
+        layer, layers = _open_package(absolute)
+        return _translate(layer, layers, library, path, AssetPaths(package=absolute, label=os.path.basename(path)))
+    with usd_errors(path):
+        layer = Sdf.Layer.FindOrOpen(absolute)
+    if layer is None:
+        raise ShaderGenError("invalid_document", "cannot open the USD layer", path)
+    return _translate(layer, _composed_layers(layer), library, path, AssetPaths(document_dir=os.path.dirname(absolute)))
 
 
 def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
-    """An uploaded layer (`usda` text) or package (`usdz`), confined to itself."""
+    """An uploaded layer (`usda` text) or package (`usdz`), confined to itself (usd_confine.py)."""
     Sdf, _, _, _ = _pxr()
     if document_format == "usda":
+        from .usd_confine import confine_layer
+
         try:
             text = data.decode("utf-8-sig") if isinstance(data, bytes) else data
         except UnicodeDecodeError as exc:
@@ -140,11 +159,8 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
         layer = Sdf.Layer.CreateAnonymous(".usda")
         with usd_errors("<document>"):
             layer.ImportFromString(text)
-        deps = layer.GetCompositionAssetDependencies()
-        if deps:
-            raise ShaderGenError("include_refused", f"an uploaded layer may not refer to other files ('{deps[0]}')",
-                                 deps[0])
-        return _translate(layer, library, None, AssetPaths())
+            confine_layer(layer)
+        return _translate(layer, [layer], library, None, AssetPaths())
     if document_format == "usdz":
         if not data.startswith(b"PK\x03\x04"):
             raise ShaderGenError("invalid_document", "the upload is not a usdz package (a zip archive)", "<document>")
@@ -155,36 +171,49 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
             package = os.path.join(folder, "upload.usdz")
             with open(package, "wb") as f:
                 f.write(data)
-            with usd_errors("<document>"):
-                layer = Sdf.Layer.FindOrOpen(package)
-            if layer is None:
-                raise ShaderGenError("invalid_document", "the package holds no USD layer", "<document>")
-            _confine_to_package(layer, package)
-            return _translate(layer, library, None, AssetPaths(package=package))
+            layer, layers = _open_package(package)
+            return _translate(layer, layers, library, None, AssetPaths(package=package))
     raise ShaderGenError("unsupported_format", f"unknown USD format '{document_format}'", document_format)
 
 
-def _translate(layer, library: Library, path: str | None, assets: AssetPaths) -> Document:
+def _translate(layer, layers: list, library: Library, path: str | None, assets: AssetPaths) -> Document:
+    """The stage of `layer` as a document; `layers` (every layer it composes that was opened
+    before it) lose their MaterialX arcs to usd_mtlx.py first, and stay alive while it composes."""
+    from .usd_mtlx import MtlxMaterials, arcs_of, take_mtlx_arcs
     from .usd_network import NetworkTranslator
 
     _, _, Usd, UsdShade = _pxr()
     with usd_errors(path or "<document>"):
+        mtlx_arcs = take_mtlx_arcs(layers)
         stage = Usd.Stage.Open(layer)
     root = Element("materialx", {"version": "1.39", "colorspace": WORKING_COLORSPACE}, None, path)
     doc = Document(root=root, path=path)
     doc.warnings.extend(f"USD composition: {e}" for e in stage.GetCompositionErrors())
     translator = NetworkTranslator(Scope(library, None), root, assets, doc.warnings)
+    mtlx = MtlxMaterials(root, translator)
     for prim in stage.Traverse():
-        if not prim.IsA(UsdShade.Material):
-            continue
-        name = translator.unique_name(str(prim.GetPath()))
-        try:
-            with usd_errors(str(prim.GetPath())):
-                material = translator.material(UsdShade.Material(prim), name)
-        except ShaderGenError as exc:  # one bad material does not hide the others
-            material = Element("surfacematerial", {"name": name, "type": "material"})
-            doc.failures[name] = exc
-        root.add_child(material)
-        doc.labels[name] = str(prim.GetPath())
+        arcs = arcs_of(prim, mtlx_arcs) if mtlx_arcs else []
+        if arcs:
+            _add_materials(doc, str(prim.GetPath()), lambda: mtlx.materials(prim, arcs), translator)
+        elif prim.IsA(UsdShade.Material):
+            name = translator.unique_name(str(prim.GetPath()))
+            _add_materials(doc, str(prim.GetPath()),
+                           lambda: [(str(prim.GetPath()), translator.material(UsdShade.Material(prim), name))],
+                           translator, name)
     doc.labels.update(translator.labels)
     return doc
+
+
+def _add_materials(doc: Document, where: str, translate, translator, name: str | None = None) -> None:
+    """The materials `translate` makes for one prim, each labelled by its prim path; when it fails,
+    one failed material in its place, so that one bad material does not hide the others."""
+    try:
+        with usd_errors(where):
+            materials = translate()
+    except ShaderGenError as exc:
+        name = name or translator.unique_name(where)
+        materials = [(where, Element("surfacematerial", {"name": name, "type": "material"}))]
+        doc.failures[name] = exc
+    for prim_path, material in materials:
+        doc.root.add_child(material)
+        doc.labels[material.name] = prim_path

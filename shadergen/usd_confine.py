@@ -1,0 +1,172 @@
+"""Uploads confined by construction: no file outside an upload is opened, whatever field names it.
+
+Before any stage is composed, every layer of the upload is opened with Sdf alone (which reads
+that one layer and nothing it names) and every asset path in it is listed by usd-core's own
+enumeration, `UsdUtils.ModifyAssetPaths`: sublayers, references, payloads, value clips with their
+manifests and templates, asset-valued attributes and metadata, in variants too. A field it lists
+that this module has never heard of is confined all the same: the one kind of path let through
+as written is the value of an asset-typed attribute (a texture), which usd-core never opens
+(resolving it is at most a stat); what the translator does with those is usd.py's `AssetPaths`.
+Every other path must lie inside the upload: an uploaded layer has no inside, so it may name no
+other file; a package's paths must be members of it (nested packages included), and a
+search-relative one (`x`, not `./x`) an existing member, since usd-core looks such a path up in
+its working directory when it is not beside its layer. Every layer member of a package
+is checked, not only the ones the root names: a clip template expands to members that no field
+names. A refusal names the path as written and is decided before anything outside is touched,
+so its answer is the same whether that file exists or not.
+"""
+import posixpath
+from collections import Counter
+
+from .errors import ShaderGenError
+from .usd import _pxr, anchor, usd_errors
+
+ASSET_TYPES = ("asset", "asset[]")
+FORMAT_ARGS = ":SDF_FORMAT_ARGS:"
+
+
+def _value_paths(layer) -> Counter:
+    """How often each asset path occurs as the value of an asset-typed attribute (default and
+    time samples), in every spec of the layer, variants included."""
+    Sdf, _, _, _ = _pxr()
+    found = Counter()
+
+    def visit(path):
+        spec = layer.GetAttributeAtPath(path) if path.IsPropertyPath() else None
+        if spec is None or str(spec.typeName) not in ASSET_TYPES:
+            return
+        values = [spec.default] if spec.HasDefaultValue() else []
+        values += [layer.QueryTimeSample(path, t) for t in layer.ListTimeSamplesForPath(path)]
+        for value in values:
+            assets = [value] if isinstance(value, Sdf.AssetPath) else value if isinstance(value, Sdf.AssetPathArray) else []
+            for asset in assets:  # anything else (a block, a value of the wrong type) names no path
+                if asset.path:
+                    found[asset.path] += 1
+
+    layer.Traverse(layer.pseudoRoot.path, visit)
+    return found
+
+
+def _listed_paths(layer) -> Counter:
+    """Every asset path of the layer as usd-core enumerates them, each as often as it occurs, an
+    expression (`...`) evaluated (in an uploaded layer, which it rewrites with the result)."""
+    from pxr import UsdUtils
+
+    listed = Counter()
+
+    def note(path: str) -> str:
+        listed[path] += 1
+        return path
+
+    _, Tf, _, _ = _pxr()
+    try:
+        UsdUtils.ModifyAssetPaths(layer, note)
+    except Tf.ErrorException:  # it writes back what it evaluated, which a package's layers refuse
+        raise ShaderGenError("path_not_allowed", "an asset path of the package is an expression (`...`), "
+                             "which names a file only once evaluated", "<document>") from None
+    return listed
+
+
+def opened_paths(layer) -> list[str]:
+    """The layer's asset paths that usd-core may open: all but texture values. A path listed more
+    often than it occurs as a value is also in some other field, so it is confined all the same."""
+    values, listed = _value_paths(layer), _listed_paths(layer)
+    return sorted(p for p, n in listed.items() if n > values[p] or not _inert(p))
+
+
+def _confinable(path: str) -> bool:
+    """Not an expression (which names a path only once evaluated against variables) and without
+    file format arguments: a path that names one place as written."""
+    return not path.startswith("`") and FORMAT_ARGS not in path
+
+
+def _inert(path: str) -> bool:
+    """A value usd-core resolves without opening anything: resolving `a.usdz[b]` opens a.usdz."""
+    from pxr import Ar
+
+    return _confinable(path) and not Ar.IsPackageRelativePath(path)
+
+
+def confine_layer(layer) -> None:
+    """An uploaded layer has no inside: it may name no file but the textures of its attributes."""
+    opened = opened_paths(layer)
+    if opened:
+        raise ShaderGenError("include_refused", f"an uploaded layer may not refer to other files ('{opened[0]}')",
+                             opened[0])
+
+
+def inside(anchored: str, package: str) -> bool:
+    """Whether an anchored path is a member of `package` (at any depth of nested packages)."""
+    from pxr import Ar
+
+    outer, inner = Ar.SplitPackageRelativePathOuter(anchored)
+    if outer != package or not inner:
+        return False
+    while inner:
+        member, inner = Ar.SplitPackageRelativePathOuter(inner)
+        normal = posixpath.normpath(member)
+        if posixpath.isabs(member) or normal == ".." or normal.startswith("../") or "://" in member:
+            return False
+    return True
+
+
+def _search_relative(path: str) -> bool:
+    """`x/y`, which usd-core looks up in its working directory when no member of that name is
+    beside the layer (`./x/y` is looked up beside the layer only)."""
+    return not path.startswith(("./", "../", "/"))
+
+
+def _is_layer(path: str) -> bool:
+    """Whether a path (the innermost member of a package-relative one) is in a layer format."""
+    Sdf, _, _, _ = _pxr()
+    from pxr import Ar
+
+    innermost = Ar.SplitPackageRelativePathInner(path)[1] if Ar.IsPackageRelativePath(path) else path
+    return Sdf.FileFormat.FindByExtension(posixpath.splitext(innermost)[1][1:].lower()) is not None
+
+
+def _members(package: str) -> list[str]:
+    """Every member of the package and of the packages inside it, as package-relative paths."""
+    Sdf, _, _, _ = _pxr()
+    from pxr import Ar
+
+    found, todo = [], [package]
+    while todo:
+        current = todo.pop()
+        with usd_errors("<document>"):
+            archive = Sdf.ZipFile.Open(current)
+        if archive is None:
+            raise ShaderGenError("invalid_document", "a usdz package of the upload is not a zip archive", "<document>")
+        for name in archive.GetFileNames():
+            found.append(Ar.JoinPackageRelativePath([current, name]))
+            if name.lower().endswith(".usdz"):
+                todo.append(found[-1])
+    return found
+
+
+def confine_package(package: str) -> list:
+    """Open and check every layer of the package. Returns the layers, which must stay alive while
+    the stage composes them, so that it composes them as checked rather than reading them again."""
+    Sdf, _, _, _ = _pxr()
+    members = _members(package)
+    layers: dict[str, object] = {}
+    todo = [package] + [m for m in members if _is_layer(m)]
+    while todo:
+        identifier = todo.pop()
+        if identifier in layers:
+            continue
+        with usd_errors("<document>"):
+            layer = Sdf.Layer.FindOrOpen(identifier)
+        if layer is None:
+            continue  # a member named but missing: the stage reports it as a composition error
+        layers[identifier] = layer
+        for path in opened_paths(layer):
+            anchored = anchor(layer, path)
+            if not _confinable(path) or not inside(anchored, package):
+                raise ShaderGenError("path_not_allowed", f"'{path}' leaves the usdz package", path)
+            if _search_relative(path) and (anchored not in members or "#" in path):
+                raise ShaderGenError("path_not_allowed", f"'{path}' names no member of the usdz package (a search "
+                                     "path is looked up outside it; './' names a path beside its layer)", path)
+            if _is_layer(anchored):
+                todo.append(anchored)
+    return list(layers.values())
