@@ -47,7 +47,11 @@ def usd_errors(where: str):
     except UnicodeDecodeError as exc:
         raise ShaderGenError("invalid_document", f"malformed USD: text that is not UTF-8 ({exc.reason})", where) from None
     except Tf.ErrorException as exc:
-        first = str(exc).strip().split("\n\tError in ")[0]
+        try:
+            text = str(exc)
+        except UnicodeDecodeError:  # the message quotes the layer's bytes, which are not UTF-8
+            raise ShaderGenError("invalid_document", "malformed USD: text that is not UTF-8", where) from None
+        first = text.strip().split("\n\tError in ")[0]
         message = first.split(" : '", 1)[-1].rstrip("'").strip()
         prim = re.search(r"in <(/[^>]+)>", message)
         raise ShaderGenError("invalid_document", f"malformed USD: {message}", prim.group(1) if prim else where) from None
@@ -191,7 +195,9 @@ def _translate(layer, layers: list, library: Library, path: str | None, assets: 
     doc.warnings.extend(f"USD composition: {e}" for e in stage.GetCompositionErrors())
     translator = NetworkTranslator(Scope(library, None), root, assets, doc.warnings)
     mtlx = MtlxMaterials(root, translator)
-    for prim in stage.Traverse():
+    with usd_errors(path or "<document>"):  # a crate is read as the stage is walked: it may be corrupt there
+        prims = list(stage.Traverse())
+    for prim in prims:
         arcs = arcs_of(prim, mtlx_arcs) if mtlx_arcs else []
         if arcs:
             _add_materials(doc, str(prim.GetPath()), lambda: mtlx.materials(prim, arcs), translator)

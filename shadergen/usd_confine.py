@@ -23,6 +23,8 @@ from .usd import _pxr, anchor, usd_errors
 
 ASSET_TYPES = ("asset", "asset[]")
 FORMAT_ARGS = ":SDF_FORMAT_ARGS:"
+# ModifyAssetPaths writes back the path an expression evaluates to, which a package's layer refuses
+EVALUATED_EXPRESSION = "Unable to edit asset path in package layer"
 
 
 def _value_paths(layer) -> Counter:
@@ -61,7 +63,9 @@ def _listed_paths(layer) -> Counter:
     _, Tf, _, _ = _pxr()
     try:
         UsdUtils.ModifyAssetPaths(layer, note)
-    except Tf.ErrorException:  # it writes back what it evaluated, which a package's layers refuse
+    except Tf.ErrorException as exc:
+        if EVALUATED_EXPRESSION not in str(exc):
+            raise
         raise ShaderGenError("path_not_allowed", "an asset path of the package is an expression (`...`), "
                              "which names a file only once evaluated", "<document>") from None
     return listed
@@ -160,7 +164,9 @@ def confine_package(package: str) -> list:
         if layer is None:
             continue  # a member named but missing: the stage reports it as a composition error
         layers[identifier] = layer
-        for path in opened_paths(layer):
+        with usd_errors("<document>"):  # reading a crate's values may find it corrupt
+            opened = opened_paths(layer)
+        for path in opened:
             anchored = anchor(layer, path)
             if not _confinable(path) or not inside(anchored, package):
                 raise ShaderGenError("path_not_allowed", f"'{path}' leaves the usdz package", path)

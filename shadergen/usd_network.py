@@ -188,7 +188,7 @@ class NetworkTranslator:
             _, invalid = inp.GetConnectedSources()
             if invalid:
                 raise ShaderGenError("dangling_connection",
-                                     f"connected to {invalid[0].GetPath()}, which is not an output or input here", where)
+                                     f"connected to {invalid[0]}, which is not an output or input here", where)
             yield inp, inp.GetValueProducingAttributes(shaderOutputsOnly=False)
 
     def nodedef_of(self, shader, where: str) -> Element:
