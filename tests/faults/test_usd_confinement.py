@@ -199,6 +199,18 @@ def test_search_path_is_not_looked_up(server, outside, tmp_path, kind):
     assert_same_refusal(server, bodies)
 
 
+BRICK_MTLX = """<?xml version="1.0"?>
+<materialx version="1.39">
+  <standard_surface name="surface" type="surfaceshader">
+    <input name="base_color" type="color3" value="0.6, 0.2, 0.1" />
+  </standard_surface>
+  <surfacematerial name="Brick" type="material">
+    <input name="surfaceshader" type="surfaceshader" nodename="surface" />
+  </surfacematerial>
+</materialx>
+"""
+
+
 def generated(server, body: bytes, headers=USDZ) -> dict:
     r = server.client.post("/v1/generate", content=body, headers=headers, timeout=60)
     assert r.status_code == 200, r.text
@@ -206,8 +218,8 @@ def generated(server, body: bytes, headers=USDZ) -> dict:
 
 
 def test_arcs_inside_the_package_compose(server, tmp_path):
-    """Sublayers, references (search-relative ones naming a member too), a nested package and a
-    clip whose layer is a member: all inside, so the material generates."""
+    """Sublayers, references (search-relative ones naming a member too, and one to a MaterialX
+    document), a nested package and a clip whose layer is a member: all inside, so they generate."""
     looks = material().replace('def Material "M"', 'def Material "Looks"').replace("</M/S", "</Looks/S")
     cases = {
         "sublayer": [("root.usda", '#usda 1.0\n(\n    subLayers = [@./looks/looks.usda@]\n)\n'),
@@ -220,7 +232,9 @@ def test_arcs_inside_the_package_compose(server, tmp_path):
                 double2[] active = [(0, 0)]
                 double2[] times = [(0, 0)]'''))),
                  ("clip.usda", '#usda 1.0\nover "M"\n{\n    over "S"\n    {\n        float inputs:roughness = 0.25\n    }\n}\n')],
+        "mtlx": [("root.usda", '#usda 1.0\ndef Material "Brick" ( references = @./brick.mtlx@</MaterialX/Materials/Brick> ) { }\n'),
+                 ("brick.mtlx", BRICK_MTLX)],
     }
     for name, members in cases.items():
         record = generated(server, package(tmp_path / name, members))
-        assert record["element"] in ("/Looks", "/World", "/M"), (name, record["element"])
+        assert record["element"] in ("/Looks", "/World", "/M", "/Brick"), (name, record["element"])
