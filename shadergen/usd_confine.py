@@ -7,6 +7,8 @@ manifests and templates, asset-valued attributes and metadata, in variants too. 
 that this module has never heard of is confined all the same: the one kind of path let through
 as written is the value of an asset-typed attribute (a texture), which usd-core never opens
 (resolving it is at most a stat); what the translator does with those is usd.py's `AssetPaths`.
+Expressions (`...`) are evaluated by that enumeration; a layer that defines expression variables
+is refused, since the path its expressions name would depend on where it is composed.
 Every other path must lie inside the upload: an uploaded layer has no inside, so it may name no
 other file; a package's paths must be members of it (nested packages included), and a
 search-relative one (`x`, not `./x`) an existing member, since usd-core looks such a path up in
@@ -16,66 +18,74 @@ names. A refusal names the path as written and is decided before anything outsid
 so its answer is the same whether that file exists or not.
 """
 import posixpath
-from collections import Counter
 
 from .errors import ShaderGenError
 from .usd import _pxr, anchor, usd_errors
 
 ASSET_TYPES = ("asset", "asset[]")
 FORMAT_ARGS = ":SDF_FORMAT_ARGS:"
-# ModifyAssetPaths writes back the path an expression evaluates to, which a package's layer refuses
-EVALUATED_EXPRESSION = "Unable to edit asset path in package layer"
 
 
-def _value_paths(layer) -> Counter:
-    """How often each asset path occurs as the value of an asset-typed attribute (default and
-    time samples), in every spec of the layer, variants included."""
-    Sdf, _, _, _ = _pxr()
-    found = Counter()
+def _asset_attributes(layer) -> list:
+    """The paths of the layer's asset-typed attribute specs, in every prim and variant."""
+    found = []
 
     def visit(path):
         spec = layer.GetAttributeAtPath(path) if path.IsPropertyPath() else None
-        if spec is None or str(spec.typeName) not in ASSET_TYPES:
-            return
-        values = [spec.default] if spec.HasDefaultValue() else []
-        values += [layer.QueryTimeSample(path, t) for t in layer.ListTimeSamplesForPath(path)]
-        for value in values:
-            assets = [value] if isinstance(value, Sdf.AssetPath) else value if isinstance(value, Sdf.AssetPathArray) else []
-            for asset in assets:  # anything else (a block, a value of the wrong type) names no path
-                if asset.path:
-                    found[asset.path] += 1
+        if spec is not None and str(spec.typeName) in ASSET_TYPES:
+            found.append(path)
 
     layer.Traverse(layer.pseudoRoot.path, visit)
     return found
 
 
-def _listed_paths(layer) -> Counter:
-    """Every asset path of the layer as usd-core enumerates them, each as often as it occurs, an
-    expression (`...`) evaluated (in an uploaded layer, which it rewrites with the result)."""
+def _values(layer, attributes: list) -> set[str]:
+    """The asset paths these attributes hold as values (default and time samples)."""
+    Sdf, _, _, _ = _pxr()
+    found = set()
+    for path in attributes:
+        spec = layer.GetAttributeAtPath(path)
+        values = [spec.default] if spec.HasDefaultValue() else []
+        values += [layer.QueryTimeSample(path, t) for t in layer.ListTimeSamplesForPath(path)]
+        for value in values:  # anything but an asset path or an array of them (a block) names no path
+            assets = [value] if isinstance(value, Sdf.AssetPath) else value if isinstance(value, Sdf.AssetPathArray) \
+                else []
+            found.update(asset.path for asset in assets if asset.path)
+    return found
+
+
+def _listed_paths(layer) -> set[str]:
+    """Every asset path usd-core lists in the layer (each unique path once), expressions evaluated."""
     from pxr import UsdUtils
 
-    listed = Counter()
+    listed = set()
 
     def note(path: str) -> str:
-        listed[path] += 1
+        listed.add(path)
         return path
 
-    _, Tf, _, _ = _pxr()
-    try:
-        UsdUtils.ModifyAssetPaths(layer, note)
-    except Tf.ErrorException as exc:
-        if EVALUATED_EXPRESSION not in str(exc):
-            raise
-        raise ShaderGenError("path_not_allowed", "an asset path of the package is an expression (`...`), "
-                             "which names a file only once evaluated", "<document>") from None
+    UsdUtils.ModifyAssetPaths(layer, note)
     return listed
 
 
 def opened_paths(layer) -> list[str]:
-    """The layer's asset paths that usd-core may open: all but texture values. A path listed more
-    often than it occurs as a value is also in some other field, so it is confined all the same."""
-    values, listed = _value_paths(layer), _listed_paths(layer)
-    return sorted(p for p, n in listed.items() if n > values[p] or not _inert(p))
+    """The layer's asset paths that usd-core may open: every one it lists but texture values.
+    Those are told apart on a copy of the layer whose asset attributes hold no value, since usd-core
+    lists each unique path once: a reference to a texture's own path is listed by the copy."""
+    Sdf, _, _, _ = _pxr()
+    if layer.HasExpressionVariables():  # an expression's path then depends on where it is composed
+        raise ShaderGenError("path_not_allowed", "a layer of the upload defines expression variables, which make "
+                             "asset paths that only composition decides", "<document>")
+    attributes = _asset_attributes(layer)
+    copy = Sdf.Layer.CreateAnonymous(".usda")
+    copy.TransferContent(layer)
+    for path in attributes:
+        spec = copy.GetAttributeAtPath(path)
+        spec.ClearDefaultValue()
+        for t in copy.ListTimeSamplesForPath(path):
+            copy.EraseTimeSample(path, t)
+    values = _values(layer, attributes)
+    return sorted(_listed_paths(copy) | {p for p in values if not _inert(p)})
 
 
 def _confinable(path: str) -> bool:

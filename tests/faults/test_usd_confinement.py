@@ -94,6 +94,10 @@ ARCS = {
     "variant": lambda p: material('        variants = { string look = "outside" }\n        prepend variantSets = "look"',
                                   f'        variantSet "look" = {{\n            "outside" ( references = @{p}@</Leak> ) {{ }}\n        }}'),
     "package_relative_texture": lambda p: material(body=f"        asset inputs:file = @{p.replace('.usda', '.usdz')}[t.png]@"),
+    "reference_spelled_as_textures": lambda p: material(f"        references = @{p}@</Leak>",
+                                                        f"        asset[] inputs:t = [@{p}@, @{p}@]"),
+    "expression": lambda p: material(f'        references = @`"${{DIR}}/{Path(p).name}"`@</Leak>',
+                                     layer_metadata=f'    expressionVariables = {{ string DIR = "{Path(p).parent}" }}'),
     "mtlx_reference": lambda p: material(f"        references = @{p.replace('.usda', '.mtlx')}@</MaterialX/Materials/M>"),
 }
 
