@@ -45,7 +45,8 @@ def usd_errors(where: str):
     try:
         yield
     except UnicodeDecodeError as exc:
-        raise ShaderGenError("invalid_document", f"malformed USD: text that is not UTF-8 ({exc.reason})", where) from None
+        raise ShaderGenError("invalid_document", f"malformed USD: text that is not UTF-8 ({exc.reason})",
+                             where) from None
     except Tf.ErrorException as exc:
         try:
             text = str(exc)

@@ -85,20 +85,24 @@ ARCS = {
                 double2[] times = [(0, 0)]""")),
     "clip_manifest": lambda p: material(clips(f"""                asset manifestAssetPath = @{p}@
                 asset[] assetPaths = []""")),
-    "clip_template": lambda p: material(clips(f"""                string templateAssetPath = "{p.replace('.usda', '.#.usda')}"
+    "clip_template": lambda p: material(clips(f"""\
+                string templateAssetPath = "{p.replace('.usda', '.#.usda')}"
                 double templateStartTime = 1
                 double templateEndTime = 1
                 double templateStride = 1""")),
     "asset_metadata": lambda p: material(f"        assetInfo = {{ asset identifier = @{p}@ }}"),
     "custom_data_asset": lambda p: material(layer_metadata=f"    customLayerData = {{ asset notes = @{p}@ }}"),
-    "variant": lambda p: material('        variants = { string look = "outside" }\n        prepend variantSets = "look"',
-                                  f'        variantSet "look" = {{\n            "outside" ( references = @{p}@</Leak> ) {{ }}\n        }}'),
-    "package_relative_texture": lambda p: material(body=f"        asset inputs:file = @{p.replace('.usda', '.usdz')}[t.png]@"),
+    "variant": lambda p: material(
+        '        variants = { string look = "outside" }\n        prepend variantSets = "look"',
+        f'        variantSet "look" = {{\n            "outside" ( references = @{p}@</Leak> ) {{ }}\n        }}'),
+    "package_relative_texture": lambda p: material(
+        body=f"        asset inputs:file = @{p.replace('.usda', '.usdz')}[t.png]@"),
     "reference_spelled_as_textures": lambda p: material(f"        references = @{p}@</Leak>",
                                                         f"        asset[] inputs:t = [@{p}@, @{p}@]"),
     "expression": lambda p: material(f'        references = @`"${{DIR}}/{Path(p).name}"`@</Leak>',
                                      layer_metadata=f'    expressionVariables = {{ string DIR = "{Path(p).parent}" }}'),
-    "mtlx_reference": lambda p: material(f"        references = @{p.replace('.usda', '.mtlx')}@</MaterialX/Materials/M>"),
+    "mtlx_reference": lambda p: material(
+        f"        references = @{p.replace('.usda', '.mtlx')}@</MaterialX/Materials/M>"),
 }
 
 
@@ -164,9 +168,10 @@ def test_package_opens_nothing_outside(server, outside, tmp_path, kind, spelling
 
 @pytest.mark.parametrize("kind", ["reference", "clip_asset_paths", "clip_template", "sublayer"])
 def test_crate_layer_in_a_package_opens_nothing_outside(server, outside, tmp_path, kind):
-    bodies = {name: (str(outside / f"{name}.usda"),
-                     package(tmp_path / name, [("root.usdc", crate(tmp_path / name, ARCS[kind](str(outside / f"{name}.usda"))))]),
-                     USDZ) for name in NAMES}
+    bodies = {}
+    for name in NAMES:
+        path = str(outside / f"{name}.usda")
+        bodies[name] = path, package(tmp_path / name, [("root.usdc", crate(tmp_path / name, ARCS[kind](path)))]), USDZ
     assert_same_refusal(server, bodies)
 
 
@@ -235,8 +240,10 @@ def test_arcs_inside_the_package_compose(server, tmp_path):
         "clip": [("root.usda", material(clips('''                asset[] assetPaths = [@./clip.usda@]
                 double2[] active = [(0, 0)]
                 double2[] times = [(0, 0)]'''))),
-                 ("clip.usda", '#usda 1.0\nover "M"\n{\n    over "S"\n    {\n        float inputs:roughness = 0.25\n    }\n}\n')],
-        "mtlx": [("root.usda", '#usda 1.0\ndef Material "Brick" ( references = @./brick.mtlx@</MaterialX/Materials/Brick> ) { }\n'),
+                 ("clip.usda", '#usda 1.0\nover "M"\n{\n    over "S"\n    {\n'
+                               '        float inputs:roughness = 0.25\n    }\n}\n')],
+        "mtlx": [("root.usda", '#usda 1.0\ndef Material "Brick" '
+                               '( references = @./brick.mtlx@</MaterialX/Materials/Brick> ) { }\n'),
                  ("brick.mtlx", BRICK_MTLX)],
     }
     for name, members in cases.items():

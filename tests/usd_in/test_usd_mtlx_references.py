@@ -45,7 +45,8 @@ def scene(folder, prims: str):
 
 
 def test_reference_to_a_material_of_a_document_beside_the_file(gen: Generator, folder):
-    path = scene(folder, '        def Material "Brick" ( prepend references = @./brick.mtlx@</MaterialX/Materials/Brick> ) { }')
+    path = scene(folder, '        def Material "Brick" '
+                         '( prepend references = @./brick.mtlx@</MaterialX/Materials/Brick> ) { }')
     [record] = gen.records(path, all=True)
     assert "error" not in record, record
     assert record["element"] == "/World/Looks/Brick"
