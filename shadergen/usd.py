@@ -195,7 +195,7 @@ def _translate(layer, layers: list, library: Library, path: str | None, assets: 
     doc = Document(root=root, path=path)
     doc.warnings.extend(f"USD composition: {e}" for e in stage.GetCompositionErrors())
     translator = NetworkTranslator(Scope(library, None), root, assets, doc.warnings)
-    mtlx = MtlxMaterials(root, translator)
+    mtlx = MtlxMaterials(root, translator, assets.document_dir)
     with usd_errors(path or "<document>"):  # a crate is read as the stage is walked: it may be corrupt there
         prims = list(stage.Traverse())
     for prim in prims:

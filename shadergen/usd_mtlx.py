@@ -8,8 +8,11 @@ usdMtlx presents a document as a layer whose default prim `/MaterialX` holds eac
 none) makes the referencing prim stand for the materials at or below P: itself for
 `</MaterialX/Materials/Wood>`, `<prim>/Materials/Wood` for the default prim. Each such material
 becomes a surfacematerial named by that prim path, over the document's shaders and node graphs,
-which join the translated document once per document, under their own names.
+which join the translated document once per document, under their own names (with the document's
+folder as their fileprefix, relative to the layer's folder or the package's root).
 """
+import os
+import posixpath
 from typing import NamedTuple
 
 from .document import SCOPED_ATTRIBUTES, Document, parse_document, read_document
@@ -20,7 +23,7 @@ from .usd import _pxr, anchor
 DEFAULT_PRIM = "/MaterialX"
 MATERIALS = "/MaterialX/Materials/"
 ARC_FIELDS = ("references", "payload")
-LIST_FIELDS = ("prependedItems", "appendedItems", "deletedItems", "orderedItems")
+LIST_FIELDS = ("prependedItems", "appendedItems", "addedItems", "deletedItems", "orderedItems")
 
 
 class MtlxArc(NamedTuple):
@@ -87,8 +90,9 @@ def read_mtlx(anchored: str) -> Document:
 class MtlxMaterials:
     """The materials of MaterialX arcs, added to the translated document's root."""
 
-    def __init__(self, root: Element, translator):
+    def __init__(self, root: Element, translator, document_dir: str | None):
         self.root, self.translator = root, translator
+        self.document_dir = document_dir  # the folder filenames are relative to (None: a package's root)
         self.documents: dict[str, dict[str, Element]] = {}  # anchored path -> its materials by name
 
     def materials(self, prim, arcs: list[MtlxArc]) -> list[tuple[str, Element]]:
@@ -119,6 +123,7 @@ class MtlxMaterials:
         if anchored in self.documents:
             return self.documents[anchored]
         doc = read_mtlx(anchored)
+        folder = self._folder(anchored)
         materials = {}
         for child in list(doc.root.children):
             if child.category == "surfacematerial" or child.get("type") == "material":
@@ -130,7 +135,20 @@ class MtlxMaterials:
             for key in SCOPED_ATTRIBUTES:  # what the document's root said still holds for its elements
                 if doc.root.get(key) is not None and child.get(key) is None:
                     child.attrs[key] = doc.root.get(key)
+            if folder:
+                child.attrs["fileprefix"] = folder + child.get("fileprefix", "")
             self.translator.names.add(child.name)
             self.root.add_child(child)
         self.documents[anchored] = materials
         return materials
+
+    def _folder(self, anchored: str) -> str:
+        """The document's folder as a fileprefix (`materials/`): its filenames are relative to it,
+        the translated document's to the layer's folder or the package's root."""
+        from pxr import Ar
+
+        if Ar.IsPackageRelativePath(anchored):
+            folder = posixpath.dirname(Ar.SplitPackageRelativePathOuter(anchored)[1])
+        else:
+            folder = os.path.relpath(os.path.dirname(anchored), self.document_dir or os.path.dirname(anchored))
+        return "" if folder in ("", ".") else folder.replace(os.sep, "/") + "/"

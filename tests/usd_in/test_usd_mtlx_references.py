@@ -88,3 +88,14 @@ def test_upload_package_holding_layer_and_document(gen: Generator, folder):
     [record] = gen.records((folder / "brick.usdz").read_bytes(), document_format="usdz", all=True)
     assert "error" not in record, record
     assert record["element"] == "/World/Looks/Brick" and uniform_values(record)["image/file"] == TEXTURE
+
+
+def test_document_in_a_folder_reads_its_textures_from_that_folder(gen: Generator, folder):
+    (folder / "materials").mkdir()
+    (folder / "materials" / "brick.mtlx").write_text(STANDARD_SURFACE_MTLX)
+    (folder / TEXTURE).rename(folder / "materials" / TEXTURE)
+    path = scene(folder, '        def Material "Brick" '
+                         '( references = @materials/brick.mtlx@</MaterialX/Materials/Brick> ) { }')
+    [record] = gen.records(path, all=True)
+    assert "error" not in record, record
+    assert uniform_values(record)["image/file"] == f"materials/{TEXTURE}"
