@@ -27,15 +27,22 @@ FORMAT_ARGS = ":SDF_FORMAT_ARGS:"
 
 
 def _asset_attributes(layer) -> list:
-    """The paths of the layer's asset-typed attribute specs, in every prim and variant."""
-    found = []
+    """The paths of the layer's asset-typed attribute specs, in every prim and variant. A path the
+    layer lists without a spec (a corrupt crate's child) is refused here: usd-core's own walks of
+    the layer, ModifyAssetPaths among them, abort the process on it."""
+    found, missing = [], []
 
     def visit(path):
+        if layer.GetObjectAtPath(path) is None:
+            missing.append(path)
         spec = layer.GetAttributeAtPath(path) if path.IsPropertyPath() else None
         if spec is not None and str(spec.typeName) in ASSET_TYPES:
             found.append(path)
 
     layer.Traverse(layer.pseudoRoot.path, visit)
+    if missing:
+        raise ShaderGenError("invalid_document", f"malformed USD: the layer names {missing[0]} but holds no spec "
+                             "there", str(missing[0]))
     return found
 
 
