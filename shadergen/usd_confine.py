@@ -33,7 +33,9 @@ def _asset_attributes(layer) -> list:
     found, missing = [], []
 
     def visit(path):
-        if layer.GetObjectAtPath(path) is None:
+        spec_path = path.IsPrimPath() or path.IsPrimVariantSelectionPath() or path.IsPrimPropertyPath()
+        # (a connection's target is no spec of its own; an empty path is a child with no name)
+        if path.isEmpty or spec_path and layer.GetObjectAtPath(path) is None:
             missing.append(path)
         spec = layer.GetAttributeAtPath(path) if path.IsPropertyPath() else None
         if spec is not None and str(spec.typeName) in ASSET_TYPES:
@@ -41,8 +43,9 @@ def _asset_attributes(layer) -> list:
 
     layer.Traverse(layer.pseudoRoot.path, visit)
     if missing:
-        raise ShaderGenError("invalid_document", f"malformed USD: the layer names {missing[0]} but holds no spec "
-                             "there", str(missing[0]))
+        where = str(missing[0]) or "<document>"
+        raise ShaderGenError("invalid_document", f"malformed USD: the layer names {where} but holds no spec there",
+                             where)
     return found
 
 
