@@ -63,14 +63,20 @@ def usdz(crate: bytes, folder: Path) -> bytes:
     return package.read_bytes()
 
 
-def crate_cases(count: int, seed: int):
-    """(label, usdz body) for `count` cases of this seed: the same cases every run."""
+def corrupted_crates(count: int, seed: int):
+    """(label, crate file) for `count` cases of this seed: the same cases every run."""
     rng = random.Random(seed)
     crates = base_crates()
+    for n in range(count):
+        what, data = corrupt(rng, rng.choice(crates))
+        yield f"case {n}: {what}", data
+
+
+def crate_cases(count: int, seed: int):
+    """(label, usdz body) for `count` cases of this seed."""
     with tempfile.TemporaryDirectory(prefix="crate-cases-") as folder:
-        for n in range(count):
-            what, data = corrupt(rng, rng.choice(crates))
-            yield f"case {n}: {what}", usdz(data, Path(folder))
+        for label, data in corrupted_crates(count, seed):
+            yield label, usdz(data, Path(folder))
 
 
 def judge(response) -> str | None:
