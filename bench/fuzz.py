@@ -5,7 +5,8 @@ error object with a code, a message and a where). Prints each case that broke it
     fuzz: N cases | 5xx 0 | max time X s | max child RSS Y MiB
 
 (`max time`: the slowest answer; `max child RSS`: the largest peak resident size any generator
-child reached during the run). Exits 1 when a case broke the contract.
+child reached during the run), after a line of how many answers had each status. Exits 1 when a
+case broke the contract.
 
     .venv/bin/python bench/fuzz.py --kind crate --cases 2000 --seed 21
 
@@ -16,6 +17,7 @@ status_code) and its judge (answer -> why it broke the contract, or None).
 """
 import argparse
 import sys
+from collections import Counter
 import tempfile
 import time
 from collections.abc import Callable, Iterator
@@ -59,7 +61,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="shadergen-fuzz-") as folder:
         server = Server(Path(folder), workers=args.workers, render_workers=1)
         try:
-            broken, five_xx, slowest = [], 0, 0.0
+            broken, statuses, slowest = [], Counter(), 0.0
 
             def one(case):
                 label, body = case
@@ -73,12 +75,14 @@ def main() -> int:
             with ChildPeakMemory(server.proc.pid) as memory, ThreadPoolExecutor(args.clients) as pool:
                 for label, seconds, status, why in pool.map(one, kind.cases(args.cases, args.seed)):
                     slowest = max(slowest, seconds)
-                    five_xx += status is not None and status >= 500
+                    statuses[status or "none"] += 1
                     if why:
                         broken.append(label)
                         print(f"{label}: {why}", flush=True)
         finally:
             server.close()
+    print("statuses: " + ", ".join(f"{status} x {n}" for status, n in sorted(statuses.items(), key=str)))
+    five_xx = sum(n for status, n in statuses.items() if status != "none" and status >= 500)
     print(f"fuzz: {args.cases} cases | 5xx {five_xx} | max time {slowest:.2f} s | "
           f"max child RSS {memory.peak_mib:.0f} MiB")
     return 1 if broken else 0
