@@ -176,9 +176,27 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
             package = os.path.join(folder, "upload.usdz")
             with open(package, "wb") as f:
                 f.write(data)
-            layer, layers = _open_package(package)
-            return _translate(layer, layers, library, None, AssetPaths(package=package))
+            try:
+                layer, layers = _open_package(package)
+                return _unnamed(_translate(layer, layers, library, None, AssetPaths(package=package)), folder)
+            except ShaderGenError as exc:
+                raise _unnamed_error(exc, folder) from None
     raise ShaderGenError("unsupported_format", f"unknown USD format '{document_format}'", document_format)
+
+
+def _unnamed_error(exc: ShaderGenError, folder: str) -> ShaderGenError:
+    """The error without the server's temporary folder, which usd-core's messages name the
+    package's layers by (`/tmp/shadergen-usdz-x/upload.usdz[scene.usda]:2:5`)."""
+    exc.message = exc.message.replace(folder + os.sep, "")
+    exc.where = exc.where.replace(folder + os.sep, "") if exc.where else exc.where
+    return exc
+
+
+def _unnamed(doc: Document, folder: str) -> Document:
+    doc.warnings[:] = [w.replace(folder + os.sep, "") for w in doc.warnings]
+    for exc in doc.failures.values():
+        _unnamed_error(exc, folder)
+    return doc
 
 
 def _translate(layer, layers: list, library: Library, path: str | None, assets: AssetPaths) -> Document:
