@@ -13,7 +13,6 @@ import posixpath
 import re
 from contextlib import contextmanager
 
-from .archives import check_usdz
 from .document import Document
 from .element import Element
 from .errors import ShaderGenError
@@ -169,8 +168,11 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
     if document_format == "usdz":
         if not data.startswith(b"PK\x03\x04"):
             raise ShaderGenError("invalid_document", "the upload is not a usdz package (a zip archive)", "<document>")
-        check_usdz(data)  # stored members only, a directory that agrees with the bytes: before usd-core reads any
         import tempfile  # here, like usd-core and the translator: a MaterialX-only process never loads them
+
+        from .archives import check_usdz  # zipfile brings shutil and pathlib: USD uploads only
+
+        check_usdz(data)  # stored members only, a directory that agrees with the bytes: before usd-core reads any
 
         with tempfile.TemporaryDirectory(prefix="shadergen-usdz-") as folder:
             package = os.path.join(folder, "upload.usdz")
