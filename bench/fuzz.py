@@ -11,15 +11,19 @@ case broke the contract.
     .venv/bin/python bench/fuzz.py --kind crate --cases 2000 --seed 21
 
 Kinds (KINDS): `crate`, real .usdc files truncated and with bytes flipped, each the root layer of
-a usdz upload (tests/fuzz_testing.py, which the fault test in tests/faults shares). A kind is its
+a usdz upload (tests/fuzz_testing.py, which the fault test in tests/faults shares); `names`,
+MaterialX and USD documents of hostile names (Unicode, digits first, every target's reserved and
+built-in words, names that collide once cleaned), each sent for glsl, essl and wgsl in complete and
+specialized, every record compiled by its target's checker (tests/name_cases.py, which
+tests/core/test_name_fuzz.py shares). A kind is its
 case generator (count, seed -> (label, case) pairs), its runner (client, case -> an answer with a
 status_code) and its judge (answer -> why it broke the contract, or None).
 """
 import argparse
 import sys
-from collections import Counter
 import tempfile
 import time
+from collections import Counter
 from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -29,6 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "tests"), str(ROOT / "tests" / "service")]
 
 from fuzz_testing import USDZ, ChildPeakMemory, crate_cases, judge  # noqa: E402
+from name_cases import http_cases, judge_answer, post_case  # noqa: E402
 from service_testing import Server  # noqa: E402
 
 ANSWER_TIMEOUT_S = 120  # a case unanswered by then counts as broken (the client gives up)
@@ -46,6 +51,7 @@ def post_usdz(client, body: bytes):
 
 KINDS: dict[str, Kind] = {
     "crate": Kind(crate_cases, post_usdz, judge),
+    "names": Kind(http_cases, post_case, judge_answer),
 }
 
 
