@@ -15,6 +15,7 @@ import uuid
 from pathlib import Path
 
 from ..workers import protocol
+from ..workers.child import HEARTBEAT
 from . import JobBackend, JobError, JobState, RenderResult
 
 log = logging.getLogger(__name__)
@@ -99,20 +100,23 @@ class PoolGone(JobError):
 class LocalJobs(JobBackend):
     name = "local"
 
-    def __init__(self, socket_path: str, supervisor: PoolServerSupervisor | None = None, wait_s: float = 180.0):
+    def __init__(self, socket_path: str, supervisor: PoolServerSupervisor | None = None, wait_s: float = 180.0,
+                 silent_s: float = 10.0):
         self.socket_path = socket_path
         self.supervisor = supervisor  # set when this client started the pool and must stop it
         self.wait_s = wait_s  # the longest an answer about one job may take
+        self.silent_s = silent_s  # the longest the pool may send nothing, not even a heartbeat
         self._followers: set[asyncio.Task] = set()
 
     @classmethod
     async def connect(cls, settings) -> "LocalJobs":
         wait_s = settings.render_timeout_s * 3  # queueing, one retry, and the render itself
+        timing = {"wait_s": wait_s, "silent_s": settings.ready_deadline_s}
         if settings.render_socket:
-            jobs = cls(settings.render_socket, wait_s=wait_s)
+            jobs = cls(settings.render_socket, **timing)
         else:
             supervisor = await asyncio.to_thread(PoolServerSupervisor, settings)
-            jobs = cls(supervisor.socket_path, supervisor, wait_s=wait_s)
+            jobs = cls(supervisor.socket_path, supervisor, **timing)
         if not await jobs._wait_ready(READY_TIMEOUT_S):
             await jobs.close()
             raise RuntimeError(f"render pool at {jobs.socket_path} silent for {READY_TIMEOUT_S:g} s")
@@ -129,7 +133,9 @@ class LocalJobs(JobBackend):
         return False
 
     async def _request(self, message: dict, timeout_s: float | None = None) -> tuple[dict, bytes]:
-        """One question to the pool; `timeout_s` (default: the job wait) bounds the answer."""
+        """One question to the pool; `timeout_s` (default: the job wait) bounds the answer. While
+        a render is waited for, the pool sends heartbeats: silence past `silent_s` means a pool
+        stopped or wedged, answered at once as unavailable (503) rather than at the job's limit."""
         timeout_s = timeout_s or self.wait_s
         try:
             reader, writer = await asyncio.open_unix_connection(self.socket_path)
@@ -138,10 +144,17 @@ class LocalJobs(JobBackend):
         try:
             writer.write(protocol.encode(message))
             await writer.drain()
-            return await asyncio.wait_for(protocol.read_frame(reader), timeout_s)
+            async with asyncio.timeout(timeout_s):
+                while True:
+                    try:
+                        reply, payload = await asyncio.wait_for(protocol.read_frame(reader), self.silent_s)
+                    except TimeoutError:
+                        raise JobError("unavailable", f"the render pool has not answered for {self.silent_s:g} s")
+                    if reply != HEARTBEAT:
+                        return reply, payload
         except (asyncio.IncompleteReadError, ConnectionError):
             raise PoolGone("the render pool closed the connection") from None
-        except asyncio.TimeoutError:
+        except TimeoutError:
             raise JobError("timeout", f"the render pool gave no answer within {timeout_s:g} s") from None
         finally:
             writer.close()
@@ -184,10 +197,17 @@ class LocalJobs(JobBackend):
         return job_id
 
     async def _follow(self, job_id: str, request: dict) -> None:
-        try:
-            await self._submit(job_id, request, wait=True)
-        except JobError as exc:
-            log.warning("job %s lost: %s", job_id, exc.message)
+        deadline = time.monotonic() + self.wait_s
+        while True:
+            try:
+                await self._submit(job_id, request, wait=True)
+                return
+            except JobError as exc:
+                # a silent pool may be stopped for a while and go on: follow it until the job's wait is over
+                silent = exc.code == "unavailable" and not isinstance(exc, PoolGone)
+                if not silent or time.monotonic() > deadline:
+                    log.warning("job %s lost: %s", job_id, exc.message)
+                    return
 
     async def status(self, job_id: str) -> JobState | None:
         reply, png = await self._request({"op": "status", "id": job_id}, QUERY_TIMEOUT_S)

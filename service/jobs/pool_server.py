@@ -5,7 +5,12 @@ job table (an async job submitted through one API worker can be polled through a
 Run as `python -m service.jobs.pool_server SOCKET [--restarted]`; settings come from SHADERGEN_*
 variables. `--restarted`: a supervisor started it again after the last one died; the API workers
 are submitting the jobs that died with it again, so for a grace period an unknown job id is
-"unavailable, try again" (503) rather than "no such job" (404)."""
+"unavailable, try again" (503) rather than "no such job" (404).
+
+A submit that waits for its render is answered when the render ends, seconds later; meanwhile the
+connection carries a heartbeat frame every SHADERGEN_HEARTBEAT_S, so that the API worker can tell
+a pool that is rendering from one that is stopped or wedged (whose socket still accepts), and
+answer its client 503 within the readiness deadline instead of waiting out the job's."""
 import asyncio
 import logging
 import os
@@ -16,6 +21,7 @@ import time
 from ..config import get_settings
 from ..metrics import PROGRAMS, RENDER_SECONDS
 from ..workers import protocol
+from ..workers.child import HEARTBEAT
 from ..workers.pool import Job, JobTimeout, PoolError, ProcessPool, QueueFull, Unavailable, WorkerCrashed
 
 log = logging.getLogger("service.render_pool")
@@ -32,8 +38,9 @@ def _error_of(exc: BaseException) -> dict:
 
 
 class PoolServer:
-    def __init__(self, pool: ProcessPool, restarted: bool = False):
+    def __init__(self, pool: ProcessPool, restarted: bool = False, heartbeat_s: float = 1.0):
         self.pool = pool
+        self.heartbeat_s = heartbeat_s
         self.jobs: dict[str, Job] = {}
         self.grace_until = time.monotonic() + RESUBMIT_GRACE_S if restarted else 0.0
 
@@ -94,14 +101,21 @@ class PoolServer:
         return {"error": {"code": "invalid_request", "message": f"unknown op {op!r}"}}, b""
 
     async def serve_connection(self, reader: asyncio.StreamReader, writer: asyncio.StreamWriter) -> None:
+        answer = None
         try:
             message, _ = await protocol.read_frame(reader)
-            reply, payload = await self.handle(message)
+            answer = asyncio.ensure_future(self.handle(message))
+            while not (await asyncio.wait((answer,), timeout=self.heartbeat_s))[0]:
+                writer.write(protocol.encode(HEARTBEAT))
+                await writer.drain()
+            reply, payload = answer.result()
             writer.write(protocol.encode(reply, payload))
             await writer.drain()
         except (asyncio.IncompleteReadError, ConnectionError):
             pass  # the API worker went away (its client disconnected): the job still completes
         finally:
+            if answer is not None:
+                answer.cancel()  # a waiting submit stops waiting; the job is shielded and runs on
             writer.close()
 
 
@@ -119,7 +133,7 @@ async def serve(socket_path: str, restarted: bool) -> None:
                        on_result=observe_render, limits=settings.child_limits(settings.render_memory_mib),
                        name="render")
     await pool.start(wait=False)
-    server = PoolServer(pool, restarted)
+    server = PoolServer(pool, restarted, settings.heartbeat_s)
     unix = await asyncio.start_unix_server(server.serve_connection, path=socket_path)
     os.chmod(socket_path, 0o600)  # only this user's processes may submit renders
     log.info("render pool: %d workers on %s", pool.size, socket_path)

@@ -119,3 +119,25 @@ def test_stopped_render_worker_fails_fast_its_job_times_out_504_and_it_is_replac
     assert one(server, RENDER) != worker
     r = thumbnail(client, 0.314)
     assert r.status_code == 200 and is_png(r.content, 32), r.text
+
+
+def test_stopped_render_pool_server_fails_fast_and_recovers_on_sigcont(server):
+    """The render pool server itself stopped: its socket still accepts, so only the heartbeats it
+    sends while a render is waited for tell the API worker that nobody is there. A thumbnail is
+    answered 503 once the pool has been silent past the readiness deadline, long before the
+    job's own wait (three render time limits) would end."""
+    client = server.client
+    wait_ready(client)
+    pool = one(server, "service.jobs.pool_server")
+    with stopped(pool):
+        body = wait_until(lambda: (r := readiness(client))[0] == 503 and not r[1]["render"]["ready"] and r[1],
+                          5 * DEADLINE_S, "render not ready", pause_s=0.05)
+        assert "has not answered for" in body["render"]["detail"], body
+        r = thumbnail(client, 0.316)
+        assert_error(r, 503, "unavailable")
+        assert int(r.headers["Retry-After"]) > 0
+        assert "has not answered for" in r.json()["error"]["message"], r.text
+    wait_ready(client)
+    assert one(server, "service.jobs.pool_server") == pool
+    r = thumbnail(client, 0.315)
+    assert r.status_code == 200 and is_png(r.content, 32), r.text
