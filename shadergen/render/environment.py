@@ -83,7 +83,7 @@ def _read_map(path: str) -> np.ndarray:
     try:
         image = read_image(path)
     except RenderError as exc:
-        if exc.code == "too_large":  # a limit of the renderer, not a fault of the file
+        if exc.code in ("too_large", "invalid_setting"):  # the renderer's limit or setting, not the file's fault
             raise
         raise RenderError("invalid_environment", exc.message, path) from exc
     if image.shape[2] < 3:  # a grey map lights in grey

@@ -19,20 +19,35 @@ from .errors import RenderError
 # float32 and uploaded with its mipmaps, a texture peaks at about 17 bytes a value in a render
 # process (a 4096 x 4096 RGBA PNG of 100 kB: 1.27 GB peak RSS, 154 MB before): at this limit
 # (4096 x 4096 RGBA, 8192 x 8192 grey) that stays under a render worker's default memory limit.
+# A machine with the memory for larger textures (8192 x 8192 RGB: 2^27.6) sets
+# SHADERGEN_MAX_IMAGE_VALUES, read when an image is read.
 MAX_IMAGE_VALUES = 1 << 26
+IMAGE_LIMIT_VARIABLE = "SHADERGEN_MAX_IMAGE_VALUES"
 # OpenImageIO refuses some such headers itself, in open (a PNG header claiming gigabytes from a
 # small file; anything over its own limits:imagesize_MB): the same refusal, told by its message.
 _OIIO_SIZE_REFUSAL = re.compile(r"claims an? [\d.]+ MB image|size [\d.]+ MB exceeds the [\d.]+ MB limit")
 
 
-def read_image(path: str, name: str | None = None, max_values: int = MAX_IMAGE_VALUES) -> np.ndarray:
+def image_limit() -> int:
+    """The most values an image may have: SHADERGEN_MAX_IMAGE_VALUES, else MAX_IMAGE_VALUES."""
+    text = os.environ.get(IMAGE_LIMIT_VARIABLE, "")
+    if not text:
+        return MAX_IMAGE_VALUES
+    if not text.isdigit() or int(text) == 0:
+        raise RenderError("invalid_setting", f"{IMAGE_LIMIT_VARIABLE} must be a positive integer, not {text!r}",
+                          IMAGE_LIMIT_VARIABLE)
+    return int(text)
+
+
+def read_image(path: str, name: str | None = None, max_values: int | None = None) -> np.ndarray:
     """Any format OpenImageIO reads, as float32 (h, w, c) top row first; 8-bit files give
     value / 255 with no colour conversion (colour spaces are the shader's business). `name` is
     what errors call the file (a package member read from a temporary copy), `path` by default.
-    An image of more than `max_values` values is refused as too_large."""
+    An image of more than `max_values` values (default: image_limit()) is refused as too_large."""
     import OpenImageIO as oiio
 
     name = name or path
+    max_values = max_values or image_limit()
     image = oiio.ImageInput.open(path)
     if image is None:
         why = _oiio_error(oiio, path, name)

@@ -13,7 +13,7 @@ import numpy as np
 
 from .errors import RenderError
 from .context import gl_extras
-from .imageio import MAX_IMAGE_VALUES, read_image
+from .imageio import read_image
 from .packages import has_member, member_file, split_member
 from .values import numbers
 
@@ -27,8 +27,9 @@ UNRESOLVABLE_TOKENS = ("<UDIM>", "<UVTILE>")
 _SWIZZLE = {1: "RRR1", 2: "RRRG"}  # grey and grey-alpha images read as grey
 # Failures that refuse the render instead of showing the image node's default: a file the server
 # will not read (an image over the limit, a package that is not a valid usdz) is no missing file,
-# and a default colour would hide it behind a thumbnail that looks right.
-REFUSALS = ("too_large", "invalid_document")
+# nor is a limit the operator set wrongly, and a default colour would hide either behind a
+# thumbnail that looks right.
+REFUSALS = ("too_large", "invalid_document", "invalid_setting")
 
 
 @dataclass(frozen=True)
@@ -116,9 +117,9 @@ class TextureCache:
     textures of constant colours for missing files and unbound samplers. `upload` makes a
     texture of the drawing API from a float32 (h, w, c) image; a texture has `width`, `height`,
     `components` and `release()`. An image of more than `max_image_values` values is refused
-    (too_large) from its header."""
+    (too_large) from its header (default: imageio.image_limit())."""
 
-    def __init__(self, budget_bytes: int = 512 << 20, max_image_values: int = MAX_IMAGE_VALUES):
+    def __init__(self, budget_bytes: int = 512 << 20, max_image_values: int | None = None):
         self.budget_bytes = budget_bytes
         self.max_image_values = max_image_values
         self._files: OrderedDict[tuple, object] = OrderedDict()

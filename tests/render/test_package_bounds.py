@@ -8,6 +8,7 @@ from required_tools import require_module
 require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -122,6 +123,24 @@ def test_the_command_line_gives_an_error_record(tmp_path):
     error = json.loads(run.stdout)["error"]
     assert error["code"] == "too_large" and error["where"].endswith("huge.png")
     assert not (tmp_path / "out.png").exists()
+
+
+def test_the_limit_is_the_machines_to_set(tmp_path):
+    """SHADERGEN_MAX_IMAGE_VALUES moves the limit for a command line render (a machine with the
+    memory for 8K textures raises it); a value that is not a positive count is an error record."""
+    (tmp_path / "wide.png").write_bytes(png(64, 64, RED))  # 12288 values
+    (tmp_path / "scene.usda").write_text(textured_layer("wide.png"))
+
+    def render(limit: str) -> subprocess.CompletedProcess:
+        return subprocess.run([sys.executable, "-m", "shadergen.cli", "render", "scene.usda", "-o", "out.png",
+                               "--json", "--size", "32"], capture_output=True, text=True, cwd=tmp_path, timeout=300,
+                              env={**os.environ, "SHADERGEN_MAX_IMAGE_VALUES": limit})
+
+    assert render("12288").returncode == 0 and (tmp_path / "out.png").exists()
+    for limit, code in (("12287", "too_large"), ("lots", "invalid_setting")):
+        run = render(limit)
+        assert run.returncode == 1 and "Traceback" not in run.stderr, run.stderr
+        assert json.loads(run.stdout)["error"]["code"] == code
 
 
 def test_a_deep_image_is_refused_before_it_is_read(tmp_path):
