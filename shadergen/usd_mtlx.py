@@ -55,6 +55,8 @@ def take_mtlx_arcs(layers) -> dict[tuple[str, str], list[MtlxArc]]:
                        if path.IsPrimPath() or path.IsPrimVariantSelectionPath() else None)
         for path in specs:
             spec = layer.GetPrimAtPath(path)
+            if spec is None:  # a variant set's own path (`{look=}`): its variants are visited as prims
+                continue
             for field in ARC_FIELDS:
                 op = spec.GetInfo(field) if spec.HasInfo(field) else None
                 items = [i for i in op.GetAddedOrExplicitItems() if _is_mtlx(i)] if op else []

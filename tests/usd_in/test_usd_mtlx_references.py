@@ -99,3 +99,46 @@ def test_document_in_a_folder_reads_its_textures_from_that_folder(gen: Generator
     [record] = gen.records(path, all=True)
     assert "error" not in record, record
     assert uniform_values(record)["image/file"] == f"materials/{TEXTURE}"
+
+
+LOOKS_IN_A_VARIANT_SET = '''        def Material "Look" (
+            variants = { string look = "brick" }
+            prepend variantSets = "look"
+        )
+        {
+            variantSet "look" = {
+                "brick" ( prepend references = @./brick.mtlx@</MaterialX/Materials/Brick> ) { }
+                "plain" { }
+            }
+        }
+        def Material "Plain" (
+            variants = { string finish = "matte" }
+            prepend variantSets = "finish"
+        )
+        {
+            variantSet "finish" = {
+                "matte" { }
+            }
+            token outputs:surface.connect = </World/Looks/Plain/Surface.outputs:surface>
+            def Shader "Surface"
+            {
+                uniform token info:id = "UsdPreviewSurface"
+                float inputs:roughness = 0.4
+                token outputs:surface
+            }
+        }'''
+
+
+def test_variant_sets_are_walked_by_their_variants(gen: Generator, folder):
+    """A variant set's own path (`/Look{look=}`) holds no prim spec: the walk for MaterialX arcs
+    reads its variants (`/Look{look=brick}`), on the command line and in an upload (the set's
+    path was taken for a prim and raised AttributeError: a traceback, a 500 over HTTP)."""
+    path = scene(folder, LOOKS_IN_A_VARIANT_SET)
+    records = {r["element"]: r for r in gen.records(path, all=True)}
+    assert set(records) == {"/World/Looks/Look", "/World/Looks/Plain"}
+    assert all("error" not in r for r in records.values()), records
+    [direct] = gen.records(folder / "brick.mtlx", all=True)
+    assert uniform_values(records["/World/Looks/Look"]) == uniform_values(direct)
+    uploaded = SCENE % ('        def Material "Plain"' + LOOKS_IN_A_VARIANT_SET.split('        def Material "Plain"')[1])
+    [record] = gen.records(uploaded.encode(), all=True, document_format="usda")
+    assert "error" not in record and record["element"] == "/World/Looks/Plain", record
