@@ -12,8 +12,9 @@ A zip's directory can lie, so before any member is read it is checked against th
 walks the members' local headers from the start of the file; zipfile (the renderer's reader) goes
 by the central directory. The package must read the same both ways: the members lie back to back
 from the first byte to the directory, each local header agreeing with its directory entry on
-method, sizes, checksum and name. So no two members overlap (how a small zip claims a large
-total), no member hides between others, and none runs past the package. Reading a member then
+method, sizes, checksum and name, and no two members share a name (zipfile finds the last of
+them, usd-core the first). So no two members overlap (how a small zip claims a large total), no
+member hides between others, and none runs past the package. Reading a member then
 yields at most its checked size: zipfile stops at the directory's size and compares the CRC at the
 end, so a directory that understates a member gives a checksum error, never more bytes. An upload
 is read through once to compare every member with its checksum, which usd-core does not.
@@ -74,9 +75,16 @@ def open_usdz(file, where: str, error: type[ShaderGenError] = ShaderGenError):
 
 def _check_members(archive: zipfile.ZipFile, error: type[ShaderGenError]) -> None:
     file = archive.fp
-    data_end, previous = 0, None
+    data_end, previous, names = 0, None, set()
     for info in sorted(archive.infolist(), key=lambda i: i.header_offset):
         name = info.filename
+        # zipfile cuts a name at a NUL byte and finds the last of two members of one name; usd-core
+        # keeps the whole name (and its file format registry raises on the NUL) and finds the first
+        if "\x00" in info.orig_filename:
+            raise _invalid(error, f"the name of the member {name}... holds a NUL byte", name)
+        if name in names:
+            raise _invalid(error, f"{name} is stored twice (readers differ on which one they read)", name)
+        names.add(name)
         if info.compress_type != zipfile.ZIP_STORED:
             raise _invalid(error, f"{name} is compressed (zip method {info.compress_type}); a usdz stores its members "
                            "uncompressed", name)

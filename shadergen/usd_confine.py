@@ -146,7 +146,9 @@ def _is_layer(path: str) -> bool:
     from pxr import Ar
 
     innermost = Ar.SplitPackageRelativePathInner(path)[1] if Ar.IsPackageRelativePath(path) else path
-    return Sdf.FileFormat.FindByExtension(posixpath.splitext(innermost)[1][1:].lower()) is not None
+    extension = posixpath.splitext(innermost)[1][1:].lower()
+    # (a name without one, `LICENSE`, is none: asked for the empty extension, usd-core raises)
+    return bool(extension) and Sdf.FileFormat.FindByExtension(extension) is not None
 
 
 def _members(package: str) -> list[str]:

@@ -3,7 +3,9 @@ A usdz whose texture is a deflate bomb (256 MiB of zeros in a 260 kB body) is re
 valid usdz, and no process of the server reaches a higher peak of memory by anything like the
 bomb's size; a package whose directory lies about a member's size is refused; a PNG whose header
 declares 60000 x 60000 pixels is refused as too_large, in a package and in the texture roots; a
-deep image is refused unread; a legitimate package still renders its own texture."""
+deep image is refused unread; a legitimate package still renders its own texture. Member names
+that usd-core and zipfile read differently (twice the same, or holding a NUL byte, which answered
+500) are refused before either reads the package."""
 from required_tools import require_module
 
 require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
@@ -129,3 +131,32 @@ def test_a_huge_image_header_is_refused_in_the_texture_roots(server, warm, roots
     error = assert_error(r, 413, "too_large")
     assert error["where"].endswith("huge.png") and "limit" in error["message"]
     assert "Traceback" not in server.log_text()
+
+
+def with_nul(package: bytes, name: str) -> bytes:
+    """The package with the name's `#` made a NUL byte, in both headers (no checksum covers names)."""
+    return package.replace(name.encode(), name.replace("#", "\x00").encode())
+
+
+@pytest.mark.parametrize("names", [(TEXTURE, TEXTURE), (LAYER, LAYER), ("textures/a#b.png", TEXTURE)])
+def test_member_names_both_readers_cannot_agree_on_are_refused(server, warm, names):
+    """Two members of one name (zipfile finds the last, usd-core the first: the layer the
+    confinement checked need not be the one composed, the texture checked not the one drawn), or
+    a name holding a NUL (written here as `#`; zipfile cuts the name there)."""
+    members = [(LAYER, textured_layer(TEXTURE).encode()), (names[0], png(8, 8, (230, 20, 20))),
+               (names[1], png(8, 8, (20, 20, 230)) if names[1] != LAYER else textured_layer(TEXTURE).encode())]
+    package = usdz(members)
+    if "#" in names[0]:  # in both headers (no checksum covers names)
+        package = package.replace(names[0].encode(), names[0].replace("#", "\x00").encode())
+    for route in ("/v1/generate", "/v1/thumbnails"):
+        error = assert_error(server.client.post(route, content=package, headers=USDZ), 400, "invalid_document")
+        assert error["where"] == names[0].split("#")[0], error
+    assert "Traceback" not in server.log_text()
+
+
+def test_a_member_without_extension_is_no_layer(server, warm):
+    """Asked for the file format of a name with no extension (`LICENSE`), usd-core raised: a 500."""
+    package = textured_package(png(8, 8, (230, 20, 20)))
+    licensed = usdz([(LAYER, textured_layer(TEXTURE).encode()), (TEXTURE, png(8, 8, (230, 20, 20))),
+                     ("LICENSE", b"CC0")])
+    assert assert_renders(server, licensed) == assert_renders(server, package)
