@@ -143,7 +143,11 @@ class LocalJobs(JobBackend):
             raise PoolGone(f"the render pool is not reachable: {exc.strerror}") from None
         try:
             writer.write(protocol.encode(message))
-            await writer.drain()
+            try:  # a usdz job's package is more than the socket holds: a stopped pool never takes it
+                await asyncio.wait_for(writer.drain(), self.silent_s)
+            except TimeoutError:
+                writer.transport.abort()  # the request unsent, rather than run once the pool wakes
+                raise JobError("unavailable", f"the render pool read nothing for {self.silent_s:g} s") from None
             async with asyncio.timeout(timeout_s):
                 while True:
                     try:

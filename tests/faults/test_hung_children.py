@@ -10,6 +10,7 @@ from contextlib import contextmanager
 import pytest
 
 from faults_testing import processes, readiness, wait_ready
+from hostile_packages import LAYER, png, textured_layer, usdz
 from service_testing import Server, assert_error, document, is_png, wait_until
 
 GEN, RENDER = "service.workers.gen_worker", "service.workers.render_worker"
@@ -140,4 +141,24 @@ def test_stopped_render_pool_server_fails_fast_and_recovers_on_sigcont(server):
     wait_ready(client)
     assert one(server, "service.jobs.pool_server") == pool
     r = thumbnail(client, 0.315)
+    assert r.status_code == 200 and is_png(r.content, 32), r.text
+
+
+def test_a_package_larger_than_the_socket_buffer_is_refused_by_a_stopped_pool_too(server):
+    """A usdz thumbnail carries its package to the pool (1.9 MB here): more than the socket holds,
+    so writing it waits on a stopped pool that reads nothing, before any heartbeat could be missed.
+    That wait is bounded by the same silence."""
+    client = server.client
+    wait_ready(client)
+    package = usdz([(LAYER, textured_layer("textures/t.png").encode()), ("textures/t.png", png(8, 8, (9, 9, 9))),
+                    ("padding.bin", bytes(1900 << 10))])
+    pool = one(server, "service.jobs.pool_server")
+    with stopped(pool):
+        r = client.post("/v1/thumbnails", params={"size": 32}, content=package,
+                        headers={"content-type": "model/vnd.usdz+zip"}, timeout=60)
+        assert_error(r, 503, "unavailable")
+        assert int(r.headers["Retry-After"]) > 0
+    wait_ready(client)
+    r = client.post("/v1/thumbnails", params={"size": 32}, content=package,
+                    headers={"content-type": "model/vnd.usdz+zip"})
     assert r.status_code == 200 and is_png(r.content, 32), r.text
