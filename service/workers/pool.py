@@ -194,8 +194,11 @@ class ChildProcess:
                 raise ConnectionError
             self.busy = True
             self.proc.stdin.write(protocol.encode(message, payload))
-            await self.proc.stdin.drain()
-            return await asyncio.wait_for(self._reply(), timeout_s)
+            # the limit covers the write too: a job larger than the pipe (a usdz upload) waits on a
+            # hung child to read it, and that child must be killed at the limit like any other
+            async with asyncio.timeout(timeout_s):
+                await self.proc.stdin.drain()
+                return await self._reply()
         except asyncio.TimeoutError:
             await self.kill()
             raise JobTimeout(f"the job ran past its time limit of {timeout_s:g} s") from None

@@ -162,3 +162,22 @@ def test_a_package_larger_than_the_socket_buffer_is_refused_by_a_stopped_pool_to
     r = client.post("/v1/thumbnails", params={"size": 32}, content=package,
                     headers={"content-type": "model/vnd.usdz+zip"})
     assert r.status_code == 200 and is_png(r.content, 32), r.text
+
+
+def test_a_generator_stopped_before_it_reads_a_large_upload_is_killed_at_the_time_limit(server):
+    """Stopped at once, before readiness can tell: the 1.9 MB package is more than the pipe holds,
+    and the job's time limit, which began only once it was written, never began; the slot waited
+    for the pool's whole wait and the stopped child was never replaced."""
+    client = server.client
+    wait_ready(client)
+    package = usdz([(LAYER, textured_layer("textures/t.png").encode()), ("textures/t.png", png(8, 8, (7, 7, 7))),
+                    ("padding.bin", bytes(1900 << 10))])
+    child = one(server, GEN)
+    with stopped(child):
+        r = client.post("/v1/generate", content=package, headers={"content-type": "model/vnd.usdz+zip"}, timeout=90)
+        assert_error(r, 504, "timeout")
+        assert int(r.headers["Retry-After"]) > 0
+    wait_ready(client)
+    assert one(server, GEN) != child
+    r = client.post("/v1/generate", content=package, headers={"content-type": "model/vnd.usdz+zip"})
+    assert r.status_code == 200, r.text
