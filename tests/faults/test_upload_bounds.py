@@ -161,3 +161,16 @@ def test_a_member_without_extension_is_no_layer(server, warm):
     licensed = usdz([(LAYER, textured_layer(TEXTURE).encode()), (TEXTURE, png(8, 8, (230, 20, 20))),
                      ("LICENSE", b"CC0")])
     assert assert_renders(server, licensed) == assert_renders(server, package)
+
+
+def test_a_package_of_more_layers_than_the_limit_is_refused_before_they_are_walked(server, warm):
+    """Each layer member is opened and walked before the stage composes: a package of 15,000
+    empty layers held a generator child for its whole time limit (504). Over the limit, 413."""
+    from shadergen.usd_confine import MAX_PACKAGE_LAYERS
+
+    members = [(LAYER, textured_layer(TEXTURE).encode()), (TEXTURE, png(8, 8, (230, 20, 20)))]
+    empties = [(f"layers/{i}.usda", b"#usda 1.0\n") for i in range(MAX_PACKAGE_LAYERS)]
+    r = server.client.post("/v1/generate", content=usdz(members + empties), headers=USDZ)
+    assert_error(r, 413, "too_large")
+    assert f"{MAX_PACKAGE_LAYERS + 1} layers" in r.json()["error"]["message"]
+    assert assert_renders(server, usdz(members + empties[:-1]))
