@@ -25,7 +25,8 @@ MAX_IMAGE_VALUES = 1 << 26
 IMAGE_LIMIT_VARIABLE = "SHADERGEN_MAX_IMAGE_VALUES"
 # OpenImageIO refuses some such headers itself, in open (a PNG header claiming gigabytes from a
 # small file; anything over its own limits:imagesize_MB): the same refusal, told by its message.
-_OIIO_SIZE_REFUSAL = re.compile(r"claims an? [\d.]+ MB image|size [\d.]+ MB exceeds the [\d.]+ MB limit")
+_OIIO_SIZE_REFUSAL = re.compile(r"claims an? [\d.]+ MB image|size [\d.]+ MB exceeds the [\d.]+ MB limit"
+                                r"|resolution may not exceed \d+x\d+")
 
 
 def image_limit() -> int:

@@ -103,6 +103,16 @@ def test_a_huge_image_header_is_refused_beside_a_layer_and_as_an_environment(gen
     assert caught.value.code == "too_large"
 
 
+def test_a_header_openimageio_refuses_for_its_size_is_too_large_too(tmp_path):
+    """OpenImageIO refuses some headers itself (an HDR over 65535 a side) before ours is read."""
+    from shadergen.render.imageio import read_image
+
+    (tmp_path / "big.hdr").write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n")
+    with pytest.raises(RenderError) as caught:
+        read_image(str(tmp_path / "big.hdr"))
+    assert caught.value.code == "too_large", caught.value.message
+
+
 def test_the_limit_counts_channels(tmp_path):
     from shadergen.render.textures import TextureCache
 
