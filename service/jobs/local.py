@@ -133,9 +133,12 @@ class LocalJobs(JobBackend):
         return False
 
     async def _request(self, message: dict, timeout_s: float | None = None) -> tuple[dict, bytes]:
-        """One question to the pool; `timeout_s` (default: the job wait) bounds the answer. While
-        a render is waited for, the pool sends heartbeats: silence past `silent_s` means a pool
-        stopped or wedged, answered at once as unavailable (503) rather than at the job's limit."""
+        """One question to the pool. `timeout_s` bounds a question the pool answers at once (depth,
+        a job's state): past it the pool is not answering (unavailable, 503); without it the job's
+        wait bounds the answer, past which the job timed out (504). While a render is waited for,
+        the pool sends heartbeats: silence past `silent_s` means a pool stopped or wedged, answered
+        at once as unavailable rather than at the job's limit."""
+        expired = "unavailable" if timeout_s else "timeout"
         timeout_s = timeout_s or self.wait_s
         try:
             reader, writer = await asyncio.open_unix_connection(self.socket_path)
@@ -159,7 +162,7 @@ class LocalJobs(JobBackend):
         except (asyncio.IncompleteReadError, ConnectionError):
             raise PoolGone("the render pool closed the connection") from None
         except TimeoutError:
-            raise JobError("timeout", f"the render pool gave no answer within {timeout_s:g} s") from None
+            raise JobError(expired, f"the render pool gave no answer within {timeout_s:g} s") from None
         finally:
             writer.close()
 

@@ -130,7 +130,14 @@ def test_stopped_render_pool_server_fails_fast_and_recovers_on_sigcont(server):
     client = server.client
     wait_ready(client)
     pool = one(server, "service.jobs.pool_server")
+    accepted = thumbnail(client, 0.317, **{"async": "true"})
+    assert accepted.status_code == 202, accepted.text
+    job = accepted.json()["id"]
+    wait_until(lambda: client.get(f"/v1/jobs/{job}").json()["state"] == "done", 60, "the job done")
     with stopped(pool):
+        r = client.get(f"/v1/jobs/{job}")  # a question the pool answers at once, or not at all
+        assert_error(r, 503, "unavailable")
+        assert int(r.headers["Retry-After"]) > 0
         body = wait_until(lambda: (r := readiness(client))[0] == 503 and not r[1]["render"]["ready"] and r[1],
                           5 * DEADLINE_S, "render not ready", pause_s=0.05)
         assert "has not answered for" in body["render"]["detail"], body
