@@ -262,15 +262,19 @@ def http_cases(count: int, seed: int):
 
 
 _CHECKER: ShaderChecker | None = None
+# made once for all of bench/fuzz.py's client threads: two checkers would be two locks over the
+# one WGSL validator child, whose pipe two threads then wrote at once (the run hung)
+_CHECKER_MADE = threading.Lock()
 
 
 def post_case(client, case: NameCase, timeout_s: float = 120) -> NameAnswer:
     """The case sent to /v1/generate for every target and interface (the service answers the first
     element); every answer must be a 200 whose record compiles."""
     global _CHECKER
-    if _CHECKER is None:
-        from shadergen.render.wgpu_device import wgsl_errors
-        _CHECKER = ShaderChecker(shutil.which("glslangValidator") or "glslangValidator", wgsl_errors)
+    with _CHECKER_MADE:
+        if _CHECKER is None:
+            from shadergen.render.wgpu_device import wgsl_errors
+            _CHECKER = ShaderChecker(shutil.which("glslangValidator") or "glslangValidator", wgsl_errors)
     status, problems, records = 200, [], []
     for target in TARGETS:
         for interface in INTERFACES:
