@@ -125,12 +125,11 @@ class Prepared:
         if self.graph.values_in_source or self.document.labels or record.get("topology_hash") != self.topology_hash:
             return None
         t0 = time.perf_counter()
-        syntax = target_for(self.target).syntax
         public = [dict(v) for v in record["blocks"]["pixel"]["PublicUniforms"]]
         if len(public) != len(self.graph.interface):
             return None
         for variable, port in zip(public, self.graph.interface):  # the listing is in interface order
-            variable["value"] = value_to_json(listing_value(port, port.value, syntax))
+            variable["value"] = value_to_json(listing_value(port, port.value))
         ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
         blocks = dict(record["blocks"], pixel=dict(record["blocks"]["pixel"], PublicUniforms=public))
         return dict(record, document=self.document.path, element=self.element, hash=self.hash, cached=False,
@@ -285,7 +284,7 @@ class Generator:
         else:
             root = builder.node_for(elem)
             outputs = {name: out for name, out in root.outputs.items()}
-        graph = prepare(builder, outputs, root, shading_language, options)
+        graph = prepare(builder, outputs, root, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         key = dict(element=doc.label(elem.path), target=target, interface=options.interface,

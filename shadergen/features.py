@@ -19,7 +19,7 @@ The first is needed unless the input is a constant of the shader (neither connec
 whose value satisfies the comparison; the second whenever the node is in the shader. A shader's
 features are those of all its nodes (dynamic implementations may add their own); the generator
 resolves the sections before a target sees the text: a needed section stays (its directives go),
-any other is dropped, with an `#else` side taking its place. `#pragma shadergen` lines are removed.
+any other is dropped, with an `#else` side taking its place (code/passes/sections.py, on the IR).
 Other preprocessor conditionals are left to the compiler, except a compiler macro the caller has
 decided: a shader generated for one way of environment lighting (ENVIRONMENTS) has the
 MX_ENV_PREFILTER and MX_ENV_HYBRID conditionals resolved too, so the other ways' code is not in it
@@ -32,17 +32,11 @@ the environment; TRANSMISSION (the code for the TRANSMISSION context) is needed 
 writes that context (one with a transmitting lobe, passes/closures.py).
 """
 import operator
-import re
-from functools import lru_cache
 
 from .errors import ShaderGenError
 from .graph import Graph, Input, Node
 
 PREFIX = "MX_FEATURE_"
-DECLARATION = re.compile(r"^\s*#\s*pragma\s+shadergen\s+feature\s+(\w+)(?:\s+unless\s+(\w+)\s*(==|!=|<=|>=|<|>)\s*(\S+))?\s*$",
-                         re.M)
-PRAGMA = re.compile(r"^\s*#\s*pragma\s+shadergen\b")
-CONDITIONAL = re.compile(r"^\s*#\s*(ifdef|ifndef|if|else|elif|endif)\b\s*(\w*)")
 # Ways of environment lighting, each with the compiler macros a renderer defines for it: filtered
 # importance sampling; a prefiltered map, one lookup; that lookup corrected by a few samples.
 ENVIRONMENT_MACROS = {"fis": (), "prefilter": ("MX_ENV_PREFILTER",), "hybrid": ("MX_ENV_PREFILTER", "MX_ENV_HYBRID")}
@@ -52,16 +46,11 @@ TRANSMISSION_FEATURE = "TRANSMISSION"  # closure code for the transmission conte
 COMPARE = {"==": operator.eq, "!=": operator.ne, "<=": operator.le, ">=": operator.ge, "<": operator.lt, ">": operator.gt}
 
 
-@lru_cache(maxsize=1024)
-def declarations(source: str) -> tuple[tuple[str, str | None, str | None, str | None], ...]:
-    """(feature, input, comparison, value) of each `#pragma shadergen feature` line of a source."""
-    return tuple(m.groups() for m in DECLARATION.finditer(source))
-
-
-def node_features(node: Node, source: str) -> set[str]:
-    """The features a node implemented by `source` needs, from the source's declarations."""
+def node_features(node: Node, declarations) -> set[str]:
+    """The features a node needs, from its source's declarations: (feature, input, comparison,
+    value) each, as the parser reads them (code/parse.py, ir.Module.features)."""
     needed = set()
-    for feature, input_name, comparison, literal in declarations(source):
+    for feature, input_name, comparison, literal in declarations:
         if input_name is None or not _holds(node, input_name, comparison, literal):
             needed.add(feature)
     return needed
@@ -109,38 +98,3 @@ def environment_macros(environment: str | None) -> frozenset[tuple[str, bool]]:
         return frozenset()
     defined = ENVIRONMENT_MACROS[environment]
     return frozenset((macro, macro in defined) for macros in ENVIRONMENT_MACROS.values() for macro in macros)
-
-
-@lru_cache(maxsize=4096)
-def resolve(text: str, features: frozenset[str] | None, macros: frozenset[tuple[str, bool]] = frozenset()) -> str:
-    """The text with its feature sections resolved for `features` (see the module's doc); None
-    keeps every section (a stage whose nodes were not asked). `macros`: (compiler macro, defined)
-    pairs resolved like features."""
-    decided = dict(macros)
-    out: list[str] = []
-    # one entry per open conditional: None for the compiler's own, else whether its side is kept
-    stack: list[bool | None] = []
-    for line in text.split("\n"):
-        if "#" not in line:  # most lines: neither a conditional nor a pragma
-            if False not in stack:
-                out.append(line)
-            continue
-        m = CONDITIONAL.match(line)
-        if m and m.group(1) in ("ifdef", "ifndef") and (m.group(2).startswith(PREFIX) or m.group(2) in decided):
-            macro = m.group(2)
-            defined = decided[macro] if macro in decided else features is None or macro[len(PREFIX):] in features
-            stack.append(defined == (m.group(1) == "ifdef"))
-            continue
-        if m and m.group(1) in ("if", "ifdef", "ifndef"):
-            stack.append(None)
-        elif m and m.group(1) in ("else", "elif") and stack and stack[-1] is not None:
-            if m.group(1) == "elif":
-                raise ShaderGenError("invalid_implementation", "#elif in a feature section", line.strip())
-            stack[-1] = not stack[-1]
-            continue
-        elif m and m.group(1) == "endif" and stack:
-            if stack.pop() is not None:
-                continue
-        if False not in stack and not PRAGMA.match(line):
-            out.append(line)
-    return "\n".join(out)

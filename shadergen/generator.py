@@ -6,17 +6,22 @@ the node calls in topological order (nodes scoped to a conditional branch inside
 assign the shader outputs, then assemble each stage's text: header, type definitions, variable
 blocks, functions, main. The graph arrives finished (passes/): emission only walks it.
 """
+from .code import build, ir
+from .code import stage as code_passes
+from .code.build import Builder
+from .code.facts import names_read
+from .code.types import ir_type
+from .code.values import enum_index, value_expr
 from .errors import ShaderGenError
-from .features import LIGHTS_FEATURE, environment_macros, graph_features, resolve
+from .features import LIGHTS_FEATURE, environment_macros, graph_features
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .nodes.lobes import closure_nodes, emit_lobes
-from .shader import PIXEL, VERTEX, Stage, Variable, Writer
-from .targets.deadcode import identifiers
+from .shader import PIXEL, VERTEX, Stage, Variable
 from .targets.names import identifier, library_identifiers
 
 CLOSURES = ("BSDF", "EDF", "VDF")
-CONDITIONS = {"ifgreater": "greater", "ifgreatereq": "greatereq", "ifequal": "equal"}
+CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}  # the IR's comparison
 
 
 class Namer:
@@ -61,24 +66,25 @@ def _unique(name: str, taken, used: set[str]) -> str:
 
 
 class EmitContext:
-    """Shared state of one generation; node implementations write through it."""
+    """Shared state of one generation; node implementations write through it, in the IR
+    (code/ir.py): values are IR expressions, statements go to `body` (a code.build.Builder)."""
 
     def __init__(self, target, scope: Scope, values_in_source: bool = False):
         self.values_in_source = values_in_source  # uniform initializers hold the document's values
-        self.target = target  # the Target: its syntax and the hooks every line is written through
-        self.syntax = target.syntax
+        self.target = target  # the Target: its names, closure convention and stage assembly
         self.scope = scope
+        self.code = scope.library.code()  # the library's code in the IR (code/library.py)
         self.stages = {VERTEX: Stage(VERTEX), PIXEL: Stage(PIXEL)}
-        self.namer = Namer(self.syntax.reserved, self.syntax.reserved_prefixes, self.syntax.reserved_suffixes)
+        self.namer = Namer(target.reserved, target.reserved_prefixes, target.reserved_suffixes)
         self.closure = None  # shading context for BSDF nodes (see nodes/base.py)
-        self.vars: dict[int, str] = {}  # id(Output | Input | Socket) -> expression naming its value
-        self.used_types: set[str] = set()
-        self.body: Writer = self.pixel.main
-        self.vertex_main: dict[str, str] = {}  # vertex data member -> the statement assigning it
+        self.vars: dict[int, ir.Expr] = {}  # id(Output | Input | Socket) -> the expression of its value
+        self.used_types: set[str] = set()  # MaterialX types of the variables declared
+        self.body: Builder = self.pixel.main
+        self.vertex_main: dict[str, ir.Stmt] = {}  # vertex data member -> the statement assigning it
         self.function_names: dict[int, str] = {}  # id(Function) -> its name in the shader
         self.memo: dict = {}  # per-shader facts implementations compute once (e.g. which lights exist)
-        self.lobe_weights: dict[int, str] = {}  # id(lobe's weight Input) -> its weight at this point
-        self.prepared_lobes: dict[int, str] = {}  # id(lobe Node) -> its prepared state, in this surface
+        self.lobe_weights: dict[int, ir.Expr] = {}  # id(lobe's weight Input) -> its weight at this point
+        self.prepared_lobes: dict[int, ir.Expr] = {}  # id(lobe Node) -> its prepared state, in this surface
         self.features: frozenset[str] | None = None  # library features the nodes need (None: all)
         self.macros: frozenset[tuple[str, bool]] = frozenset()  # compiler macros decided at generation
         self.lights = True  # whether the shader is drawn with a light rig (Graph.lights)
@@ -92,7 +98,7 @@ class EmitContext:
         return self.stages[VERTEX]
 
     # -- values ----------------------------------------------------------------------------
-    def value(self, inp: Input) -> str:
+    def value(self, inp: Input) -> ir.Expr:
         if id(inp) in self.lobe_weights:
             return self.lobe_weights[id(inp)]
         if inp.connection is not None:
@@ -101,39 +107,39 @@ class EmitContext:
             return self.vars[id(inp.socket)]
         if inp.public:
             return self.vars[id(inp)]
-        return self.syntax.literal(inp.type, inp.value, inp.meta)
+        return value_expr(inp.type, inp.value, inp.meta)
 
-    def publish(self, port: Input | Socket) -> str:
+    def publish(self, port: Input | Socket) -> ir.Name:
         """A public input (or the socket several inputs of an expanded body share) as a uniform."""
         listing_type = "integer" if port.type == "string" and port.meta.get("enum") else port.type
-        value = listing_value(port, port.value, self.syntax)
+        value = listing_value(port, port.value)
         # Value-free source (complete, reduced): initialised to the nodedef's value, so materials that
         # differ only in values share one source; the values reach the program from the listing.
-        initializer = value if self.values_in_source else listing_value(port, port.default, self.syntax)
+        initializer = value if self.values_in_source else listing_value(port, port.default)
         # a uniform is a global every library function could see: none of their names (names.py)
         avoid = library_identifiers(self.scope.library.root)
-        name = self.vars[id(port)] = self.namer(f"{port.owner.name}_{port.name}", avoid)
+        name = self.namer(f"{port.owner.name}_{port.name}", avoid)
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
             ui=port.meta.get("ui"), initializer=initializer,
             fallback=image_fallback(port) if port.type == "filename" else None))
-        return name
+        self.vars[id(port)] = expr = build.name(name, "uniform", ir_type(listing_type))
+        return expr
 
     def output_name(self, out: Output) -> str:
         if id(out) not in self.vars:
-            self.vars[id(out)] = self.namer(f"{out.node.name}_{out.name}")
+            self.vars[id(out)] = build.name(self.namer(f"{out.node.name}_{out.name}"), "local", ir_type(out.type))
             self.used_types.add(out.type)
-        return self.vars[id(out)]
+        return self.vars[id(out)].name
 
-    def assign(self, out: Output, expression: str) -> None:
-        self.body.line(self.target.declare(out.type, self.output_name(out), expression))
+    def assign(self, out: Output, expression: ir.Expr) -> None:
+        self.body.declare(ir_type(out.type), self.output_name(out), expression)
 
-    def declare(self, out: Output) -> str:
+    def declare(self, out: Output) -> ir.Name:
         name = self.output_name(out)
         # closure functions accumulate into their result: it starts from zero
-        zero = self.syntax.literal(out.type, None) if out.type in CLOSURES else None
-        self.body.line(self.target.declare(out.type, name, zero))
-        return name
+        zero = value_expr(out.type, None) if out.type in CLOSURES else None
+        return self.body.declare(ir_type(out.type), name, zero)
 
     def call(self, function: str, node: Node) -> None:
         outs = [self.declare(o) for o in node.outputs.values()]
@@ -141,44 +147,48 @@ class EmitContext:
         if id(node) in self.prepared_lobes:  # its inputs were read once, by its preparation
             args = [self.prepared_lobes[id(node)]] + outs
         if is_closure_node(node):
-            args = self.target.closure_arguments() + args
-        self.body.line(self.target.call(function, args))
+            args = self.target.closures.arguments() + args
+        self.body.call(function, *args)
 
     # -- variables ---------------------------------------------------------------------------
     def add_variable(self, stage: str, block: str, var: Variable) -> Variable:
         self.used_types.add(var.type)
         return self.stages[stage].blocks[block].add(var)
 
-    def private_uniform(self, name: str, type_name: str, stages=(PIXEL,)) -> str:
+    def private_uniform(self, name: str, type_name: str, stages=(PIXEL,)) -> ir.Name:
         name = self.namer.claim(name)
         for s in stages:
             self.add_variable(s, "PrivateUniforms", Variable(name, type_name))
-        return name
+        return build.name(name, "uniform", ir_type(type_name))
 
-    def app_data(self, name: str, type_name: str, value: object = None) -> str:
+    def app_data(self, name: str, type_name: str, value: object = None) -> ir.Name:
         """A vertex stream; `value`, in the listing, is what the stream holds where a mesh lacks it."""
         name = self.namer.claim(name)
         self.add_variable(VERTEX, "AppData", Variable(name, type_name, value))
-        return name
+        return build.name(name, "input", ir_type(type_name))
 
-    def vertex_data(self, name: str, type_name: str, vertex_expression: str) -> str:
+    def vertex_data(self, name: str, type_name: str, vertex_expression: ir.Expr) -> ir.Name:
         """A value computed per vertex and interpolated: declared in both stages, assigned once in
         the vertex stage's main. Returns how the pixel stage reads it."""
         name = self.namer.claim(name)
         for s in (VERTEX, PIXEL):
             self.add_variable(s, "VertexData", Variable(name, type_name))
-        member = self.syntax.vertex_data_member(name)
-        self.vertex_main.setdefault(name, self.target.assign(member, vertex_expression))
+        member = build.name(name, "vertexdata", ir_type(type_name))
+        self.vertex_main.setdefault(name, ir.Assign("=", member, vertex_expression))
         return member
 
     # -- functions -------------------------------------------------------------------------------
-    def emit_source_files(self, files: tuple[tuple[str, str], ...]) -> None:
-        """A library source file with its includes ((path, text), dependencies first), each once."""
-        for dep_path, text in files:
-            if self.pixel.once(("file", dep_path)):
-                resolved = resolve(text, self.features, self.macros)
-                self.pixel.functions.extend(self.target.library_source(dep_path, resolved))
-                self.pixel.functions.line()
+    def emit_modules(self, paths: tuple[str, ...]) -> None:
+        """Library source files (dependencies first), each once: their items join the stage's, for
+        the passes to keep what main reaches (code/passes/)."""
+        for path in paths:
+            if self.pixel.once(("file", path)):
+                self.pixel.items.extend(self.code.module(path).items)
+
+    def add_function(self, function: ir.Function) -> None:
+        """A function the generator wrote, after the library code it calls."""
+        self.pixel.items.append(function)
+        self.pixel.generated.append(function)
 
     def emit_graph_function(self, function: Function) -> None:
         """A nodegraph body shared by several calls, written once."""
@@ -186,21 +196,21 @@ class EmitContext:
             return
         self.function_names[id(function)] = fname = self.namer(function.name)
         saved_body, saved_vars = self.body, self.vars
-        self.body, self.vars = Writer(), dict(saved_vars)
+        self.body, self.vars = Builder(), dict(saved_vars)
         params = []
         for s in function.params:
-            self.vars[id(s)] = pname = self.namer(f"{fname}_{s.name}")
-            params.append((s.type, pname))
+            pname = self.namer(f"{fname}_{s.name}")
+            self.vars[id(s)] = build.name(pname, "param", ir_type(s.type))
+            params.append(("in", ir_type(s.type), pname))
             self.used_types.add(s.type)
         out_params = [(self.namer(f"{fname}_{out.name}"), out) for out in function.outputs]
         try:
             self.define_functions(function.graph)
-            with self.body.block(self.target.function_opener(fname, params, [(o.type, p) for p, o in out_params])):
-                self.emit_nodes(function.graph, ())
-                for p, out in out_params:
-                    self.body.line(self.target.assign(p, self.vars[id(out)]))
-            self.pixel.functions.extend(self.body.text())
-            self.pixel.functions.line()
+            self.emit_nodes(function.graph, ())
+            for p, out in out_params:
+                self.body.assign(build.name(p, "param", ir_type(out.type)), self.vars[id(out)])
+            params += [("out", ir_type(o.type), p) for p, o in out_params]
+            self.add_function(build.function("void", fname, params, self.body.block()))
         finally:
             self.body, self.vars = saved_body, saved_vars
 
@@ -235,7 +245,7 @@ class EmitContext:
             self.memo[key] = closure_nodes(inp)
         return self.memo[key]
 
-    def emit_closures(self, inp: Input, context: str) -> str:
+    def emit_closures(self, inp: Input, context: str) -> ir.Expr:
         """Evaluate the closure nodes upstream of `inp` in one shading context (seed's
         SgNodeContext): the caller has declared `closureData` for that context. Data nodes feeding
         the closures were computed once, before. Returns the expression of the result."""
@@ -254,31 +264,33 @@ class EmitContext:
         only what it needs (seed 2.4 step 5)."""
         out = next(iter(node.outputs.values()))
         result = self.declare(out)
-        for i, (branch, condition) in enumerate(self.branch_conditions(node)):
-            with self.body.block(self.target.branch_opener(i, condition)):
-                if branch is None:  # no input selected: the type's zero, as the inline form gives
-                    self.body.line(self.target.assign(result, self.syntax.literal(out.type, None)))
-                    continue
-                self.emit_nodes(graph, node.scope + ((node, branch),))
-                self.body.line(self.target.assign(result, self.value(node.inputs[branch])))
+        with self.body.chain() as chain:
+            for branch, condition in self.branch_conditions(node):
+                with chain.clause(condition):
+                    if branch is None:  # no input selected: the type's zero, as the inline form gives
+                        self.body.assign(result, value_expr(out.type, None))
+                        continue
+                    self.emit_nodes(graph, node.scope + ((node, branch),))
+                    self.body.assign(result, self.value(node.inputs[branch]))
 
-    def branch_conditions(self, node: Node) -> list[tuple[str | None, str | None]]:
+    def branch_conditions(self, node: Node) -> list[tuple[str | None, ir.Expr | None]]:
         """(branch input, condition) in order; a None condition is the final else."""
         if node.category in CONDITIONS:
             v1, v2 = self.value(node.inputs["value1"]), self.value(node.inputs["value2"])
-            return [("in1", self.target.compare(CONDITIONS[node.category], v1, v2)), ("in2", None)]
+            return [("in1", build.binary(CONDITIONS[node.category], v1, v2)), ("in2", None)]
         which = node.inputs["which"]
         w = self.value(which)
         names = [n for n in BRANCH_INPUTS["switch"] if n in node.inputs]
         # `which` below k selects input k; from the number of inputs on, none is selected
-        return [(n, self.target.below(w, k, which.type)) for k, n in enumerate(names, start=1)] + [(None, None)]
+        bound = build.integer if which.type == "integer" else build.number
+        return [(n, build.binary("<", w, bound(k))) for k, n in enumerate(names, start=1)] + [(None, None)]
 
 
-def listing_value(port: Input | Socket, value, syntax):
+def listing_value(port: Input | Socket, value):
     """A value as the uniform holds it: enum strings are their index, an empty string is none."""
     if port.type == "string":
         if port.meta.get("enum"):
-            return syntax.enum_index(value, port.meta)
+            return enum_index(value, port.meta)
         if value == "":
             return None
     return value
@@ -310,7 +322,27 @@ def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
             raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn", name)
         var = ctx.namer(name)
         ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
-        ctx.body.line(ctx.target.assign(var, ctx.target.output_color(out.type, ctx.vars[id(out)])))
+        ctx.body.assign(build.name(var, "output", "vec4"), output_color(out.type, ctx.vars[id(out)]))
+
+
+def output_color(type_name: str, v: ir.Expr) -> ir.Expr:
+    """Every pixel output is an RGBA colour."""
+    one = build.number(1.0)
+    if type_name in ("float", "integer", "boolean"):
+        s = v if type_name == "float" else build.convert("float", v)
+        return build.construct("vec4", s, s, s, one)
+    if type_name == "vector2":
+        return build.construct("vec4", v, build.number(0.0), one)
+    if type_name in ("vector3", "color3"):
+        return build.construct("vec4", v, one)
+    if type_name in ("vector4", "color4"):
+        return v
+    if type_name in ("surfaceshader", "material", "volumeshader"):
+        # colour is premultiplied (the surface scaled it by its opacity); alpha is what it covers
+        third = build.construct("vec3", build.binary("/", one, build.number(3.0)))
+        covered = build.binary("-", one, build.call("dot", build.field(v, "transparency"), third))
+        return build.construct("vec4", build.field(v, "color"), covered)
+    return build.construct("vec4", build.number(0.0), build.number(0.0), build.number(0.0), one)
 
 
 def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
@@ -325,35 +357,34 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)
-    drop_unused(ctx, graph.interface_mode == "specialized")
+    finish(ctx, graph.interface_mode == "specialized", graph.passes)
     return {VERTEX: ctx.target.assemble_vertex(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
 
 
-FIXED_VERTEX = {"i_position", "u_worldMatrix", "u_viewProjectionMatrix"}  # the position transform always runs
-
-
-def drop_unused(ctx: EmitContext, variables: bool) -> None:
-    """Only the functions main reaches are written, and only the structs they use. With
-    `variables` (specialized), uniforms nothing reads and vertex data the pixel stage does not read
-    are dropped too, from the code and from the listings."""
-    main = "\n".join(ctx.pixel.main.lines)
-    ctx.pixel.functions.lines, used = ctx.target.used_functions(ctx.pixel.functions.lines, main)
+def finish(ctx: EmitContext, variables: bool, counts: dict) -> None:
+    """The stage's code typed and trimmed by the code passes (code/passes/): library sections
+    resolved for the shader's features, only what main reaches kept, struct members nothing reads
+    and calls through forwarding functions removed. With `variables` (specialized), uniforms
+    nothing reads and vertex data the pixel stage does not read are dropped too, from the code
+    and from the listings."""
+    ctx.pixel.code = stages = code_passes.run(ctx, counts)
     if variables:
+        used = stages.pixel_names
         blocks = ctx.pixel.blocks
         for block in ("PrivateUniforms", "PublicUniforms"):
             blocks[block].variables = {n: v for n, v in blocks[block].variables.items() if n in used}
         if "u_lightData" not in blocks["PrivateUniforms"]:
             blocks["LightData"].variables = {}
-        read = {n for n in blocks["VertexData"].variables
-                if identifiers(ctx.syntax.vertex_data_member(n)) <= used}
+        read = {n for n in blocks["VertexData"].variables if n in used}
         for stage in ctx.stages.values():
             stage.blocks["VertexData"].variables = {n: v for n, v in stage.blocks["VertexData"].variables.items()
                                                     if n in read}
-        ctx.vertex_main = {n: line for n, line in ctx.vertex_main.items() if n in read}
-        vertex_used = identifiers("\n".join(ctx.vertex_main.values())) | FIXED_VERTEX
+        ctx.vertex_main = {n: s for n, s in ctx.vertex_main.items() if n in read}
+        vertex_used = names_read(ctx.vertex_main.values()) | FIXED_VERTEX
         for block in ("AppData", "PrivateUniforms"):
             vb = ctx.vertex.blocks[block]
             vb.variables = {n: v for n, v in vb.variables.items() if n in vertex_used}
-    declared = {v.type for st in ctx.stages.values() for b in st.blocks.values() for v in b}
-    structs = ctx.syntax.struct_types
-    ctx.used_types = {t for t in ctx.used_types if t not in structs or t in used or t in declared}
+    code_passes.finish_vertex(ctx)
+
+
+FIXED_VERTEX = {"i_position", "u_worldMatrix", "u_viewProjectionMatrix"}  # the position transform always runs

@@ -1,11 +1,12 @@
 """Shader, stages and variable blocks (seed 2.6-2.7): what generation produces, before it is text.
 
-A Stage owns its variable blocks and a line writer. The writer applies indentation when a line is
-written and offers a `block()` context manager, so an exception can never leave indentation wrong.
+A Stage owns its variable blocks, its code in the IR (the library items and generated functions it
+needs, and main) and, once the code passes ran, what they kept (`code`). The Writer is the stage
+assemblers': lines with explicit, exception-safe indentation.
 """
 from contextlib import contextmanager
-from functools import lru_cache
 
+from .code.build import Builder
 from .types import value_to_json
 
 VERTEX, PIXEL = "vertex", "pixel"
@@ -69,12 +70,10 @@ class Writer:
     def line(self, text: str = "") -> None:
         self.lines.append(self.unit * self.depth + text if text else "")
 
-    def extend(self, text: str) -> None:
-        if not self.depth:  # library files, written whole at the top level: their lines as they are
-            self.lines.extend(text_lines(text))
-            return
+    def extend(self, lines) -> None:
+        """Lines already indented for the top level, indented to this depth."""
         indent = self.unit * self.depth
-        self.lines.extend(indent + ln if ln else "" for ln in text_lines(text))
+        self.lines.extend(indent + ln if ln else "" for ln in lines)
 
     @contextmanager
     def scope(self, comment: str | None = None):
@@ -100,13 +99,6 @@ class Writer:
         return "\n".join(self.lines) + "\n"
 
 
-@lru_cache(maxsize=1024)
-def text_lines(text: str) -> tuple[str, ...]:
-    """A text's lines, blank ones empty: library files are written into every shader that calls
-    them, and the same lines (the same str objects) keep later steps' hashing cheap."""
-    return tuple(ln if ln.strip() else "" for ln in text.rstrip("\n").split("\n"))
-
-
 BLOCKS = {
     VERTEX: ("PublicUniforms", "PrivateUniforms", "AppData", "VertexData"),
     PIXEL: ("PublicUniforms", "PrivateUniforms", "VertexData", "LightData", "Outputs"),
@@ -114,14 +106,16 @@ BLOCKS = {
 
 
 class Stage:
-    """One stage of a shader: its variable blocks, function definitions and main."""
+    """One stage of a shader: its variable blocks, its code and main."""
 
     def __init__(self, name: str):
         self.name = name
         self.blocks = {b: VariableBlock(b, "vd" if b == "VertexData" else "") for b in BLOCKS[name]}
-        self.functions = Writer()  # function definitions, in emission order
-        self.main = Writer()  # body of main()
-        self.emitted: set = set()  # ids of function definitions and includes already written
+        self.items: list = []  # IR items (library and generated), in the order they were asked for
+        self.generated: list = []  # the functions among them the generator wrote (typed with main)
+        self.main = Builder()  # body of main()
+        self.code = None  # what the code passes kept (code/stage.py), once they ran
+        self.emitted: set = set()  # keys of library files and generated functions already added
 
     def once(self, key) -> bool:
         """True the first time `key` is seen: each function definition is emitted once per stage."""

@@ -9,20 +9,15 @@ nodes that are called once per context; it is None for ordinary data nodes.
 """
 import os
 import re
-from functools import lru_cache
 
+from ..code import facts
+from ..code.instantiate import placeholders, substitute
 from ..element import Element
 from ..errors import ShaderGenError
 from ..features import node_features
 from ..library import Library, read_source
-from ..targets.glsl import starts_word
-from ..targets.glsl_target import PLACEHOLDER
 
 REGISTRY: dict[str, type["NodeImpl"]] = {}
-# No leading \b: it would stop the regex engine from scanning for the names' first letters, which
-# makes the search some 30 times slower over a library source (takes_derivatives checks the boundary).
-DERIVATIVES = re.compile(r"(?:dFdx|dFdy|fwidth|texture)\s*\(")
-INCLUDE = re.compile(r'^\s*#include\s+"([^"]+)"\s*$', re.M)
 TARGET_SUFFIX = re.compile(r"_gen\w+$")
 
 
@@ -61,50 +56,54 @@ class NodeImpl:
 
 
 class InlineImpl(NodeImpl):
-    def __init__(self, expression: str):
+    """An expression of the node's inputs (`{{input}}` placeholders), parsed into the IR once per
+    library (code/library.py templates); each call puts the inputs' values in its placeholders."""
+
+    def __init__(self, expression: str, where: str | None = None):
         self.expression = expression.strip()
+        self.where = where  # the implementation, named in a parse error
 
     @classmethod
     def from_file(cls, elem: Element) -> "InlineImpl":
-        return cls(read_source(_source_path(elem, elem.get("file"))))
+        return cls(read_source(_source_path(elem, elem.get("file"))), elem.name)
 
     def emit_function_call(self, node, ctx) -> None:
-        for name in PLACEHOLDER.findall(self.expression):
+        template = ctx.code.template(self.expression, self.where)
+        for name in placeholders(template):
             if name not in node.inputs:
                 raise ShaderGenError("invalid_implementation", f"inline expression names unknown input '{name}'",
                                      node.path)
-        inputs = {name: (ctx.value(i), i.type) for name, i in node.inputs.items()}
-        ctx.assign(next(iter(node.outputs.values())), ctx.target.inline(self.expression, inputs))
+        inputs = {name: ctx.value(i) for name, i in node.inputs.items()}
+        ctx.assign(next(iter(node.outputs.values())), substitute(template, inputs))
 
 
 class SourceFunctionImpl(NodeImpl):
-    """A function in a library source file. Its files are read and expanded when it is made:
-    made once per library (nodes.implementation_for), they are read once per library, and files
-    several sources include (the closures' common code) once for all of them."""
+    """A function in a library source file, in the IR: made once per library
+    (nodes.implementation_for), it reads what the code passes and the closure passes need from the
+    function's IR, once: the files it needs (its own and their includes, dependencies first), the
+    features it declares, whether it takes derivatives, and for a lobe whether it is empty at
+    zero weight, whether it answers the transmission context and the state its `_prepare` writes."""
 
-    def __init__(self, elem: Element, library: Library | None = None):
+    def __init__(self, elem: Element, library: Library):
         self.path = _source_path(elem, elem.get("file"))
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
-        # (path, text) of it and its includes, dependencies first
-        self.files = tuple(expand_includes(self.path, set(), library))
-        self.source = self.files[-1][1]  # the text of its own file, without its #include lines
-        self.uses_derivatives = any(takes_derivatives(text) for _, text in self.files)
+        code = library.code()
+        self.files = code.files_for(self.path)  # paths, dependencies first
+        self.declarations = code.module(self.path).features
+        definitions = code.functions(self.function)
+        self.uses_derivatives = any(facts.uses_derivatives(f) for f in definitions)
+        self.empty_at_zero_weight = bool(definitions) and all(facts.early_exit_at_zero_weight(f) for f in definitions)
+        self.handles_transmission = any(facts.reads_constant(f, "CLOSURE_TYPE_TRANSMISSION") for f in definitions)
+        self.prepared_state = facts.prepared_state(self.function, code)
 
     def features(self, node) -> set[str]:
-        return node_features(node, self.source)
+        return node_features(node, self.declarations)
 
     def emit_function_definition(self, node, ctx) -> None:
-        ctx.emit_source_files(self.files)
+        ctx.emit_modules(self.files)
 
     def emit_function_call(self, node, ctx) -> None:
         ctx.call(self.function, node)
-
-
-@lru_cache(maxsize=1024)
-def takes_derivatives(source: str) -> bool:
-    """Whether the source calls dFdx, dFdy, fwidth or texture (as whole names). Memoised: the
-    closures' shared files are included by every lobe's source, and scanned once."""
-    return any(starts_word(source, m.start()) for m in DERIVATIVES.finditer(source))
 
 
 def _source_path(elem: Element, file: str) -> str:
@@ -114,33 +113,6 @@ def _source_path(elem: Element, file: str) -> str:
     if not os.path.exists(path):
         raise ShaderGenError("missing_source", f"implementation source '{file}' not found", elem.name)
     return path
-
-
-def expand_includes(path: str, seen: set[str], library: Library | None = None) -> list[tuple[str, str]]:
-    """A source file and the files it #includes, dependencies first, each once (by path). With a
-    `library`, each file is read once for the library's life (its files are part of its key)."""
-    if path in seen:
-        return []
-    seen.add(path)
-    includes, text = library.fact(("source", path), lambda: read_included(path)) if library is not None \
-        else read_included(path)
-    out = []
-    for inc_path in includes:
-        out.extend(expand_includes(inc_path, seen, library))
-    out.append((path, text))
-    return out
-
-
-def read_included(path: str) -> tuple[tuple[str, ...], str]:
-    """The files a source #includes (paths, in order) and its text without its #include lines."""
-    text = read_source(path)
-    includes = []
-    for inc in INCLUDE.findall(text):
-        inc_path = os.path.normpath(os.path.join(os.path.dirname(path), inc))
-        if not os.path.exists(inc_path):
-            raise ShaderGenError("missing_source", f"'{path}' includes missing '{inc}'", path)
-        includes.append(inc_path)
-    return tuple(includes), INCLUDE.sub("", text).strip("\n")
 
 
 class GraphFunctionImpl(NodeImpl):
@@ -164,15 +136,15 @@ def implementation_for(elem: Element, library: Library | None = None) -> NodeImp
     file = elem.get("file")
     if file and elem.get("sourcecode") is None and library is not None and library.owns(elem):
         return library.fact(("implementation", id(elem)), lambda: _from_file(elem, file, library))
-    return _make(elem)
+    return _make(elem, library)
 
 
-def _make(elem: Element) -> NodeImpl:
+def _make(elem: Element, library: Library | None) -> NodeImpl:
     if elem.get("sourcecode") is not None:
-        return InlineImpl(elem.get("sourcecode"))
+        return InlineImpl(elem.get("sourcecode"), elem.name)
     file = elem.get("file")
     if file:
-        return _from_file(elem, file)
+        return _from_file(elem, file, library)
     # dynamic classes are registered target-neutrally: IM_position_vector3 serves IM_position_vector3_genglsl
     cls = REGISTRY.get(elem.name) or REGISTRY.get(TARGET_SUFFIX.sub("", elem.name))
     if cls is None:
@@ -183,5 +155,5 @@ def _make(elem: Element) -> NodeImpl:
     return impl
 
 
-def _from_file(elem: Element, file: str, library: Library | None = None) -> NodeImpl:
+def _from_file(elem: Element, file: str, library: Library | None) -> NodeImpl:
     return InlineImpl.from_file(elem) if file.endswith(".inline") else SourceFunctionImpl(elem, library)

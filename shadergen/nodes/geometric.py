@@ -3,9 +3,21 @@
 Each node asks for the app-data stream it reads and the vertex data that carries it to the
 pixel stage; the vertex stage computes the requested space once, however many nodes read it.
 """
+from ..code import build
 from .base import NodeImpl, register
 
 WORLD = ("world",)
+
+
+def transform(matrix, vector, point: bool):
+    """A 3-vector through a 4x4 matrix, as a point (w 1) or a direction (w 0)."""
+    w = build.number(1.0 if point else 0.0)
+    return build.field(build.binary("*", matrix, build.construct("vec4", vector, w)), "xyz")
+
+
+def world_position():
+    """The world-space position the vertex stage computes before anything else."""
+    return build.field(build.name("hPositionWorld", "local", "vec4"), "xyz")
 
 
 def _space(node) -> str:
@@ -21,13 +33,14 @@ class _SpaceVector(NodeImpl):
     fixed_inputs = frozenset({"space", "index"})
 
     @classmethod
-    def varying(cls, ctx, space: str) -> str:
+    def varying(cls, ctx, space: str):
         """The pixel-stage expression of this vector in `space` (also used by the surface node)."""
         attr = ctx.app_data(f"i_{cls.stream}", "vector3")
         if space == "world":
             ctx.private_uniform(cls.matrix, "matrix44", ("vertex",))
-            expr = ctx.target.normalize(ctx.target.transform(cls.matrix, attr, point=False)) if cls.normalized \
-                else ctx.target.world_position()
+            matrix = build.name(cls.matrix, "uniform", "mat4")
+            expr = build.call("normalize", transform(matrix, attr, point=False)) if cls.normalized \
+                else world_position()
         else:
             expr = attr
         return ctx.vertex_data(f"{cls.stream}{space.capitalize()}", "vector3", expr)
@@ -35,7 +48,7 @@ class _SpaceVector(NodeImpl):
     def emit_function_call(self, node, ctx):
         varying = self.varying(ctx, _space(node))
         out = next(iter(node.outputs.values()))
-        ctx.assign(out, ctx.target.normalize(varying) if self.normalized else varying)
+        ctx.assign(out, build.call("normalize", varying) if self.normalized else varying)
 
 
 @register("IM_position_vector3")
@@ -61,12 +74,12 @@ class Bitangent(NodeImpl):
     def emit_function_call(self, node, ctx):
         space = _space(node)
         n, t = ctx.app_data("i_normal", "vector3"), ctx.app_data("i_tangent", "vector3")
-        expr = ctx.target.cross(n, t)
+        expr = build.call("cross", n, t)
         if space == "world":
             m = ctx.private_uniform("u_worldMatrix", "matrix44", ("vertex",))
-            expr = ctx.target.normalize(ctx.target.transform(m, expr, point=False))
+            expr = build.call("normalize", transform(m, expr, point=False))
         varying = ctx.vertex_data(f"bitangent{space.capitalize()}", "vector3", expr)
-        ctx.assign(next(iter(node.outputs.values())), ctx.target.normalize(varying))
+        ctx.assign(next(iter(node.outputs.values())), build.call("normalize", varying))
 
 
 @register("IM_texcoord_vector2", "IM_texcoord_vector3")
@@ -83,13 +96,15 @@ class TexCoord(NodeImpl):
 @register("IM_geomcolor_float", "IM_geomcolor_color3", "IM_geomcolor_color4")
 class GeomColor(NodeImpl):
     fixed_inputs = frozenset({"index"})
-    COMPONENTS = {"float": "r", "color3": "rgb", "color4": ""}
+    COMPONENTS = {"float": "x", "color3": "xyz", "color4": ""}
 
     def emit_function_call(self, node, ctx):
         out = next(iter(node.outputs.values()))
         index = int(node.input_value("index", 0))
         attr = ctx.app_data(f"i_color_{index}", "color4")
-        ctx.assign(out, ctx.target.components(ctx.vertex_data(f"color_{index}", "color4", attr), self.COMPONENTS[out.type]))
+        color = ctx.vertex_data(f"color_{index}", "color4", attr)
+        which = self.COMPONENTS[out.type]
+        ctx.assign(out, build.field(color, which) if which else color)
 
 
 GEOMPROP_TYPES = ("integer", "float", "color3", "color4", "vector2", "vector3", "vector4")
@@ -111,8 +126,8 @@ class GeomPropValue(NodeImpl):
             return
         attr = ctx.app_data(f"i_geomprop_{name}", out.type, node.input_value("default"))
         if out.type == "integer":  # integer varyings would need `flat`: carry it as a float
-            carried = ctx.vertex_data(f"geomprop_{name}", "float", ctx.target.convert(attr, "float"))
-            ctx.assign(out, ctx.target.convert(carried, "integer"))
+            carried = ctx.vertex_data(f"geomprop_{name}", "float", build.convert("float", attr))
+            ctx.assign(out, build.convert("int", carried))
         else:
             ctx.assign(out, ctx.vertex_data(f"geomprop_{name}", out.type, attr))
 

@@ -16,8 +16,9 @@ inside the lobe, not one per call site.
 Preparation. A lobe whose source defines `<function>_prepare` (its inputs, then an `out` state) does
 its light-independent work there (normal, Fresnel set-up, directional albedo, the environment it
 reflects), once per shading point; its call in each context then takes the shading context and that
-state instead of its inputs (the target's closure convention reads this from the source).
+state instead of its inputs (SourceFunctionImpl reads this from the function's IR).
 """
+from ..code import build, ir
 from ..graph import Input, Node
 from ..passes.closures import closure_inputs, is_closure_node
 from ..passes.fold import constant
@@ -55,13 +56,11 @@ def emit_lobes(ctx, inp: Input, point_arguments) -> None:
     ctx.prepared_lobes = {}
     for node in reversed(nodes):  # in the order the contexts call them
         impl = node.impl
-        state = ctx.target.closures.prepared_state(impl.source, impl.function) \
-            if isinstance(impl, SourceFunctionImpl) else None
+        state = impl.prepared_state if isinstance(impl, SourceFunctionImpl) else None
         if state is not None:
             args = point_arguments() + [ctx.value(i) for i in node.inputs.values()]
-            name = ctx.prepared_lobes[id(node)] = ctx.namer(f"{node.name}_lobe")
-            ctx.body.line(ctx.target.declare(state, name))
-            ctx.body.line(ctx.target.call(f"{impl.function}_prepare", args + [name]))
+            lobe = ctx.prepared_lobes[id(node)] = ctx.body.declare(state, ctx.namer(f"{node.name}_lobe"))
+            ctx.body.call(f"{impl.function}_prepare", *args, lobe)
 
 
 def emit_weights(ctx, nodes: list[Node]) -> None:
@@ -69,29 +68,29 @@ def emit_weights(ctx, nodes: list[Node]) -> None:
     the lobe's calls read it (ctx.lobe_weights)."""
     if not nodes:
         return
-    reached: dict[int, list[str | None]] = {id(nodes[0]): [None]}  # None: always reached
-    lines: list[str] = []
+    reached: dict[int, list[ir.Expr | None]] = {id(nodes[0]): [None]}  # None: always reached
+    declarations: list[ir.Stmt] = []
     for node in nodes:
-        condition = _any(reached.get(id(node), ["false"]))
+        condition = _any(reached.get(id(node), [build.boolean(False)]))
         inputs = closure_inputs(node)
         if inputs:
-            if condition is not None and not condition.isidentifier():
-                condition = _declare(ctx, lines, "boolean", f"{node.name}_reached", condition)
+            if condition is not None and not isinstance(condition, ir.Name):
+                condition = _declare(ctx, declarations, "bool", f"{node.name}_reached", condition)
             for i in inputs:
                 if i.connection is not None:
                     share = _share_condition(ctx, node, i)
                     reached.setdefault(id(i.connection.node), []).append(_all(condition, share))
         elif condition is not None and "weight" in node.inputs and node.inputs["weight"].type == "float":
             weight = node.inputs["weight"]
-            ctx.lobe_weights[id(weight)] = _declare(ctx, lines, "float", f"{node.name}_active_weight",
-                                                    ctx.target.select(condition, ctx.value(weight), "0.0"))
-    if lines:
-        ctx.body.line("// lobes under a mix: weight 0 where the mix leaves them out")
-        for line in lines:
-            ctx.body.line(line)
+            ctx.lobe_weights[id(weight)] = _declare(ctx, declarations, "float", f"{node.name}_active_weight",
+                                                    build.select(condition, ctx.value(weight), build.number(0.0)))
+    if declarations:
+        ctx.body.comment("lobes under a mix: weight 0 where the mix leaves them out")
+        for statement in declarations:
+            ctx.body.add(statement)
 
 
-def _share_condition(ctx, node: Node, inp: Input) -> str | None:
+def _share_condition(ctx, node: Node, inp: Input) -> ir.Expr | None:
     """When `node` passes anything to its closure input `inp` (None: always)."""
     gone = SHARE_GONE.get(node.category, {}).get(inp.name)
     if gone is None:
@@ -99,24 +98,24 @@ def _share_condition(ctx, node: Node, inp: Input) -> str | None:
     weight = node.inputs[WEIGHT_INPUT[node.category]]
     known, value = constant(node, weight.name)
     if known:
-        return None if value != gone else "false"
-    return f"{ctx.value(weight)} != {ctx.syntax.literal('float', gone)}"
+        return None if value != gone else build.boolean(False)
+    return build.binary("!=", ctx.value(weight), build.number(gone))
 
 
-def _declare(ctx, lines: list[str], type_name: str, wanted: str, expression: str) -> str:
+def _declare(ctx, declarations: list[ir.Stmt], type_name: str, wanted: str, expression: ir.Expr) -> ir.Name:
     name = ctx.namer(wanted)
-    lines.append(ctx.target.declare(type_name, name, expression))
-    return name
+    declarations.append(ir.Declare(type_name, name, expression, False))
+    return build.name(name, "local", type_name)
 
 
-def _all(a: str | None, b: str | None) -> str | None:
+def _all(a: ir.Expr | None, b: ir.Expr | None) -> ir.Expr | None:
     if a is None or b is None:
         return b if a is None else a
-    return f"{a} && {b}"
+    return build.binary("&&", a, b)
 
 
-def _any(conditions: list[str | None]) -> str | None:
+def _any(conditions: list[ir.Expr | None]) -> ir.Expr | None:
     if None in conditions:
         return None
-    unique = list(dict.fromkeys(conditions))
-    return unique[0] if len(unique) == 1 else " || ".join(f"({c})" if "&&" in c else c for c in unique)
+    unique = list({repr(c): c for c in conditions}.values())  # the same condition reached twice, once
+    return unique[0] if len(unique) == 1 else build.any_of(unique)

@@ -1,4 +1,5 @@
 """Material nodes: a material is the surface (or volume) shader connected to it."""
+from ..code.values import value_expr
 from .base import NodeImpl, register
 
 
@@ -10,4 +11,4 @@ class Material(NodeImpl):
         if shader_input is not None and shader_input.connection is not None:
             ctx.assign(out, ctx.value(shader_input))
         else:
-            ctx.assign(out, ctx.syntax.literal(out.type, None))
+            ctx.assign(out, value_expr(out.type, None))

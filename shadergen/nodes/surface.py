@@ -27,7 +27,7 @@ def light_functions(ctx) -> list[tuple[int, str]]:
         impl_elem = ctx.scope.implementation(nodedef, ctx.target.library) if nodedef is not None else None
         if impl_elem is not None and impl_elem.get("file"):
             impl = implementation_for(impl_elem, ctx.scope.library)
-            ctx.emit_source_files(impl.files)
+            ctx.emit_modules(impl.files)
             found.append((type_id, impl.function))
     return found
 
@@ -45,7 +45,7 @@ def _emit_light_support(ctx) -> bool:
         return False
     ctx.private_uniform("u_numActiveLightSources", "integer")
     ctx.add_variable(PIXEL, "PrivateUniforms", Variable("u_lightData", "LightData"))
-    ctx.target.emit_light_dispatch(ctx, lights)
+    ctx.target.closures.emit_light_dispatch(ctx, lights)
     # the ids the dispatch compares `type` against, for renderers binding a light rig
     ids = {node: type_id for node, type_id in LIGHT_TYPES if type_id in {t for t, _ in lights}}
     ctx.pixel.blocks["LightData"].variables["type"].ui = {"enum": list(ids), "enumvalues": list(ids.values())}
@@ -57,7 +57,8 @@ class Surface(NodeImpl):
     """Which shading contexts a surface needs is decided here, from the finished graph: the light
     loop (unless the shader is generated for a scene without lights: Graph.lights) and the
     environment when a BSDF is connected, transmission only when a lobe under it
-    transmits (passes/closures.py), emission when an EDF is connected. The target writes them."""
+    transmits (passes/closures.py), emission when an EDF is connected. The target's closure
+    convention writes them (targets/closures.py)."""
 
     def features(self, node) -> set[str]:
         """TRANSMISSION (the closures' code for the transmission context) where this surface writes
@@ -83,6 +84,7 @@ class Surface(NodeImpl):
             contexts.append(("emission", edf))
         if self._transmits(node):
             contexts.append(("transmission", bsdf))
-        ctx.target.emit_surface(ctx, ctx.output_name(next(iter(node.outputs.values()))),
-                                ctx.value(node.inputs["opacity"]), Position.varying(ctx, "world"),
-                                Normal.varying(ctx, "world"), contexts)
+        out = next(iter(node.outputs.values()))
+        ctx.output_name(out)
+        ctx.target.closures.emit_surface(ctx, ctx.vars[id(out)].name, ctx.value(node.inputs["opacity"]),
+                                         Position.varying(ctx, "world"), Normal.varying(ctx, "world"), contexts)

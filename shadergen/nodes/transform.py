@@ -2,7 +2,9 @@
 
 The spaces are known when the shader is generated, so the node becomes one matrix product with
 the predefined matrix uniform (or nothing, when both spaces are the same)."""
+from ..code import build
 from .base import NodeImpl, register
+from .geometric import transform
 
 OBJECT_SPACES = ("object", "model")
 MATRIX = {  # (kind, to world?) -> matrix uniform
@@ -24,8 +26,8 @@ class _Transform(NodeImpl):
             ctx.assign(out, value)
             return
         m = ctx.private_uniform(MATRIX[(self.kind, dst == "world")], "matrix44")
-        expr = ctx.target.transform(m, value, point=self.kind == "point")
-        ctx.assign(out, ctx.target.normalize(expr) if self.kind == "normal" else expr)
+        expr = transform(m, value, point=self.kind == "point")
+        ctx.assign(out, build.call("normalize", expr) if self.kind == "normal" else expr)
 
 
 @register("IM_transformpoint_vector3")

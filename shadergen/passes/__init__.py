@@ -31,9 +31,8 @@ class Options(namedtuple("Options", "interface keep values environment lights",
         return self.values == "source" or self.interface == "specialized"  # specialized folds values anyway
 
 
-def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None, target,
+def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None,
             options: Options = Options()) -> Graph:
-    """`target`: the Target the shader is for (the closure pass reads its closure convention)."""
     graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface,
                   values_in_source=options.values_in_source, environment=options.environment, lights=options.lights)
 
@@ -49,7 +48,7 @@ def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None
     run("thin_film", lambda: push_thin_films(graph))
     run("fold", lambda: fold_constants(graph, builder))
     choose_implementations(graph.nodes, builder.scope.library)
-    run("prune_closures", lambda: prune_closures(graph, target.closures))
+    run("prune_closures", lambda: prune_closures(graph))
     run("textures", lambda: publish_textures(graph))
     run("functions", lambda: share_functions(graph, uniform_flow))
     run("scopes", lambda: assign_scopes(graph.nodes, uniform_flow))

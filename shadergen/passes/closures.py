@@ -3,7 +3,7 @@ around them simplify. A removed closure is an unconnected closure input: the clo
 response, everything let through). The rules are per closure operator, not per shading model:
 
 - a lobe whose `weight` is a constant <= 0 is removed, where it gives the closure's zero there
-  (the target's closure convention reads that from the lobe's source); an emitter whose `color`
+  (read from the lobe function's IR: SourceFunctionImpl); an emitter whose `color`
   is a constant black is removed;
 - `layer` with a removed top is its base, with a removed base its top;
 - `add` with a removed operand is the other;
@@ -32,15 +32,14 @@ def closure_inputs(node: Node) -> list[Input]:
     return [i for i in node.inputs.values() if TYPES[i.type].is_closure]
 
 
-def prune_closures(graph: Graph, convention) -> int:
-    """Returns how many closure nodes were removed or bypassed. `convention`: the target's closure
-    convention (what a lobe's source says about zero weight and transmission)."""
+def prune_closures(graph: Graph) -> int:
+    """Returns how many closure nodes were removed or bypassed."""
     reading = readers(graph)
     count = 0
     for node in graph.nodes:
         if not is_closure_node(node):
             continue
-        if removable(node, convention):
+        if removable(node):
             for out in node.outputs.values():
                 for inp in reading.pop(id(out), []):
                     set_constant(inp, None)
@@ -56,7 +55,7 @@ def prune_closures(graph: Graph, convention) -> int:
         graph.nodes = topological_order(graph.outputs)
     for node in graph.nodes:
         if node.category == "surface" and "bsdf" in node.inputs:
-            node.facts["transmission"] = any(transmits(n, convention) for n in closure_tree(node.inputs["bsdf"]))
+            node.facts["transmission"] = any(transmits(n) for n in closure_tree(node.inputs["bsdf"]))
     return count
 
 
@@ -64,14 +63,14 @@ def _is_removed(inp: Input) -> bool:
     return inp.connection is None and inp.socket is None and not inp.public
 
 
-def removable(node: Node, convention) -> bool:
+def removable(node: Node) -> bool:
     closures = closure_inputs(node)
     if closures:
         return all(_is_removed(i) for i in closures)
     known, weight = constant(node, "weight")
     if known and _at_most_zero(weight):
         impl = node.impl
-        return isinstance(impl, SourceFunctionImpl) and convention.empty_at_zero_weight(impl.source, impl.function)
+        return isinstance(impl, SourceFunctionImpl) and impl.empty_at_zero_weight
     known, color = constant(node, "color")
     return known and next(iter(node.outputs.values())).type == "EDF" and _at_most_zero(color, exact=True)
 
@@ -95,7 +94,7 @@ def closure_tree(inp: Input, stop=lambda node: False) -> list[Node]:
     return found
 
 
-def transmits(node: Node, convention) -> bool:
+def transmits(node: Node) -> bool:
     """Whether a closure node can answer the transmission context: its source handles it (and its
     scatter_mode, when a constant, is not reflection only). Other kinds are assumed to. An operator
     (layer, mix, add, ...) only passes on what its lobes answer: they decide."""
@@ -105,4 +104,4 @@ def transmits(node: Node, convention) -> bool:
     if known and mode == "R":
         return False
     impl = node.impl
-    return convention.handles_transmission(impl.source) if isinstance(impl, SourceFunctionImpl) else True
+    return impl.handles_transmission if isinstance(impl, SourceFunctionImpl) else True

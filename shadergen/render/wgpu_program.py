@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from ..targets.glsl import LIGHT_DATA_MEMBERS
+from ..targets.closures import LIGHT_DATA_MEMBERS
 from ..targets.wgsl.layout import struct_members
 from .errors import RenderError
 from .geometry import Mesh

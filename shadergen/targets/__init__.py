@@ -1,12 +1,13 @@
-"""Targets: one per shading language, each a Syntax plus the hooks the generator writes through
-(glsl_target.py describes them); the passes and the generator are shared (seed 2.2)."""
+"""Targets: one per shading language, each a printer of the IR, a stage assembler and a closure
+convention (ARCHITECTURE.md, "How to add a target"); the passes and the generator are shared
+(seed 2.2)."""
 import importlib
 
 from ..errors import ShaderGenError
 
 # name -> (module, class). A target's module is imported when it is first asked for: a process
-# writing GLSL never loads the WGSL translator.
-TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl_target", "GlslTarget"), "essl": (".glsl_target", "EsslTarget"),
+# writing GLSL never loads the WGSL printer.
+TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "essl": (".glsl.target", "EsslTarget"),
                                        "wgsl": (".wgsl.target", "WgslTarget")}
 
 

@@ -1,0 +1,82 @@
+"""A shader's code from what the generator asked for to what the targets print: the generated code
+typed with the library's (code/check.py), then the code passes, named and counted in the
+record's `"passes"`:
+
+- `sections`: the library's feature sections resolved for the shader's features and decided
+  compiler macros (passes/sections.py);
+- `forward`: calls through forwarding functions made to their targets (passes/forward.py);
+- `reach`: only the functions, structs, constants and uniforms main reaches (passes/reach.py);
+- `fields`: struct members nothing reads, with the statements that only store them
+  (passes/fields.py).
+
+The result, a StageCode, is what every target's stage assembler prints: one mechanism for all.
+"""
+from ..shader import PIXEL, VERTEX
+from . import build, ir
+from .facts import names_read
+from .passes import fields, forward, reach, sections
+from .types import ir_type
+
+PRELUDE = "prelude"  # the closure, shader and light structs every shader may name (code/prelude.glsl)
+
+
+class StageCode:
+    """What the passes kept of the pixel stage, in order (`structs` and `constants` before
+    `functions`), its main, the vertex stage's main, and every name the pixel code reads."""
+    __slots__ = ("structs", "constants", "functions", "main", "vertex_main", "pixel_names")
+
+    def __init__(self, structs, constants, functions, main, vertex_main, pixel_names):
+        self.structs = structs
+        self.constants = constants
+        self.functions = functions
+        self.main = main
+        self.vertex_main = vertex_main
+        self.pixel_names = pixel_names
+
+
+def vertex_main(ctx) -> ir.Block:
+    """The vertex stage: the position transform, then each vertex data member's assignment."""
+    world = build.name("hPositionWorld", "local", "vec4")
+    position = build.construct("vec4", build.name("i_position", "input", "vec3"), build.number(1.0))
+    return ir.Block([
+        ir.Declare("vec4", "hPositionWorld", build.binary("*", build.name("u_worldMatrix", "uniform", "mat4"), position),
+                   False),
+        ir.Assign("=", build.name("position", "builtin", "vec4"),
+                  build.binary("*", build.name("u_viewProjectionMatrix", "uniform", "mat4"), world)),
+        *ctx.vertex_main.values(),
+    ], True)
+
+
+def externals(ctx, stage: str) -> dict[str, str]:
+    """The IR types of the variables the generator declared for a stage: what its code may read."""
+    out = {}
+    for block in ctx.stages[stage].blocks.values():
+        for v in block:
+            if block.name == "LightData":
+                continue  # members of the light struct, not variables
+            out[v.name] = "LightData[]" if v.type == "LightData" else ir_type(v.type)
+    return out
+
+
+def run(ctx, counts: dict) -> StageCode:
+    """The pixel stage's code through the passes; its `vertex_main` is left to `finish_vertex`,
+    once the generator knows which vertex data the pixel stage reads."""
+    code = ctx.code
+    main = ctx.pixel.main.block()
+    code.check_generated(ctx.pixel.generated, [main], externals(ctx, PIXEL))
+    items = code.module(PRELUDE).items + ctx.pixel.items
+    items, counts["sections"] = sections.run(items, ctx.features, ctx.macros)
+    items, counts["forward"] = forward.run(items, [main])
+    items, counts["reach"] = reach.run(items, [main])
+    items, counts["fields"] = fields.run(items, [main])
+    structs = [i for i in items if isinstance(i, ir.Struct)]
+    constants = [i for i in items if isinstance(i, ir.Constant)]
+    functions = [i for i in items if isinstance(i, ir.Function)]
+    return StageCode(structs, constants, functions, main, None, names_read([main, *functions]))
+
+
+def finish_vertex(ctx) -> None:
+    """The vertex stage's main, typed, once its vertex data is final."""
+    vertex = vertex_main(ctx)
+    ctx.code.check_generated([], [vertex], externals(ctx, VERTEX))
+    ctx.pixel.code.vertex_main = vertex

@@ -1,0 +1,124 @@
+"""The GLSL 4.00 and ESSL 3.00 targets: the printer (printer.py), the stage assembler below, and
+the hardware closure convention (targets/closures.py).
+
+A stage is written in this order: the version (and ESSL's precisions), the structs and constants
+the code passes kept, the uniform blocks, the stage's inputs and outputs (vertex data as an
+interface block `vd`, or in ESSL, which has none, as `vd_<member>` variables), the functions,
+main. Uniforms are initialised to their values where GLSL allows it (not in ESSL).
+"""
+from ...code import ir
+from ...code.types import ir_type
+from ...code.values import value_expr
+from ...shader import Writer
+from ..closures import ClosureConvention
+from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+from .printer import GlslPrinter
+
+BUILTINS = {"position": "gl_Position"}
+
+
+class GlslTarget:
+    name = "glsl"
+    library = "genglsl"  # the implementation target of the node libraries
+    dialect = "glsl"
+    header = ("#version 400",)
+    uniform_initializers = True
+    vertex_data_block = True  # interface blocks for vertex -> pixel data
+    # one spelling of every name in every target (names.py): a client binds the same names in each
+    reserved, reserved_prefixes, reserved_suffixes = RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+    closures = ClosureConvention()
+
+    def __init__(self):
+        self.printer = GlslPrinter(self.dialect, self.spell)
+
+    def spell(self, name: ir.Name) -> str:
+        if name.kind == "vertexdata":
+            return f"vd.{name.name}" if self.vertex_data_block else f"vd_{name.name}"
+        if name.kind == "builtin":
+            return BUILTINS[name.name]
+        return name.name
+
+    def layout(self, ctx) -> dict | None:
+        """Where a client puts each uniform: GLSL uniforms are bound by name."""
+        return None
+
+    # -- stage assembly --------------------------------------------------------------------------
+    def assemble_pixel(self, ctx) -> str:
+        code = ctx.pixel.code
+        w = self._start()
+        items = code.structs + code.constants
+        for item in items:
+            w.extend(self.printer.item(item))
+        if items:
+            w.line()
+        self._uniforms(ctx.pixel, w)
+        self._vertex_data(ctx.pixel, w, "in")
+        for v in ctx.pixel.blocks["Outputs"]:
+            w.line(f"out vec4 {v.name};")
+        w.line()
+        for function in code.functions:
+            w.extend(self.printer.item(function))
+            w.line()
+        self._main(code.main, w)
+        return w.text()
+
+    def assemble_vertex(self, ctx) -> str:
+        w = self._start()
+        self._uniforms(ctx.vertex, w)
+        for v in ctx.vertex.blocks["AppData"]:
+            w.line(f"in {self.printer.type_name(_type(v))} {v.name};")
+        w.line()
+        self._vertex_data(ctx.vertex, w, "out")
+        self._main(ctx.pixel.code.vertex_main, w)
+        return w.text()
+
+    def _start(self) -> Writer:
+        w = Writer()
+        for line in self.header:
+            w.line(line)
+        w.line()
+        return w
+
+    def _main(self, body: ir.Block, w: Writer) -> None:
+        w.line("void main()")
+        w.extend(self.printer.statements([body], 0))
+
+    def _uniforms(self, stage, w: Writer) -> None:
+        for block in ("PrivateUniforms", "PublicUniforms"):
+            variables = list(stage.blocks[block])
+            if variables:
+                w.line(f"// Uniform block: {block}")
+                for v in variables:
+                    init = None
+                    if self.uniform_initializers and v.initializer is not None and v.type not in ("filename", "LightData"):
+                        init = value_expr(v.type, v.initializer, {"enum": ""})  # listing values of enums are indices
+                    w.line(self.printer.global_declaration(ir.Global(_type(v), v.name, "uniform", block, init)))
+                w.line()
+
+    def _vertex_data(self, stage, w: Writer, direction: str) -> None:
+        members = list(stage.blocks["VertexData"])
+        if not members:
+            return
+        if self.vertex_data_block:
+            w.line(f"{direction} VertexData")
+            w.line("{")
+            for v in members:
+                w.line(f"    {self.printer.type_name(_type(v))} {v.name};")
+            w.line("} vd;")
+        else:
+            for v in members:
+                w.line(f"{direction} {self.printer.type_name(_type(v))} vd_{v.name};")
+        w.line()
+
+
+def _type(v) -> str:
+    """A listed variable's IR type (the light array's length is the prelude's MAX_LIGHT_SOURCES)."""
+    return "LightData[MAX_LIGHT_SOURCES]" if v.type == "LightData" else ir_type(v.type)
+
+
+class EsslTarget(GlslTarget):
+    name = "essl"
+    dialect = "essl"
+    header = ("#version 300 es", "precision highp float;", "precision highp int;")
+    uniform_initializers = False  # ESSL has no uniform initialisers: values come from the listing
+    vertex_data_block = False  # ESSL 3.00 has no in/out interface blocks
