@@ -266,7 +266,7 @@ class Checker:
                 e.if_false = self.convert(e.if_false, a)
             else:
                 raise self.error(e, f"'?:' between a {a} and a {b}")
-        e.type = e.if_false.type if a != b and implicitly_converts(a, b) else e.if_true.type
+        e.type = e.if_true.type
         return e
 
     def expr_Convert(self, e):

@@ -344,3 +344,23 @@ def test_builds_in_different_orders_give_equal_pickles(library, tmp_path):
     a = build(roots[0], EXTERNALS, cache_key(roots[0], EXTERNALS))
     b = build(roots[1], reversed_externals, cache_key(roots[1], reversed_externals))
     assert pickle.dumps(a[1:]) == pickle.dumps(b[1:])
+
+
+def test_a_comment_after_code_belongs_to_the_innermost_statement_ending_there():
+    fn = parse_module("x.glsl", """
+void f(float a)
+{
+    if (a > 0.5)
+        return;  // early
+    if (a < 0.0)
+    {  // negative
+        a = 0.0;
+    }  // done
+    else  // the rest
+        a = 1.0;
+}
+""").items[0]
+    first, second = fn.body.body
+    assert first.then.body[0].comment == "early" and first.comment is None
+    assert second.then.body[0].comment == "negative" and second.then.comment == "done"
+    assert second.other.comment is None and second.other.body[0].comment == "the rest"
