@@ -182,7 +182,8 @@ class GlslPrinter:
         """A statement that is one line of code (without its `;`): also a for loop's parts."""
         cls = type(s)
         if cls is ir.Declare:
-            head = ("const " if s.const else "") + self.declarator(s.type, s.name)
+            name = s.name if self.spell is None else self.spell(ir.Name(s.name, "local"))
+            head = ("const " if s.const else "") + self.declarator(s.type, name)
             if s.init is None:
                 return head
             return head + " = " + self.render(s.init, None if column is None else column + len(head) + 3, indent)
