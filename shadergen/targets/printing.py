@@ -8,9 +8,11 @@ sources align them.
 """
 
 WIDTH = 110
-# An argument list opening past this column starts on a line of its own, one indent deeper than
-# its statement: aligned after the `(` so far right, each line would hold a few arguments only.
+# An argument list opening past this column is not aligned after its `(`, where each line would
+# hold a few arguments only: a long one (an array's values) starts on a line of its own, one indent
+# deeper than its statement; a short one stays on its line, which runs past WIDTH.
 HANGING = 70
+LONG = 8
 INDENT = "    "
 
 
@@ -34,7 +36,9 @@ def end_column(start: int, text: str) -> int:
 def arguments(render, args, column: int, indent: int) -> str:
     """The arguments of a call whose `(` ends at `column`, in a statement indented `indent`
     columns: on the line while they fit, else on the next, aligned after the `(`."""
-    if column > HANGING and args:
+    if column > HANGING and len(args) <= LONG:
+        return ", ".join([render(arg, None, indent) for arg in args])
+    if column > HANGING:
         column = indent + len(INDENT)
         out = "\n" + " " * column
     else:

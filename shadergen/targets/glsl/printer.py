@@ -41,6 +41,49 @@ def unsupported(what: str, node) -> ShaderGenError:
                           None if where is None else f"{where[0]}:{where[1]}:{where[2]}")
 
 
+def same(a, b) -> bool:
+    """The same IR, field by field (`where`, types and comments aside)."""
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, ir.Node):
+        return all(same(getattr(a, n), getattr(b, n)) for n in a.FIELDS)
+    if isinstance(a, (list, tuple)):
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+    return a == b
+
+
+def else_links(side: list) -> list:
+    """The else clauses of a section's side in chain order: the clause, then each `else` of the
+    `if ... else if ...` it starts."""
+    links = list(side[:1])
+    while links:
+        last = links[-1]
+        if last.scoped or len(last.body) != 1 or type(last.body[0]) is not ir.If or last.body[0].other is None:
+            break
+        links.append(last.body[0].other)
+    return links
+
+
+def cut_chain(clause: ir.Block, keep: int) -> ir.Block:
+    """`clause` with its else chain ending after `keep` links."""
+    node = clause.body[0]
+    other = None if keep == 1 else cut_chain(node.other, keep - 1)
+    return ir.replace(clause, body=[ir.replace(node, other=other)])
+
+
+def split_else_section(section: ir.Section):
+    """A section holding an `else` (ir.Section else_branch) as the source wrote it: the parser
+    carries what follows its `#endif` into both of its sides; here that shared rest comes out
+    again, to be printed once after the `#endif` (None where the sides share none)."""
+    body, other = else_links(section.body), else_links(section.other or [])
+    for i in range(1, len(body)):
+        for j, link in enumerate(other):
+            if same(body[i], link):
+                kept_other = [] if j == 0 else [cut_chain(section.other[0], j)]
+                return ir.replace(section, body=[cut_chain(section.body[0], i)], other=kept_other), body[i]
+    return section, None
+
+
 class GlslPrinter:
     """`item`, `statements` and `expression` of typed IR as GLSL text; `spell(name_node)` decides
     how a Name is written (the stage assembler's vertex data `vd.x` against `vd_x`)."""
@@ -94,10 +137,11 @@ class GlslPrinter:
                 return flat
         if cls is ir.Binary:
             p = BINARY[e.op]
-            left = self.operand(e.left, column, indent, self.precedence(e.left) < p)
+            left = self.operand(e.left, column, indent, self.precedence(e.left) < p or self.mixed(e, e.left))
             op = f" {e.op} "
             right_at = None if column is None else end_column(column, left) + len(op)
-            return left + op + self.operand(e.right, right_at, indent, self.precedence(e.right) <= p)
+            right = self.operand(e.right, right_at, indent, self.precedence(e.right) <= p or self.mixed(e, e.right))
+            return left + op + right
         if cls is ir.Unary:
             inner = self.precedence(e.operand) <= UNARY  # also `-(-x)`: `--x` is a decrement
             return e.op + self.operand(e.operand, None if column is None else column + len(e.op), indent, inner)
@@ -124,6 +168,12 @@ class GlslPrinter:
                 return _float(float(e.operand.value))
             return self.call(self.type_name(e.type), [e.operand], column, indent)
         raise unsupported(f"a {cls.__name__} expression", e)
+
+    @staticmethod
+    def mixed(parent: ir.Binary, child) -> bool:
+        """`a || (b && c)`: parentheses the grammar does without but a reader wants (the
+        sources write them; C compilers warn without them)."""
+        return parent.op == "||" and type(child) is ir.Binary and child.op == "&&"
 
     def operand(self, e, column, indent, parenthesised: bool) -> str:
         if not parenthesised:
@@ -240,12 +290,11 @@ class GlslPrinter:
         inner = other.body if type(other) is ir.Block and not other.scoped else None
         if inner is not None and len(inner) == 1 and type(inner[0]) is ir.If:
             self.if_chain(inner[0], depth, lines, "else ")
-        elif inner is not None and inner and all(type(x) in (ir.Section, ir.Comment) for x in inner):
-            for part in inner:
-                if type(part) is ir.Comment:
-                    self.statement(part, depth, lines)
-                else:
-                    self.section(part, lambda body: self.else_parts(body, depth), lines)
+        elif inner is not None and len(inner) == 1 and type(inner[0]) is ir.Section:
+            section, rest = split_else_section(inner[0])
+            self.section(section, lambda body: self.else_parts(body, depth), lines)
+            if rest is not None:
+                self.else_branch(rest, depth, lines)
         else:
             comment = other.comment if type(other) is ir.Block else None
             lines.append(with_trailing(pad + "else", comment))
@@ -287,6 +336,8 @@ class GlslPrinter:
             lines.append("{")
             lines.extend(f"{INDENT}{self.declarator(t, n)};" for t, n in item.members)
             lines.append("};")
+        elif cls is ir.Constant and item.type is None:  # a #define the checker has not typed
+            lines.append(f"#define {item.name} {self.render(item.value, None, 0)}")
         elif cls is ir.Constant:
             head = "const " + self.declarator(item.type, item.name) + " = "
             lines.extend((head + self.render(item.value, len(head), 0) + ";").split("\n"))
