@@ -46,14 +46,14 @@ RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx"}
 # c: the complementary minors of the last two); the cofactors of a's transpose, transposed back by
 # writing them column after column.
 INVERSE_HELPERS = {"mat3": "mx_inverse_mat3", "mat4": "mx_inverse_mat4"}
-HELPERS = """\
+HELPER_FUNCTIONS = {"mx_inverse_mat3": """\
 fn mx_inverse_mat3(m: mat3x3f) -> mat3x3f {
     let r0 = cross(m[1], m[2]);
     let r1 = cross(m[2], m[0]);
     let r2 = cross(m[0], m[1]);
     return transpose(mat3x3f(r0, r1, r2)) * (1.0 / dot(m[0], r0));
 }
-
+""", "mx_inverse_mat4": """\
 fn mx_inverse_mat4(a: mat4x4f) -> mat4x4f {
     let s0 = a[0][0] * a[1][1] - a[1][0] * a[0][1];
     let s1 = a[0][0] * a[1][2] - a[1][0] * a[0][2];
@@ -78,7 +78,7 @@ fn mx_inverse_mat4(a: mat4x4f) -> mat4x4f {
         -a[1][0] * c3 + a[1][1] * c1 - a[1][2] * c0, a[0][0] * c3 - a[0][1] * c1 + a[0][2] * c0,
         -a[3][0] * s3 + a[3][1] * s1 - a[3][2] * s0, a[2][0] * s3 - a[2][1] * s1 + a[2][2] * s0) * inv_det;
 }
-"""
+"""}
 
 # Identity functions, one per type (WGSL has no generic ones), through which WgslTarget.inline reads
 # the literals of an expression made of literals alone. WGSL evaluates such an expression when it
@@ -86,7 +86,10 @@ fn mx_inverse_mat4(a: mat4x4f) -> mat4x4f {
 # a built-in it calls has no constant form for its abstract-typed literals (mix(0.0, 1.0, 0.5));
 # a function call is never a constant expression, so the GPU computes it as GLSL's would.
 RUNTIME_TYPES = ("f32", "i32", "bool", "vec2f", "vec3f", "vec4f", "mat3x3f", "mat4x4f")
-HELPERS += "".join(f"\nfn mx_runtime_{t}(value: {t}) -> {t} {{ return value; }}\n" for t in RUNTIME_TYPES)
+HELPER_FUNCTIONS.update((f"mx_runtime_{t}", f"fn mx_runtime_{t}(value: {t}) -> {t} {{ return value; }}\n")
+                        for t in RUNTIME_TYPES)
+# all of them as one text (the IR printer, wgsl/printer.py, writes only those a stage calls)
+HELPERS = "\n".join(HELPER_FUNCTIONS.values())
 
 WGSL_RESERVED = set("""
 alias break case const const_assert continue continuing default diagnostic discard else enable false fn for if let

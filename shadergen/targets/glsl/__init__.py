@@ -6,8 +6,8 @@ import math
 import re
 from functools import lru_cache
 
-from ..types import TYPES, default_value
-from .names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+from ...types import TYPES, default_value
+from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
 
 # Closure and shader types are structs in the hardware targets (the PBR library fills them in).
 STRUCTS = {

@@ -1,0 +1,101 @@
+"""What the printers of typed IR (glsl/printer.py, wgsl/printer.py) share: the line width, how a
+long argument list wraps, how comments are written, and the few type facts printing needs.
+
+Expressions are printed by a `render(expr, column, indent)` of the printer: `column` None prints on
+one line; a column is where the text starts (in a statement indented `indent` columns), so an
+argument list that would run past WIDTH wraps, its arguments aligned after the `(` as the library
+sources align them.
+"""
+
+WIDTH = 110
+# An argument list opening past this column is not aligned after its `(`, where each line would
+# hold a few arguments only: a long one (an array's values) starts on a line of its own, one indent
+# deeper than its statement; a short one stays on its line, which runs past WIDTH.
+HANGING = 70
+LONG = 8
+INDENT = "    "
+
+
+def comment_lines(comment) -> list[str]:
+    """`//` lines of a comment: one string, or a sequence of lines (without their `//`)."""
+    lines = [comment] if isinstance(comment, str) else list(comment)
+    return ["//" + line if not line or line[0] == " " else "// " + line for line in lines]
+
+
+def with_trailing(line: str, comment) -> str:
+    """`line` with the comment that followed its code in the source."""
+    return line if not comment else line + "  " + " ".join(comment_lines(comment))
+
+
+def end_column(start: int, text: str) -> int:
+    """The column after `text` printed from column `start`."""
+    newline = text.rfind("\n")
+    return start + len(text) if newline < 0 else len(text) - newline - 1
+
+
+def arguments(render, args, column: int, indent: int) -> str:
+    """The arguments of a call whose `(` ends at `column`, in a statement indented `indent`
+    columns: on the line while they fit, else on the next, aligned after the `(`."""
+    if column > HANGING and len(args) <= LONG:
+        return ", ".join([render(arg, None, indent) for arg in args])
+    if column > HANGING:
+        column = indent + len(INDENT)
+        out = "\n" + " " * column
+    else:
+        out = ""
+    end = column
+    for i, arg in enumerate(args):
+        flat = render(arg, None, indent)
+        tail = 1  # the `,` or `)` after it
+        separator = "" if i == 0 else ", "
+        if end + len(separator) + len(flat) + tail <= WIDTH:
+            text = separator + flat
+        elif i == 0:
+            text = render(arg, end, indent)
+        elif column + len(flat) + tail <= WIDTH:
+            text = ",\n" + " " * column + flat
+        else:
+            text = ",\n" + " " * column + render(arg, column, indent)
+        out += text
+        end = end_column(end, text)
+    return out
+
+
+# -- type facts (IR type names, code/ir.py) -------------------------------------------------------
+_SCALARS = {"float", "int", "uint", "bool"}
+_VECTOR_SCALAR = {"vec": "float", "ivec": "int", "uvec": "uint", "bvec": "bool"}
+
+
+def scalar_of(ir_type: str) -> str | None:
+    """The scalar of a scalar, vector or matrix type (None for others)."""
+    if ir_type in _SCALARS:
+        return ir_type
+    if ir_type.startswith("mat"):
+        return "float"
+    prefix = ir_type[:-1]
+    if prefix in _VECTOR_SCALAR and ir_type[-1] in "234":
+        return _VECTOR_SCALAR[prefix]
+    return None
+
+
+def size_of(ir_type: str) -> int:
+    """Components of a vector (1 for a scalar)."""
+    return int(ir_type[-1]) if ir_type[:-1] in _VECTOR_SCALAR and ir_type[-1] in "234" else 1
+
+
+def is_matrix(ir_type: str | None) -> bool:
+    return bool(ir_type) and ir_type.startswith("mat") and len(ir_type) == 4
+
+
+def vector_of(scalar: str, size: int) -> str:
+    if size == 1:
+        return scalar
+    return {"float": "vec", "int": "ivec", "uint": "uvec", "bool": "bvec"}[scalar] + str(size)
+
+
+def array_parts(ir_type: str) -> tuple[str, str] | None:
+    """(element, size) of an array type `T[N]` (size "" for `T[]`), else None."""
+    if not ir_type.endswith("]"):
+        return None
+    open_ = ir_type.index("[")
+    return ir_type[:open_], ir_type[open_ + 1:-1]
