@@ -237,8 +237,13 @@ class Section(Stmt):
     and given its default (undefined) by those without. `else_branch`: the section holds the
     `else` of the `if` before it (`if (...) {...} #ifdef X else {...} #endif`), which the parser
     attaches to that `if` as its `other`, a Block holding this section."""
-    __slots__ = ("macro", "defined", "body", "other")
+    __slots__ = ("macro", "defined", "body", "other", "else_branch")
     FIELDS = ("macro", "defined", "body", "other")
+
+    # else_branch: the slot the docstring above names (added by code/parse.py's author)
+    def __init__(self, macro, defined, body, other, where=None, comment=None, else_branch=False):
+        super().__init__(macro, defined, body, other, where=where, comment=comment)
+        self.else_branch = else_branch
 
 
 # -- top-level items -------------------------------------------------------------------------------
