@@ -410,3 +410,212 @@ def test_chains_of_forwards_reach_the_last_target():
     items, count = forward.run([SAMPLES, REFLECTED, outer, user], [do(call(user, N))])
     assert items[0] is SAMPLES and len(items) == 2 and items[1].body.body[1].value.callee is SAMPLES and count == 2
     assert collect([items[1]]).calls == ("samples(vec3,bool,vec3)",)
+
+
+# -- on the library's own IR -----------------------------------------------------------------------
+# The text passes and scans of today are the reference: the IR passes keep no more than they do,
+# and read the same facts of every lobe (test_source_scans, test_passes).
+import glob  # noqa: E402
+import os  # noqa: E402
+import re  # noqa: E402
+
+import pytest  # noqa: E402
+
+from shadergen.code.check import check_modules, flat_items  # noqa: E402
+from shadergen.code.parse import parse_module  # noqa: E402
+from shadergen.features import environment_macros, resolve  # noqa: E402
+from shadergen.library import default_library  # noqa: E402
+from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
+from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS  # noqa: E402
+from shadergen.targets.deadcode import split_items, used_functions  # noqa: E402
+from shadergen.targets.glsl import ClosureConvention  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CLOSURE_TYPES = {"BSDF", "EDF", "VDF"}
+IR_TYPES = {"matrix44": "mat4", "filename": "sampler2D", "float": "float", "integer": "int", "boolean": "bool",
+            "vector3": "vec3"}
+
+
+class CheckedLibrary:
+    """Every library source parsed and checked (as code/library.py does once per library hash)."""
+
+    def __init__(self):
+        prelude = os.path.join(ROOT, "shadergen", "code", "prelude.glsl")
+        paths = [prelude] + sorted(os.path.abspath(p) for p in glob.glob(os.path.join(ROOT, "libraries", "*", "genglsl",
+                                                                                      "**", "*.glsl"), recursive=True))
+        self.modules = {p: parse_module(p, open(p).read()) for p in paths}
+        externals = {name: IR_TYPES[t] for name, t in ENVIRONMENT_UNIFORMS}
+        externals.update(u_numActiveLightSources="int", u_lightData="LightData[3]")
+        check_modules(self.modules, externals, (prelude,))
+        self.by_name: dict[str, list] = {}
+        for path in paths:
+            for item in flat_items(self.modules[path].items):
+                if isinstance(item, ir.Function):
+                    self.by_name.setdefault(item.name, []).append(item)
+
+    def functions(self, name):
+        return self.by_name.get(name, [])
+
+    def function(self, path, name):
+        return next(i for i in flat_items(self.modules[os.path.abspath(path)].items)
+                    if isinstance(i, ir.Function) and i.name == name)
+
+    def items(self, impl) -> list:
+        """The items of an implementation's files, its includes first (the generator's order)."""
+        return [item for path, _ in impl.files for item in self.modules[os.path.abspath(path)].items]
+
+
+@pytest.fixture(scope="module")
+def code():
+    return CheckedLibrary()
+
+
+def source_implementations():
+    """(nodedef, SourceFunctionImpl) of every library function implementation, each once."""
+    library = default_library()
+    found, seen = [], set()
+    for nodedef_name, elements in sorted(library.implementations.items()):
+        for e in elements:
+            if e.category != "implementation" or not e.get("file") or e.get("sourcecode") is not None:
+                continue
+            impl = implementation_for(e, library)
+            if isinstance(impl, SourceFunctionImpl) and (impl.path, impl.function) not in seen:
+                seen.add((impl.path, impl.function))
+                found.append((library.nodedefs.get(nodedef_name), impl))
+    return found
+
+
+def lobes():
+    return [(nodedef, impl) for nodedef, impl in source_implementations()
+            if {o.get("type") for o in nodedef.children_of("output")} & CLOSURE_TYPES]
+
+
+def test_every_lobes_zero_weight_exit_and_prepared_state_agree_with_the_text_scans(code):
+    convention, checked = ClosureConvention(), 0
+    for _, impl in lobes():
+        function = code.function(impl.path, impl.function)
+        assert early_exit_at_zero_weight(function) == convention.empty_at_zero_weight(impl.source, impl.function), \
+            impl.function
+        assert prepared_state(function, code) == convention.prepared_state(impl.source, impl.function), impl.function
+        checked += 1
+    assert checked >= 25
+    early = {impl.function for _, impl in lobes() if early_exit_at_zero_weight(code.function(impl.path, impl.function))}
+    assert early == {"mx_dielectric_bsdf", "mx_generalized_schlick_bsdf", "mx_sheen_bsdf"}
+
+
+def test_the_lobes_answering_the_transmission_context_agree_with_the_text_scan(code):
+    """The closure pass asks it of lobes only (an operator passes on what its lobes answer). The
+    text scan reads the whole file: mx_closure_layer.glsl names the constant for the layer of
+    BSDFs, which the text scan credits to mx_layer_vdf too."""
+    convention = ClosureConvention()
+    for nodedef, impl in lobes():
+        if any(i.get("type") in CLOSURE_TYPES for i in nodedef.children_of("input")):
+            continue
+        function = code.function(impl.path, impl.function)
+        assert reads_constant(function, "CLOSURE_TYPE_TRANSMISSION") == convention.handles_transmission(impl.source), \
+            impl.function
+
+
+def test_derivative_use_agrees_with_the_text_scan_for_every_function_implementation(code):
+    implementations = source_implementations()
+    for _, impl in implementations:
+        assert uses_derivatives(code.function(impl.path, impl.function)) == impl.uses_derivatives, impl.function
+    assert len(implementations) > 100
+
+
+def stage(code, impl, features, environment):
+    """What a stage of the implementation alone keeps: its sections resolved, reach from calls of
+    it (and its _prepare), then fields and forward until nothing changes."""
+    items, _ = sections.run(code.items(impl), features, environment_macros(environment))
+    called = {impl.function, impl.function + "_prepare"}
+    roots = [do(ir.Call(i.name, [], callee=i)) for i in items if isinstance(i, ir.Function) and i.name in called]
+    return [i for unit in reduced(items, roots) for i in flat_items([unit])]
+
+
+def text_stage(impl, features, environment):
+    """The same by today's text passes: the kept lines."""
+    lines = []
+    for _, text in impl.files:
+        lines += resolve(text, features, environment_macros(environment)).split("\n") + [""]
+    called = [impl.function] + ([impl.function + "_prepare"] if f"{impl.function}_prepare(" in impl.source else [])
+    return used_functions(lines, "; ".join(f"{name}(x)" for name in called))[0]
+
+
+def names(items) -> set[str]:
+    return {i.name for i in items}
+
+
+SETTINGS = [(frozenset(), "fis"), (frozenset({"LIGHTS", "THIN_FILM", "TRANSMISSION", "REFRACTION"}), "prefilter"),
+            (None, None)]
+
+
+@pytest.mark.parametrize("features, environment", SETTINGS)
+def test_the_ir_passes_keep_no_more_than_the_text_passes_of_every_implementation(code, features, environment):
+    """No more: the text pass keeps every overload of a name it sees called (mx_hn_mix, mx_sqr's),
+    the IR only those called."""
+    fewer = 0
+    for _, impl in source_implementations():
+        kept = text_stage(impl, features, environment)
+        text_names = {name for name, _ in split_items(kept) if name}
+        ir_names = names(stage(code, impl, features, environment))
+        assert ir_names <= text_names, (impl.function, ir_names - text_names)
+        assert impl.function in ir_names
+        fewer += ir_names != text_names
+    assert fewer < 50
+
+
+@pytest.mark.parametrize("features, environment", SETTINGS + [(frozenset({"LIGHTS"}), "hybrid")])
+def test_the_specular_lobes_structs_lose_the_members_the_text_pass_takes_out(code, features, environment):
+    for impl in [impl for _, impl in lobes() if impl.function in ("mx_dielectric_bsdf", "mx_conductor_bsdf",
+                                                                   "mx_generalized_schlick_bsdf")]:
+        text = "\n".join(text_stage(impl, features, environment))
+        for struct in [i for i in stage(code, impl, features, environment) if isinstance(i, ir.Struct)]:
+            declared = re.search(r"struct %s\n\{\n(.*?)\n\};" % struct.name, text, re.S).group(1)
+            members = [line.split()[1].rstrip(";") for line in declared.split("\n") if line.strip()
+                       and not line.strip().startswith("//")]
+            assert [m for _, m in struct.members] == members, (impl.function, struct.name)
+
+
+def lobe_stage(code, function, features, environment=None):
+    impl = next(impl for _, impl in lobes() if impl.function == function)
+    return stage(code, impl, features, environment)
+
+
+def test_a_film_of_thickness_0_leaves_the_thin_film_out_and_the_film_brings_it(code):
+    plain = names(lobe_stage(code, "mx_dielectric_bsdf", frozenset({"FRESNEL_DIELECTRIC"})))
+    assert "mx_fresnel_airy" not in plain and "mx_fresnel_dielectric" in plain
+    assert "mx_refraction_solid_sphere" not in plain and "MX_ALBEDO_DIELECTRIC_LEAVING" not in plain
+    film = names(lobe_stage(code, "mx_dielectric_bsdf", frozenset({"FRESNEL_DIELECTRIC", "THIN_FILM"})))
+    assert "mx_fresnel_airy" in film
+
+
+def test_lights_and_transmission_bring_their_contexts_code(code):
+    unlit = names(lobe_stage(code, "mx_dielectric_bsdf", frozenset()))
+    lit_ = names(lobe_stage(code, "mx_dielectric_bsdf", frozenset({"LIGHTS"})))
+    clear = names(lobe_stage(code, "mx_dielectric_bsdf", frozenset({"TRANSMISSION", "REFRACTION"})))
+    assert "mx_specular_reflection" not in unlit and "mx_specular_reflection" in lit_
+    assert "mx_specular_transmission_albedo" not in unlit | lit_ and "mx_specular_transmission_albedo" in clear
+    assert "mx_surface_transmission" in clear
+
+
+def test_an_environment_method_resolves_the_compilers_own_conditional(code):
+    def sections_left(items):
+        return {n.macro for i in items for n in ir.walk(i) if isinstance(n, ir.Section)}
+
+    both = lobe_stage(code, "mx_conductor_bsdf", frozenset())
+    fis = lobe_stage(code, "mx_conductor_bsdf", frozenset(), "fis")
+    prefilter = lobe_stage(code, "mx_conductor_bsdf", frozenset(), "prefilter")
+    hybrid = lobe_stage(code, "mx_conductor_bsdf", frozenset(), "hybrid")
+    assert "MX_ENV_PREFILTER" in sections_left(both) and not sections_left(fis + prefilter + hybrid)
+    assert "mx_ggx_sample_visible_normal" in names(fis) and "MX_DFG_C1" not in names(fis)
+    assert "MX_DFG_C1" in names(prefilter) and "mx_ggx_sample_visible_normal" not in names(prefilter)
+    assert "mx_environment_corrected_radiance" in names(hybrid)
+    assert "mx_environment_corrected_radiance" not in names(prefilter) | names(fis)
+
+
+def test_the_librarys_forwarders_are_called_straight(code):
+    fresnel = lobe_stage(code, "mx_dielectric_bsdf", frozenset({"FRESNEL_DIELECTRIC"}), "fis")
+    assert "mx_fresnel_eval_film" in names(fresnel) and "mx_fresnel_eval" not in names(fresnel)
+    reflected = lobe_stage(code, "mx_conductor_bsdf", frozenset(), "fis")
+    assert "mx_environment_samples" in names(reflected) and "mx_environment_reflected" not in names(reflected)
+    assert "mx_environment_reflected" in names(lobe_stage(code, "mx_conductor_bsdf", frozenset({"THIN_FILM"}), "fis"))

@@ -72,11 +72,11 @@ def _spliced(node, statement, expression) -> list:
 def _tidied(stmt) -> list:
     if isinstance(stmt, ir.If):
         other = stmt.other
-        if isinstance(other, ir.Block) and not other.scoped:
-            if not other.body:
-                other = None  # a section that held the `else` gave none
-            elif len(other.body) == 1 and isinstance(other.body[0], ir.Block) and other.body[0].scoped:
-                other = other.body[0]  # `else { ... }` out of a section
+        while isinstance(other, ir.Block) and not other.scoped and len(other.body) == 1 \
+                and isinstance(other.body[0], ir.Block):
+            other = other.body[0]  # the `else { ... }` or `else if` the sections held
+        if isinstance(other, ir.Block) and not other.scoped and not other.body:
+            other = None  # the sections that held the `else` gave none
         then = _braced(stmt.then)
         if not then.body and other is None and not any(isinstance(n, ir.Call) for n in ir.walk(stmt.condition)):
             return []
