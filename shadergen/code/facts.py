@@ -28,6 +28,7 @@ DERIVATIVE_BUILTINS = frozenset({
 # Built-ins that write through an out parameter besides returning a value.
 WRITING_BUILTINS = frozenset({"modf", "frexp", "uaddCarry", "usubBorrow", "umulExtended", "imulExtended"})
 LOCAL_KINDS = frozenset({"local", "param"})
+INTERFACE_KINDS = frozenset({"uniform", "input", "output", "vertexdata"})  # variables a client or a stage binds
 
 # Store: an assignment to a member (`lobe.frame = ...;`, `lobe.Vt.z = ...;`, `a[i].m += ...;`):
 # `members` the (struct, member) pairs its target writes into (every member on the target's path),
@@ -45,7 +46,7 @@ class Facts:
     of kind "uniform"; types: the non-built-in type names it mentions (structs, aliases);
     members: every (struct, member) read or stored (a Counter of occurrences); stores: its member
     stores (Store); whole: structs whose every member it observes (built by their constructor,
-    compared whole); writes_params: a function with an out or inout parameter; writes_outside: it
+    compared whole, the type of a uniform or stage variable it reads: a layout); writes_params: a function with an out or inout parameter; writes_outside: it
     assigns to a name that is not its own (a global, a stage output); derivatives: it calls a
     derivative built-in itself; forwards: (target Function, arguments) when the item is a function
     whose whole body is `return target(...)`, each parameter passed once in its order with the
@@ -87,11 +88,13 @@ def _read(nodes, function: ir.Function | None) -> Facts:
                     names.setdefault(n.name)
                     if n.kind == "uniform":
                         uniforms.add(n.name)
+                    if n.kind in INTERFACE_KINDS and n.type:
+                        whole.add(n.type.partition("[")[0])  # a uniform's or a stage variable's layout stays
             elif isinstance(n, ir.Field):
                 if not n.swizzle:
                     members[(struct_of(n.base), n.name)] += 1
             elif isinstance(n, ir.Construct):
-                whole.add(n.type)
+                whole.add(n.type.partition("[")[0])
             elif isinstance(n, ir.Binary) and n.op in ("==", "!=") and n.left.type not in BUILTIN_TYPES:
                 whole.add(n.left.type)  # a struct compared whole: every member is observed
             elif isinstance(n, ir.Assign):
@@ -110,7 +113,7 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     out.types = tuple(types)
     out.members = members
     out.stores = tuple(stores)
-    out.whole = frozenset(whole - {None})
+    out.whole = frozenset(whole - BUILTIN_TYPES - {None})
     out.writes_params = function is not None and any(p.qualifier in ("out", "inout") for p in function.params)
     out.writes_outside = writes_outside
     out.derivatives = not DERIVATIVE_BUILTINS.isdisjoint(builtins)

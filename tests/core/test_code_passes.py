@@ -345,6 +345,9 @@ def test_a_struct_built_by_its_constructor_or_a_globals_type_keeps_every_member(
     light = ir.Struct("LightData", [("int", "type"), ("float", "decay_rate")])
     uniform = ir.Global("LightData[MAX_LIGHT_SOURCES]", "u_lightData", "uniform")
     assert fields.run([light, uniform], []) == ([light, uniform], 0)
+    read = [ir.Declare("int", "t", member(ir.Index(ir.Name("u_lightData", "uniform", type="LightData[3]"), lit(0, "int"),
+                                                   type="LightData"), "type", "int"), False)]
+    assert fields.run([light], read) == ([light], 0)  # a uniform the generator declares: its layout stays
 
 
 def test_a_struct_keeps_its_first_member_and_what_storing_it_reads():

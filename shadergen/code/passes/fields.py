@@ -19,27 +19,35 @@ from collections import Counter
 from functools import lru_cache
 
 from .. import ir
-from ..facts import collect, facts
+from ..facts import Facts, collect, facts
 from .rewrite import items_in, rebuild_list
 
 
 def run(items: list, roots=()) -> tuple[list, int]:
-    """The items without dead members and their stores; the count is members plus statements removed."""
+    """The items without dead members and their stores; the count is members plus statements
+    removed. `roots`: statements and generated functions, or their facts.collect. Memoised per
+    (items, the members the roots mention, the structs they build)."""
+    root_facts = roots if isinstance(roots, Facts) else collect(roots)
+    out, count = _run(tuple(items), frozenset(root_facts.members), root_facts.whole)
+    return list(out), count
+
+
+@lru_cache(maxsize=4096)
+def _run(items: tuple, root_members: frozenset, root_whole: frozenset) -> tuple[tuple, int]:
     flat = [i for unit in items for i in items_in(unit)]
     structs = [i for i in flat if isinstance(i, ir.Struct)]
     if not structs:
         return items, 0
     item_facts = [facts(i) for i in flat]
-    root_facts = collect(roots)
-    whole = set(root_facts.whole).union(*(f.whole for f in item_facts))
+    whole = set(root_whole).union(*(f.whole for f in item_facts))
     whole.update(i.type.partition("[")[0] for i in flat if isinstance(i, ir.Global))
     members = {s.name: [m for _, m in s.members] for s in structs if s.name not in whole}
     candidates = {(s, m) for s, ms in members.items() for m in ms}
     total = Counter()
     for f in item_facts:
         total.update(f.members)
-    untyped = {m for s, m in total if s is None} | {m for s, m in root_facts.members if s is None}
-    candidates = {c for c in candidates if c not in root_facts.members and c[1] not in untyped}
+    untyped = {m for s, m in total if s is None} | {m for s, m in root_members if s is None}
+    candidates = {c for c in candidates if c not in root_members and c[1] not in untyped}
     stores = [s for f in item_facts for s in f.stores if s.removable]
     dead = _dead(candidates, total, stores)
     for name, ms in members.items():  # every struct keeps a member: take its first out and look again
@@ -50,7 +58,7 @@ def run(items: list, roots=()) -> tuple[list, int]:
         return items, 0
     dropped = {id(s.statement) for s in stores if s.members & dead}
     count = len(dead) + len(dropped)
-    return [_without(unit, held) if (held := frozenset(dead & _held(unit))) else unit for unit in items], count
+    return tuple(_without(unit, held) if (held := frozenset(dead & _held(unit))) else unit for unit in items), count
 
 
 def _dead(candidates: set, total: Counter, stores: list) -> set:

@@ -14,19 +14,26 @@ roots (main) call is left alone, and so are its callers: the roots are not edite
 from functools import lru_cache
 
 from .. import ir
-from ..facts import collect, facts
+from ..facts import Facts, collect, facts
 from .rewrite import items_in, rebuild_list
 
 
 def run(items: list, roots=()) -> tuple[list, int]:
     """The items with calls of forwarding functions made to their targets and the forwarding
-    functions dropped; the count is the calls redirected."""
+    functions dropped; the count is the calls redirected. `roots`: statements and generated
+    functions, or their facts.collect. Memoised per (items, what the roots call)."""
+    root_facts = roots if isinstance(roots, Facts) else collect(roots)
+    out, count = _run(tuple(items), frozenset(root_facts.calls))
+    return list(out), count
+
+
+@lru_cache(maxsize=4096)
+def _run(items: tuple, called_by_roots: frozenset) -> tuple[tuple, int]:
     flat = [i for unit in items for i in items_in(unit)]
     definitions: dict[str, int] = {}
     for i in flat:
         if isinstance(i, ir.Function):
             definitions[i.name] = definitions.get(i.name, 0) + 1
-    called_by_roots = set(collect(roots).calls)
     forwarders = frozenset(i for i in flat if isinstance(i, ir.Function) and facts(i).forwards is not None
                            and definitions.get(facts(i).forwards[0].name) == 1 and i.key not in called_by_roots)
     if not forwarders:
@@ -41,7 +48,7 @@ def run(items: list, roots=()) -> tuple[list, int]:
             kept, n = _redirected(kept, forwarders)
             count += n
         out.append(kept)
-    return out, count
+    return tuple(out), count
 
 
 def _without_forwarders(unit, keys):

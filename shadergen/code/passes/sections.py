@@ -19,7 +19,14 @@ FEATURE_PREFIX = "MX_FEATURE_"
 
 
 def run(items: list, features: frozenset | None, macros: frozenset = frozenset()) -> tuple[list, int]:
-    """The items with their sections resolved, and how many sections were resolved."""
+    """The items with their sections resolved, and how many sections were resolved. Memoised per
+    (items, features, macros): a module's items recur in every request."""
+    out, count = _run(tuple(items), features, frozenset(macros))
+    return list(out), count
+
+
+@lru_cache(maxsize=4096)
+def _run(items: tuple, features: frozenset | None, macros: frozenset) -> tuple[tuple, int]:
     decided = dict(macros)
     out, count = [], 0
     for item in items:
@@ -30,7 +37,7 @@ def run(items: list, features: frozenset | None, macros: frozenset = frozenset()
         resolved, n = _resolved(item, tuple((m, decision(m, features, decided)) for m in mentioned))
         out.extend(resolved)
         count += n
-    return out, count
+    return tuple(out), count
 
 
 def decision(macro: str, features: frozenset | None, decided: dict) -> bool | None:
