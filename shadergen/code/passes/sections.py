@@ -1,0 +1,70 @@
+"""Feature sections and decided compiler macros resolved on the IR, as features.resolve does on
+text: a section of a feature the stage needs (`#ifdef MX_FEATURE_X`, X among `features`) stays
+without its directives, the section of one it does not need gives its `other` (the `#else` side,
+or nothing); `features` None (a stage whose nodes were not asked) needs every feature. A compiler
+macro the caller decided (`macros`: (name, defined) pairs, features.environment_macros) resolves
+the same way; any other macro's section stays a Section, for a target to write out or to give its
+default. An `if`'s `else` clause held by a section (ir.Section) becomes that `if`'s `else` or
+`else if`, or none.
+
+Library items recur in every request: each item's result is memoised per the decisions of the
+macros it mentions, so a request only looks up what it decides.
+"""
+from functools import lru_cache
+
+from .. import ir
+from .rewrite import rebuild_list
+
+FEATURE_PREFIX = "MX_FEATURE_"
+
+
+def run(items: list, features: frozenset | None, macros: frozenset = frozenset()) -> tuple[list, int]:
+    """The items with their sections resolved, and how many sections were resolved. Memoised per
+    (items, features, macros): a module's items recur in every request."""
+    out, count = _run(tuple(items), features, frozenset(macros))
+    return list(out), count
+
+
+@lru_cache(maxsize=4096)
+def _run(items: tuple, features: frozenset | None, macros: frozenset) -> tuple[tuple, int]:
+    decided = dict(macros)
+    out, count = [], 0
+    for item in items:
+        mentioned = macros_in(item)
+        if not mentioned:
+            out.append(item)
+            continue
+        resolved, n = _resolved(item, tuple((m, decision(m, features, decided)) for m in mentioned))
+        out.extend(resolved)
+        count += n
+    return tuple(out), count
+
+
+def decision(macro: str, features: frozenset | None, decided: dict) -> bool | None:
+    """Whether `macro` is defined for this stage; None where the stage leaves it to the target."""
+    if macro in decided:
+        return decided[macro]
+    if macro.startswith(FEATURE_PREFIX):
+        return features is None or macro[len(FEATURE_PREFIX):] in features
+    return None
+
+
+@lru_cache(maxsize=16384)
+def macros_in(item) -> tuple[str, ...]:
+    """The macros the sections of an item test, sorted."""
+    return tuple(sorted({n.macro for n in ir.walk(item) if isinstance(n, ir.Section)}))
+
+
+@lru_cache(maxsize=16384)
+def _resolved(item, decisions: tuple) -> tuple[tuple, int]:
+    defined = {m: d for m, d in decisions if d is not None}
+    count = 0
+
+    def section(stmt):
+        nonlocal count
+        if not isinstance(stmt, ir.Section) or stmt.macro not in defined:
+            return None
+        count += 1
+        return stmt.body if defined[stmt.macro] == stmt.defined else (stmt.other or [])
+
+    return tuple(rebuild_list([item], section)), count
