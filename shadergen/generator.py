@@ -9,7 +9,7 @@ blocks, functions, main. The graph arrives finished (passes/): emission only wal
 from .code import build, ir
 from .code import stage as code_passes
 from .code.build import Builder
-from .code.facts import names_read
+from .code.facts import collect
 from .code.types import ir_type
 from .code.values import enum_index, value_expr
 from .errors import ShaderGenError
@@ -186,8 +186,7 @@ class EmitContext:
                 self.pixel.items.extend(self.code.module(path).items)
 
     def add_function(self, function: ir.Function) -> None:
-        """A function the generator wrote, after the library code it calls."""
-        self.pixel.items.append(function)
+        """A function the generator wrote: printed after the library code, which it may call."""
         self.pixel.generated.append(function)
 
     def emit_graph_function(self, function: Function) -> None:
@@ -380,7 +379,7 @@ def finish(ctx: EmitContext, variables: bool, counts: dict) -> None:
             stage.blocks["VertexData"].variables = {n: v for n, v in stage.blocks["VertexData"].variables.items()
                                                     if n in read}
         ctx.vertex_main = {n: s for n, s in ctx.vertex_main.items() if n in read}
-        vertex_used = names_read(ctx.vertex_main.values()) | FIXED_VERTEX
+        vertex_used = set(collect(ctx.vertex_main.values()).names) | FIXED_VERTEX
         for block in ("AppData", "PrivateUniforms"):
             vb = ctx.vertex.blocks[block]
             vb.variables = {n: v for n, v in vb.variables.items() if n in vertex_used}

@@ -105,6 +105,12 @@ class Library(Index):
             facts[key] = value
         return facts[key]
 
+    def code(self):
+        """The library's shader code in the IR (code/library.py), read once per library."""
+        from .code.externals import EXTERNALS  # code/ reads this module's library: imported when first asked
+        from .code.library import CodeLibrary
+        return self.fact(("code",), lambda: CodeLibrary.load(self, EXTERNALS))
+
     def owns(self, elem: Element) -> bool:
         """Whether `elem` is one of this library's elements (not a document's)."""
         while elem.parent is not None:

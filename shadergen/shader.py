@@ -111,8 +111,8 @@ class Stage:
     def __init__(self, name: str):
         self.name = name
         self.blocks = {b: VariableBlock(b, "vd" if b == "VertexData" else "") for b in BLOCKS[name]}
-        self.items: list = []  # IR items (library and generated), in the order they were asked for
-        self.generated: list = []  # the functions among them the generator wrote (typed with main)
+        self.items: list = []  # the library's IR items it asked for, in that order
+        self.generated: list = []  # the functions the generator wrote (typed with main), in order
         self.main = Builder()  # body of main()
         self.code = None  # what the code passes kept (code/stage.py), once they ran
         self.emitted: set = set()  # keys of library files and generated functions already added

@@ -21,6 +21,7 @@ from ..fingerprint import library_files
 from ..library import Library, cache_dir, collection_paused, read_source, write_atomically
 from . import ir
 from .check import check_expression, check_modules, flat_items, library_symbols
+from .generated import check_generated
 from .parse import parse_expression, parse_module
 
 __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
@@ -62,7 +63,7 @@ class CodeLibrary:
     # -- lookups -----------------------------------------------------------------------------------
     def module(self, path: str) -> ir.Module:
         """A source file's module; `path` absolute or relative to the library folder."""
-        relative = os.path.relpath(os.path.realpath(path), self.root) if os.path.isabs(path) else os.path.normpath(path)
+        relative = self.relative(path)
         module = self.modules.get(relative)
         if module is None:
             raise ShaderGenError("missing_source", f"'{path}' is not a source file of the library", path)
@@ -81,6 +82,26 @@ class CodeLibrary:
     def _item(self, name: str, kind: type):
         found = self.symbols.items.get(name)
         return found if isinstance(found, kind) else None
+
+    def files_for(self, path: str) -> tuple[str, ...]:
+        """A source file and the files it includes, dependencies first, each once (paths
+        relative to the library folder)."""
+        order: list[str] = []
+
+        def visit(relative: str) -> None:
+            if relative not in order:
+                for inc in self.module(relative).includes:
+                    visit(inc)
+                order.append(relative)
+        visit(self.relative(path))
+        return tuple(order)
+
+    def relative(self, path: str) -> str:
+        return os.path.relpath(os.path.realpath(path), self.root) if os.path.isabs(path) else os.path.normpath(path)
+
+    def check_generated(self, functions, blocks, externals: dict[str, str]) -> None:
+        """Types the generator's own code against the library's (code/generated.py)."""
+        check_generated(self, functions, blocks, externals)
 
     def template(self, expression_text: str, where: str = "inline expression") -> ir.Expr:
         """The untyped template of an inline expression (`{{input}}` an ir.Placeholder)."""

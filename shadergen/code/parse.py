@@ -34,9 +34,11 @@ import copy
 import os
 import re
 
-from ..features import DECLARATION
 from . import ir
 from .lex import Token, source_error, tokenize
+
+# `#pragma shadergen feature NAME [unless INPUT OP VALUE]` (features.py says what it means)
+DECLARATION = re.compile(r"^\s*#\s*pragma\s+shadergen\s+feature\s+(\w+)(?:\s+unless\s+(\w+)\s*(==|!=|<=|>=|<|>)\s*(\S+))?\s*$")
 
 __all__ = ["parse_module", "parse_expression", "GLSL_TYPES"]
 

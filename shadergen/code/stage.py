@@ -13,16 +13,17 @@ The result, a StageCode, is what every target's stage assembler prints: one mech
 """
 from ..shader import PIXEL, VERTEX
 from . import build, ir
-from .facts import names_read
+from .facts import collect
 from .passes import fields, forward, reach, sections
 from .types import ir_type
 
-PRELUDE = "prelude"  # the closure, shader and light structs every shader may name (code/prelude.glsl)
+PRELUDE = "prelude.glsl"  # the closure, shader and light structs every shader may name
 
 
 class StageCode:
-    """What the passes kept of the pixel stage, in order (`structs` and `constants` before
-    `functions`), its main, the vertex stage's main, and every name the pixel code reads."""
+    """What the passes kept of the pixel stage, in order: `structs`, `constants` (with the
+    sections of macros left to the target that hold no function), `functions` (and the sections
+    that do), then main, the vertex stage's main, and every name the pixel code reads."""
     __slots__ = ("structs", "constants", "functions", "main", "vertex_main", "pixel_names")
 
     def __init__(self, structs, constants, functions, main, vertex_main, pixel_names):
@@ -63,16 +64,29 @@ def run(ctx, counts: dict) -> StageCode:
     once the generator knows which vertex data the pixel stage reads."""
     code = ctx.code
     main = ctx.pixel.main.block()
-    code.check_generated(ctx.pixel.generated, [main], externals(ctx, PIXEL))
+    stage_variables = externals(ctx, PIXEL)
+    generated = ctx.pixel.generated
+    code.check_generated(generated, [main], stage_variables)
+    roots = collect([main, *generated])  # read, never edited
+    # the structs a stage variable has (a uniform's, the light array's) are part of its layout
+    layouts = [t.split("[")[0] for t in stage_variables.values() if code.struct(t.split("[")[0]) is not None]
     items = code.module(PRELUDE).items + ctx.pixel.items
     items, counts["sections"] = sections.run(items, ctx.features, ctx.macros)
-    items, counts["forward"] = forward.run(items, [main])
-    items, counts["reach"] = reach.run(items, [main])
-    items, counts["fields"] = fields.run(items, [main])
+    items, counts["forward"] = forward.run(items, roots)
+    reached, counts["reach"] = reach.run(items, roots, layouts)
+    items, counts["fields"] = fields.run(reached.items, roots)
     structs = [i for i in items if isinstance(i, ir.Struct)]
-    constants = [i for i in items if isinstance(i, ir.Constant)]
-    functions = [i for i in items if isinstance(i, ir.Function)]
-    return StageCode(structs, constants, functions, main, None, names_read([main, *functions]))
+    functions = [i for i in items if has_function(i)]
+    constants = [i for i in items if not isinstance(i, ir.Struct) and not has_function(i)]
+    functions += generated
+    return StageCode(structs, constants, functions, main, None, frozenset(reached.names))
+
+
+def has_function(item) -> bool:
+    """A function, or a section (of a macro left to the target) holding one."""
+    if isinstance(item, ir.Section):
+        return any(has_function(i) for i in (*item.body, *item.other))
+    return isinstance(item, ir.Function)
 
 
 def finish_vertex(ctx) -> None:

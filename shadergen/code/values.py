@@ -59,7 +59,8 @@ def value_expr(materialx_type: str, value, meta: dict | None = None) -> ir.Expr:
         return ir.Construct(t, [ir.Construct(mt, [scalar("float", v)]) if mt != "float" else scalar("float", v)
                                 for mt, v in STRUCT_ZERO[t]])
     if value is None:
-        value = default_value(materialx_type) if materialx_type in TYPES else 0.0
+        value = default_value(materialx_type) if materialx_type in TYPES else None
+        value = 0.0 if value is None else value  # an EDF: no emission
     if materialx_type in ("string", "geomname"):
         return scalar("int", enum_index(value, meta or {}))
     if t in ("bool", "int", "float"):

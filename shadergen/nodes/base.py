@@ -94,7 +94,7 @@ class SourceFunctionImpl(NodeImpl):
         self.uses_derivatives = any(facts.uses_derivatives(f) for f in definitions)
         self.empty_at_zero_weight = bool(definitions) and all(facts.early_exit_at_zero_weight(f) for f in definitions)
         self.handles_transmission = any(facts.reads_constant(f, "CLOSURE_TYPE_TRANSMISSION") for f in definitions)
-        self.prepared_state = facts.prepared_state(self.function, code)
+        self.prepared_state = facts.prepared_state(definitions[0], code) if definitions else None
 
     def features(self, node) -> set[str]:
         return node_features(node, self.declarations)

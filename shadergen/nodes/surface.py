@@ -6,18 +6,13 @@ The BSDF graph connected to a surface is evaluated once per shading context, eac
 nodes feeding the closures are computed once, before. A context whose closure input is
 unconnected is not written at all.
 """
+from ..code.externals import ENVIRONMENT_UNIFORMS
 from ..features import TRANSMISSION_FEATURE
 from ..shader import PIXEL, Variable
 from .base import NodeImpl, implementation_for, register
 from .geometric import Normal, Position
 
 LIGHT_TYPES = (("point_light", 1), ("directional_light", 2), ("spot_light", 3))  # LightData.type ids
-ENVIRONMENT_UNIFORMS = (
-    ("u_envMatrix", "matrix44"), ("u_envRadiance", "filename"), ("u_envLightIntensity", "float"),
-    ("u_envRadianceMips", "integer"), ("u_envRadianceSamples", "integer"), ("u_envIrradiance", "filename"),
-    ("u_refractionTwoSided", "boolean"), ("u_viewPosition", "vector3"),
-)
-
 
 def light_functions(ctx) -> list[tuple[int, str]]:
     """(type id, function) of every light shader the libraries implement for this target."""

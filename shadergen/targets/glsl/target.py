@@ -92,7 +92,7 @@ class GlslTarget:
                     init = None
                     if self.uniform_initializers and v.initializer is not None and v.type not in ("filename", "LightData"):
                         init = value_expr(v.type, v.initializer, {"enum": ""})  # listing values of enums are indices
-                    w.line(self.printer.global_declaration(ir.Global(_type(v), v.name, "uniform", block, init)))
+                    w.line(self.printer.global_declaration(ir.Global(_type(v), v.name, "uniform", None, init)))
                 w.line()
 
     def _vertex_data(self, stage, w: Writer, direction: str) -> None:

@@ -11,6 +11,7 @@ built-ins the code reads (gl_FrontFacing) come in as the entry point's parameter
 private variables.
 """
 from ...code import ir
+from ...code.passes.rewrite import items_in
 from ...code.types import ir_type
 from ...errors import ShaderGenError
 from ...shader import PIXEL, VERTEX, Writer
@@ -37,7 +38,8 @@ class WgslTarget:
         if len(outputs) != 1:
             raise ShaderGenError("unsupported_output", "wgsl shaders have exactly one output", "wgsl")
         booleans = self._booleans(ctx.pixel)
-        printer = WgslPrinter(function_names(code.functions), lambda n: self._pixel_name(n, booleans))
+        functions = [f for item in code.functions for f in items_in(item) if isinstance(f, ir.Function)]
+        printer = WgslPrinter(function_names(functions), lambda n: self._pixel_name(n, booleans))
         w = Writer()
         for item in code.structs:
             w.extend(printer.item(item))
