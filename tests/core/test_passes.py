@@ -272,7 +272,8 @@ def film(name: str, base: str | None, thickness: str = "400") -> str:
 
 def lobe_calls(rec, function: str) -> list[str]:
     """The calls that set a lobe up: its parameters are passed once per shading point."""
-    calls = re.findall(rf"{function}_prepare\(\w+, [^;]*;", main_of(rec))
+    # one line each, however the printer wrapped the argument list
+    calls = [" ".join(c.split()) for c in re.findall(rf"{function}_prepare\(\w+, [^;]*;", main_of(rec))]
     assert calls, f"no {function} in the shader"
     return calls
 

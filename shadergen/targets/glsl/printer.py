@@ -17,6 +17,7 @@ from . import _float
 BINARY = {"||": 2, "^^": 3, "&&": 4, "|": 5, "^": 6, "&": 7, "==": 8, "!=": 8, "<": 9, ">": 9, "<=": 9, ">=": 9,
           "<<": 10, ">>": 10, "+": 11, "-": 11, "*": 12, "/": 12, "%": 12}
 SELECT, UNARY, PRIMARY = 1, 13, 15
+BITWISE, SHIFTS, ARITHMETIC = frozenset("&|^"), frozenset({"<<", ">>"}), frozenset("+-*/%")
 
 DIALECTS = ("glsl", "essl")
 
@@ -137,7 +138,8 @@ class GlslPrinter:
                 return flat
         if cls is ir.Binary:
             p = BINARY[e.op]
-            left = self.operand(e.left, column, indent, self.precedence(e.left) < p or self.mixed(e, e.left))
+            left = self.operand(e.left, column, indent, self.precedence(e.left) < p or
+                                (type(e.left) is not ir.Literal and self.mixed(e, e.left)))
             op = f" {e.op} "
             right_at = None if column is None else end_column(column, left) + len(op)
             right = self.operand(e.right, right_at, indent, self.precedence(e.right) <= p or self.mixed(e, e.right))
@@ -171,9 +173,19 @@ class GlslPrinter:
 
     @staticmethod
     def mixed(parent: ir.Binary, child) -> bool:
-        """`a || (b && c)`: parentheses the grammar does without but a reader wants (the
-        sources write them; C compilers warn without them)."""
-        return parent.op == "||" and type(child) is ir.Binary and child.op == "&&"
+        """Parentheses the grammar does without but a reader wants (the sources write them; C
+        compilers warn without them): `a || (b && c)`; a shift or arithmetic inside a bitwise
+        operator, arithmetic inside a shift (`(x << k) | (x >> (32u - k))`); a negative literal
+        after an operator (`a - (-0.5)`)."""
+        if type(child) is ir.Literal:
+            return literal_text(child).startswith("-")
+        if type(child) is not ir.Binary:
+            return False
+        if parent.op == "||":
+            return child.op == "&&"
+        if parent.op in BITWISE:
+            return child.op in SHIFTS or child.op in ARITHMETIC
+        return parent.op in SHIFTS and child.op in ARITHMETIC
 
     def operand(self, e, column, indent, parenthesised: bool) -> str:
         if not parenthesised:

@@ -35,7 +35,7 @@ class GlslTarget:
         if name.kind == "vertexdata":
             return f"vd.{name.name}" if self.vertex_data_block else f"vd_{name.name}"
         if name.kind == "builtin":
-            return BUILTINS[name.name]
+            return BUILTINS.get(name.name, name.name)  # the library reads GLSL's own (gl_FrontFacing)
         return name.name
 
     def layout(self, ctx) -> dict | None:
