@@ -364,3 +364,25 @@ void f(float a)
     assert first.then.body[0].comment == "early" and first.comment is None
     assert second.then.body[0].comment == "negative" and second.then.comment == "done"
     assert second.other.comment is None and second.other.body[0].comment == "the rest"
+
+
+@pytest.mark.parametrize("text", [
+    "(" * 5000 + "1.0" + ")" * 5000,
+    "- " * 5000 + "1.0",
+    " + ".join(["{{in}}"] * 5000),
+    "f(" * 3000 + "1.0" + ")" * 3000,
+])
+def test_deeply_nested_expressions_are_refused_not_a_recursion_error(code, text):
+    with pytest.raises(ShaderGenError) as info:
+        code.template(text, "doc.mtlx: IM_deep")
+    assert info.value.code == "invalid_source" and "nested more than" in info.value.message
+    assert info.value.message.startswith("doc.mtlx: IM_deep:1:")
+
+
+def test_deeply_nested_statements_are_refused_not_a_recursion_error():
+    body = "if (a) " * 3000 + "a = false;"
+    for source in (f"void f(bool a) {{ {body} }}", "void f(bool a) " + "{" * 3000 + "}" * 3000,
+                   "void f(bool a) { if (a) {} " + "else if (a) {} " * 3000 + "}"):
+        with pytest.raises(ShaderGenError) as info:
+            parse_module("x.glsl", source)
+        assert "nested more than" in info.value.message
