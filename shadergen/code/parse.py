@@ -44,7 +44,8 @@ GLSL_TYPES = frozenset({
     "void", "bool", "int", "uint", "float", "vec2", "vec3", "vec4", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3",
     "uvec4", "bvec2", "bvec3", "bvec4", "mat2", "mat3", "mat4", "sampler2D"})
 BINARY = (("||",), ("&&",), ("|",), ("^",), ("&",), ("==", "!="), ("<", ">", "<=", ">="), ("<<", ">>"),
-          ("+", "-"), ("*", "/", "%"))
+          ("+", "-"), ("*", "/", "%"))  # loosest first
+PRECEDENCE = {op: level for level, ops in enumerate(BINARY) for op in ops}
 ASSIGN = frozenset({"=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "<<=", ">>="})
 QUALIFIERS = frozenset({"in", "out", "inout", "const"})
 DIRECTIVE = re.compile(r"#\s*(\w*)\s*(.*)$")
@@ -108,6 +109,7 @@ class Parser:
             else:
                 self.t.append(tok)
         self.i = 0
+        self.last = len(self.t) - 1  # the eof token's index
         self.claimed: set[int] = set()  # gaps whose trailing comment a statement has taken
         self.nesting = 0  # levels of expressions and blocks now open (MAX_NESTING)
         # the #endif before a dangling else's clause -> (the token after the clause, the clause)
@@ -115,7 +117,8 @@ class Parser:
 
     # -- tokens ------------------------------------------------------------------------------------
     def peek(self, k: int = 0) -> Token:
-        return self.t[min(self.i + k, len(self.t) - 1)]
+        i = self.i + k
+        return self.t[i] if i < self.last else self.t[-1]
 
     def next(self) -> Token:
         tok = self.peek()
@@ -216,15 +219,16 @@ class Parser:
         self.nesting -= 1
         return cond
 
-    def binary(self, level: int) -> ir.Expr:
-        if level == len(BINARY):
-            return self.unary()
-        left = self.binary(level + 1)
-        ops = BINARY[level]
-        while self.peek().kind == "op" and self.peek().text in ops:
-            tok = self.next()
+    def binary(self, loosest: int) -> ir.Expr:
+        """Operators binding at least as tightly as level `loosest` (BINARY), left to right."""
+        left = self.unary()
+        while True:
+            tok = self.peek()
+            level = PRECEDENCE.get(tok.text) if tok.kind == "op" else None
+            if level is None or level < loosest:
+                return left
+            self.next()
             left = ir.Binary(tok.text, left, self.binary(level + 1), where=left.where)
-        return left
 
     def unary(self) -> ir.Expr:
         tok = self.peek()
