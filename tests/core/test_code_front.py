@@ -386,3 +386,36 @@ def test_deeply_nested_statements_are_refused_not_a_recursion_error():
         with pytest.raises(ShaderGenError) as info:
             parse_module("x.glsl", source)
         assert "nested more than" in info.value.message
+
+
+def test_an_else_section_with_an_else_side_and_a_second_final_else():
+    fn = function(checked({"x.glsl": """
+void f(bool a)
+{
+    int x = 0;
+    if (a)
+        x = 1;
+#ifdef T
+    else
+        x = 2;
+#else
+    else
+        x = 3;
+#endif
+}
+"""})["x.glsl"], "f")
+    assert resolved(fn.body.body, {"T"}) == [("if", "a", [("x", 1)], [("x", 2)])]
+    assert resolved(fn.body.body, set()) == [("if", "a", [("x", 1)], [("x", 3)])]
+    with pytest.raises(ShaderGenError) as info:
+        parse_module("x.glsl", "void f(bool a)\n{\n    if (a) {}\n#ifdef T\n    else {}\n#endif\n    else {}\n}\n")
+    assert info.value.message.startswith("x.glsl:7:5: an 'else' after the final 'else'")
+
+
+def test_modules_are_found_by_absolute_or_relative_path(code, library):
+    relative = os.path.join("pbrlib", "genglsl", "mx_dielectric_bsdf.glsl")
+    assert code.module(os.path.join(library.root, relative)) is code.module(relative)
+    assert code.module(relative).includes == (os.path.join("pbrlib", "genglsl", "lib", "mx_specular.glsl"),
+                                              os.path.join("pbrlib", "genglsl", "lib", "mx_albedo_dielectric.glsl"))
+    with pytest.raises(ShaderGenError) as info:
+        code.module("nowhere.glsl")
+    assert info.value.code == "missing_source"
