@@ -145,6 +145,8 @@ EDF e(S s, vec4 c)
     ("void f()\n{\n    float a = 1.0;\n", "x.glsl:4:1", "expected '}'"),
     ("#ifdef X\nvoid f() {}\n", "x.glsl:3:1", "has no #endif"),
     ("#version 400\n", "x.glsl:1:1", "preprocessor line"),
+    ("const float A = 1.0u;\n", "x.glsl:1:17", "a float with an unsigned suffix"),
+    ("const int A = 4294967296;\n", "x.glsl:1:15", "does not fit in 32 bits"),
 ])
 def test_parse_errors_name_file_line_and_column(source, where, what):
     with pytest.raises(ShaderGenError) as info:
