@@ -7,13 +7,14 @@ import pytest
 
 from shadergen.code import ir
 from shadergen.code.check import check_modules, flat_items
-from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary, build, cache_key, source_files
+from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary, build, cache_key, inline_sources, source_files
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
 from shadergen.features import declarations
 from shadergen.library import Library, Scope, read_source
 from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
+from shadergen.targets.glsl import STRUCTS
 
 EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
              "u_numActiveLightSources": "int", "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
@@ -92,6 +93,19 @@ def test_every_inline_expression_parses_and_checks(code, library):
             # the template itself stays untyped
             assert all(n.type is None for n in ir.walk(code.template(text)) if not isinstance(n, ir.Construct))
     assert count >= 500
+    assert len(inline_sources(library)) == count and set(code.templates) == {t for t, _ in inline_sources(library)}
+
+
+def test_the_prelude_declares_what_the_glsl_targets_declare(code):
+    """The prelude's types are those of targets/glsl.py STRUCTS, which the GLSL targets write today."""
+    targets = parse_module("STRUCTS", "\n".join(STRUCTS.values()))
+    for item in targets.items:
+        if isinstance(item, ir.Struct):
+            assert code.struct(item.name).members == item.members
+        elif item.name in ("EDF", "material"):
+            assert code.symbols.aliases[item.name] == item.value.name
+        else:
+            assert code.constant(item.name).value.value == item.value.value
 
 
 def test_implicit_conversions_are_written_out():
@@ -145,6 +159,8 @@ EDF e(S s, vec4 c)
     ("void f()\n{\n    float a = 1.0;\n", "x.glsl:4:1", "expected '}'"),
     ("#ifdef X\nvoid f() {}\n", "x.glsl:3:1", "has no #endif"),
     ("#version 400\n", "x.glsl:1:1", "preprocessor line"),
+    ("const float A = 1.0u;\n", "x.glsl:1:17", "a float with an unsigned suffix"),
+    ("const int A = 4294967296;\n", "x.glsl:1:15", "does not fit in 32 bits"),
 ])
 def test_parse_errors_name_file_line_and_column(source, where, what):
     with pytest.raises(ShaderGenError) as info:
@@ -364,3 +380,58 @@ void f(float a)
     assert first.then.body[0].comment == "early" and first.comment is None
     assert second.then.body[0].comment == "negative" and second.then.comment == "done"
     assert second.other.comment is None and second.other.body[0].comment == "the rest"
+
+
+@pytest.mark.parametrize("text", [
+    "(" * 5000 + "1.0" + ")" * 5000,
+    "- " * 5000 + "1.0",
+    " + ".join(["{{in}}"] * 5000),
+    "f(" * 3000 + "1.0" + ")" * 3000,
+])
+def test_deeply_nested_expressions_are_refused_not_a_recursion_error(code, text):
+    with pytest.raises(ShaderGenError) as info:
+        code.template(text, "doc.mtlx: IM_deep")
+    assert info.value.code == "invalid_source" and "nested more than" in info.value.message
+    assert info.value.message.startswith("doc.mtlx: IM_deep:1:")
+
+
+def test_deeply_nested_statements_are_refused_not_a_recursion_error():
+    body = "if (a) " * 3000 + "a = false;"
+    for source in (f"void f(bool a) {{ {body} }}", "void f(bool a) " + "{" * 3000 + "}" * 3000,
+                   "void f(bool a) { if (a) {} " + "else if (a) {} " * 3000 + "}"):
+        with pytest.raises(ShaderGenError) as info:
+            parse_module("x.glsl", source)
+        assert "nested more than" in info.value.message
+
+
+def test_an_else_section_with_an_else_side_and_a_second_final_else():
+    fn = function(checked({"x.glsl": """
+void f(bool a)
+{
+    int x = 0;
+    if (a)
+        x = 1;
+#ifdef T
+    else
+        x = 2;
+#else
+    else
+        x = 3;
+#endif
+}
+"""})["x.glsl"], "f")
+    assert resolved(fn.body.body, {"T"}) == [("if", "a", [("x", 1)], [("x", 2)])]
+    assert resolved(fn.body.body, set()) == [("if", "a", [("x", 1)], [("x", 3)])]
+    with pytest.raises(ShaderGenError) as info:
+        parse_module("x.glsl", "void f(bool a)\n{\n    if (a) {}\n#ifdef T\n    else {}\n#endif\n    else {}\n}\n")
+    assert info.value.message.startswith("x.glsl:7:5: an 'else' after the final 'else'")
+
+
+def test_modules_are_found_by_absolute_or_relative_path(code, library):
+    relative = os.path.join("pbrlib", "genglsl", "mx_dielectric_bsdf.glsl")
+    assert code.module(os.path.join(library.root, relative)) is code.module(relative)
+    assert code.module(relative).includes == (os.path.join("pbrlib", "genglsl", "lib", "mx_specular.glsl"),
+                                              os.path.join("pbrlib", "genglsl", "lib", "mx_albedo_dielectric.glsl"))
+    with pytest.raises(ShaderGenError) as info:
+        code.module("nowhere.glsl")
+    assert info.value.code == "missing_source"
