@@ -10,9 +10,12 @@ does not ship) are skipped for both, and named.
 Cold: a whole process from start to the shader written, for one document, ours and the
 reference alternating, best of three.
 Prints a table of medians and ratios (ours / reference).
+With `--baseline TREE` the other side is not the reference but our own generator from another
+source tree (a checkout of main before a change): the same documents, the same interleaving.
 
   .venv/bin/python bench/generate.py ../shared/corpus --filter TestSuite/stdlib [--cold-docs 10] [--repeat 3]
   .venv/bin/python bench/generate.py ../shared/corpus --filter Examples
+  .venv/bin/python bench/generate.py ../shared/corpus --filter Examples --baseline /tmp/main-checkout
 """
 import argparse
 import json
@@ -89,9 +92,9 @@ open(os.path.join(sys.argv[2], "ref.frag"), "w").write(sh.getSourceCode("pixel")
 class WarmWorker:
     """A long-lived generator process answering one document at a time."""
 
-    def __init__(self, python: str, code: str):
-        self.proc = subprocess.Popen([python, "-c", code], cwd=ROOT, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     text=True)
+    def __init__(self, python: str, code: str, tree: str = ROOT):
+        self.proc = subprocess.Popen([python, "-c", code], cwd=tree, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     text=True, env=dict(os.environ, PYTHONPATH=tree))
 
     def times(self, path: str) -> dict:
         self.proc.stdin.write(path + "\n")
@@ -106,10 +109,11 @@ class WarmWorker:
         self.proc.wait(60)
 
 
-def warm(docs: list[str], repeat: int) -> tuple[list[tuple[float, float]], dict[str, str]]:
-    """(ours ms, reference ms) per element both generated, each its best round; and the documents
-    the reference could not load, with why."""
-    workers = {"ours": WarmWorker(sys.executable, OURS_WARM), "reference": WarmWorker(ORACLE_PY, REF_WARM)}
+def warm(docs: list[str], repeat: int, baseline: str | None) -> tuple[list[tuple[float, float]], dict[str, str]]:
+    """(ours ms, other ms) per element both generated, each its best round; and the documents
+    the other could not load, with why. The other is the reference, or our `baseline` tree."""
+    other = WarmWorker(sys.executable, OURS_WARM, baseline) if baseline else WarmWorker(ORACLE_PY, REF_WARM)
+    workers = {"ours": WarmWorker(sys.executable, OURS_WARM), "reference": other}
     best: dict[str, dict[tuple[str, str], float]] = {name: {} for name in workers}
     skipped: dict[str, str] = {}
     try:
@@ -133,22 +137,25 @@ def warm(docs: list[str], repeat: int) -> tuple[list[tuple[float, float]], dict[
     return [(ms, reference[key]) for key, ms in ours.items() if key in reference and key[0] not in skipped], skipped
 
 
-def cold(docs: list[str], count: int) -> list[tuple[float, float]]:
-    """(ours ms, reference ms) per document: a whole process each, alternating, best of three."""
+def cold(docs: list[str], count: int, baseline: str | None) -> list[tuple[float, float]]:
+    """(ours ms, other ms) per document: a whole process each, alternating, best of three."""
     # Cold means a fresh process of the installed product: bytecode written once, as an install does
     # (this machine sets PYTHONDONTWRITEBYTECODE, which would otherwise recompile every module per run).
-    subprocess.run([sys.executable, "-m", "compileall", "-q", os.path.join(ROOT, "shadergen")],
-                   capture_output=True, check=False)
+    trees = (ROOT, baseline or ROOT)
+    for tree in set(trees):
+        subprocess.run([sys.executable, "-m", "compileall", "-q", os.path.join(tree, "shadergen")],
+                       capture_output=True, check=False)
     out = []
     for path in docs[:: max(1, len(docs) // count)][:count]:
         with tempfile.TemporaryDirectory() as d:
-            commands = ([sys.executable, "-m", "shadergen.cli", "generate", path, "--out", d],
-                        [ORACLE_PY, "-c", REF_COLD, path, d])
+            ours = [sys.executable, "-m", "shadergen.cli", "generate", path, "--out", d]
+            commands = (ours, ours if baseline else [ORACLE_PY, "-c", REF_COLD, path, d])
             best = [float("inf"), float("inf")]
             for round_ in range(3):
                 for k in ((0, 1) if round_ % 2 == 0 else (1, 0)):
                     t0 = time.perf_counter()
-                    subprocess.run(commands[k], cwd=ROOT, capture_output=True, check=False)
+                    subprocess.run(commands[k], cwd=trees[k], capture_output=True, check=False,
+                                   env=dict(os.environ, PYTHONPATH=trees[k]))
                     best[k] = min(best[k], (time.perf_counter() - t0) * 1e3)
         out.append((best[0], best[1]))
     return out
@@ -160,19 +167,23 @@ def main():
     ap.add_argument("--filter", default="TestSuite/stdlib")
     ap.add_argument("--cold-docs", type=int, default=10)
     ap.add_argument("--repeat", type=int, default=3, help="warm rounds over the documents")
+    ap.add_argument("--baseline", help="a source tree of ours to measure against instead of the reference")
     a = ap.parse_args()
+    other = "baseline" if a.baseline else "reference"
     docs = sorted(os.path.abspath(os.path.join(d, f)) for d, _, fs in os.walk(a.corpus) for f in fs
                   if f.endswith(".mtlx") and a.filter in os.path.join(d, f))
-    pairs, skipped = warm(docs, a.repeat)
+    pairs, skipped = warm(docs, a.repeat, a.baseline)
     for path, why in skipped.items():
-        print(f"skipped (the reference cannot load it): {os.path.relpath(path, a.corpus)}: {why}")
-    colds = cold([d for d in docs if d not in skipped], a.cold_docs)
-    print(f"{'measure':<34}{'ours ms':>10}{'reference ms':>14}{'ratio':>8}")
+        print(f"skipped (the {other} cannot load it): {os.path.relpath(path, a.corpus)}: {why}")
+    colds = cold([d for d in docs if d not in skipped], a.cold_docs, a.baseline)
+    print(f"{'measure':<34}{'ours ms':>10}{other + ' ms':>14}{'ratio':>8}")
     print(f"{'warm, median per element (n=%d)' % len(pairs):<34}{statistics.median(o for o, _ in pairs):>10.3f}"
           f"{statistics.median(r for _, r in pairs):>14.3f}{statistics.median(o / r for o, r in pairs):>8.2f}")
     co, cr = statistics.median(o for o, _ in colds), statistics.median(r for _, r in colds)
     print(f"{'cold process, median (n=%d docs)' % len(colds):<34}{co:>10.1f}{cr:>14.1f}"
           f"{statistics.median(o / r for o, r in colds):>8.2f}")
+    print(f"generate: {a.filter} against the {other} | warm {statistics.median(o / r for o, r in pairs):.2f}x "
+          f"(n={len(pairs)}) | cold {statistics.median(o / r for o, r in colds):.2f}x (n={len(colds)})")
 
 
 if __name__ == "__main__":
