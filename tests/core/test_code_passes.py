@@ -407,6 +407,13 @@ def test_a_target_with_two_definitions_keeps_its_forwards():
     assert forward.run([SAMPLES, other, REFLECTED, lobe], [do(call(lobe, N))])[1] == 0
 
 
+def test_a_forward_with_a_twin_in_a_sections_other_side_stays():
+    twin = fn("float", "reflected", ["vec3 N", "out vec3 albedo"], ret(lit(1.0)))
+    lobe = lobe_calling(REFLECTED)
+    section = ir.Section("MX_ENV_HYBRID", True, [REFLECTED], [twin])
+    assert forward.run([SAMPLES, section, lobe], [do(call(lobe, N))]) == ([SAMPLES, section, lobe], 0)
+
+
 def test_chains_of_forwards_reach_the_last_target():
     outer = fn("float", "outer", ["vec3 N", "out vec3 albedo"], ret(call(REFLECTED, N, ALBEDO)))
     user = fn("float", "user", ["vec3 N"], ir.Declare("vec3", "a", None, False), ret(call(outer, N, A)))
