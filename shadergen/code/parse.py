@@ -86,6 +86,7 @@ class Parser:
             else:
                 self.t.append(tok)
         self.i = 0
+        self.claimed: set[int] = set()  # gaps whose trailing comment a statement has taken
         # the #endif before a dangling else's clause -> (the token after the clause, the clause)
         self.dangling: dict[int, tuple[int, ir.Block]] = {}
 
@@ -153,8 +154,15 @@ class Parser:
         return self.trailing_here()
 
     def trailing_here(self) -> str | None:
+        """The comment after code at the current gap, unless a statement took it already (the
+        innermost of those ending there: `if (c) return;  // x` is the return's)."""
+        if self.i in self.claimed:
+            return None
         texts = [tok.text for tok in self.gaps.get(self.i, ()) if tok.kind == "trailing"]
-        return " ".join(texts) if texts else None
+        if not texts:
+            return None
+        self.claimed.add(self.i)
+        return " ".join(texts)
 
     def item_comment(self, pending: list[Token]) -> list[Token]:
         """The top-level comments above the next token, after `pending` ones: a blank line drops
@@ -328,21 +336,17 @@ class Parser:
         if self.at("{"):
             lead = self.leading_trailing()
             block = self.block()
-            block.comment = self.statement_end(block) or lead
+            block.comment = self.trailing_here() or lead
             return block
         where = self.where(self.peek())
         comments = self.own_line_comments()
         return ir.Block(comments + self.statement(), False, where=where)
 
-    def statement_end(self, stmt) -> str | None:
-        """The comment after the statement just read, on its last line."""
-        return self.trailing_here()
-
     def statement(self) -> list[ir.Stmt]:
         """One statement (several Declares for `T a, b;`), its comments attached."""
         lead = self.leading_trailing()
         stmts = self.one_statement()
-        trailing = self.statement_end(stmts[-1])
+        trailing = self.trailing_here()
         if trailing or lead:
             stmts[-1].comment = " ".join(c for c in (lead, trailing) if c)
         return stmts
