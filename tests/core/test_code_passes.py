@@ -425,14 +425,14 @@ def test_chains_of_forwards_reach_the_last_target():
 # -- on the library's own IR -----------------------------------------------------------------------
 # The text passes and scans of today are the reference: the IR passes keep no more than they do,
 # and read the same facts of every lobe (test_source_scans, test_passes).
-import glob  # noqa: E402
 import os  # noqa: E402
 import re  # noqa: E402
 
 import pytest  # noqa: E402
 
-from shadergen.code.check import check_modules, flat_items  # noqa: E402
-from shadergen.code.parse import parse_module  # noqa: E402
+from shadergen.code.check import flat_items  # noqa: E402
+from shadergen.code.library import CodeLibrary  # noqa: E402
+from shadergen.code.types import ir_type  # noqa: E402
 from shadergen.features import environment_macros, resolve  # noqa: E402
 from shadergen.library import default_library  # noqa: E402
 from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
@@ -440,44 +440,28 @@ from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS  # noqa: E402
 from shadergen.targets.deadcode import split_items, used_functions  # noqa: E402
 from shadergen.targets.glsl import ClosureConvention  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CLOSURE_TYPES = {"BSDF", "EDF", "VDF"}
-IR_TYPES = {"matrix44": "mat4", "filename": "sampler2D", "float": "float", "integer": "int", "boolean": "bool",
-            "vector3": "vec3"}
-
-
-class CheckedLibrary:
-    """Every library source parsed and checked (as code/library.py does once per library hash)."""
-
-    def __init__(self):
-        prelude = os.path.join(ROOT, "shadergen", "code", "prelude.glsl")
-        paths = [prelude] + sorted(os.path.abspath(p) for p in glob.glob(os.path.join(ROOT, "libraries", "*", "genglsl",
-                                                                                      "**", "*.glsl"), recursive=True))
-        self.modules = {p: parse_module(p, open(p).read()) for p in paths}
-        externals = {name: IR_TYPES[t] for name, t in ENVIRONMENT_UNIFORMS}
-        externals.update(u_numActiveLightSources="int", u_lightData="LightData[3]")
-        check_modules(self.modules, externals, (prelude,))
-        self.by_name: dict[str, list] = {}
-        for path in paths:
-            for item in flat_items(self.modules[path].items):
-                if isinstance(item, ir.Function):
-                    self.by_name.setdefault(item.name, []).append(item)
-
-    def functions(self, name):
-        return self.by_name.get(name, [])
-
-    def function(self, path, name):
-        return next(i for i in flat_items(self.modules[os.path.abspath(path)].items)
-                    if isinstance(i, ir.Function) and i.name == name)
-
-    def items(self, impl) -> list:
-        """The items of an implementation's files, its includes first (the generator's order)."""
-        return [item for path, _ in impl.files for item in self.modules[os.path.abspath(path)].items]
+EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
+             "u_numActiveLightSources": "int", "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
 
 
 @pytest.fixture(scope="module")
-def code():
-    return CheckedLibrary()
+def code(tmp_path_factory):
+    os.environ["SHADERGEN_CACHE_DIR"] = str(tmp_path_factory.mktemp("code-cache"))
+    try:
+        return CodeLibrary.load(default_library(), EXTERNALS)
+    finally:
+        del os.environ["SHADERGEN_CACHE_DIR"]
+
+
+def function_of(code, impl):
+    return next(i for i in flat_items(code.module(impl.path).items)
+                if isinstance(i, ir.Function) and i.name == impl.function)
+
+
+def items_of(code, impl) -> list:
+    """The items of an implementation's files, its includes first (the generator's order)."""
+    return [item for path, _ in impl.files for item in code.module(path).items]
 
 
 def source_implementations():
@@ -503,13 +487,13 @@ def lobes():
 def test_every_lobes_zero_weight_exit_and_prepared_state_agree_with_the_text_scans(code):
     convention, checked = ClosureConvention(), 0
     for _, impl in lobes():
-        function = code.function(impl.path, impl.function)
+        function = function_of(code, impl)
         assert early_exit_at_zero_weight(function) == convention.empty_at_zero_weight(impl.source, impl.function), \
             impl.function
         assert prepared_state(function, code) == convention.prepared_state(impl.source, impl.function), impl.function
         checked += 1
     assert checked >= 25
-    early = {impl.function for _, impl in lobes() if early_exit_at_zero_weight(code.function(impl.path, impl.function))}
+    early = {impl.function for _, impl in lobes() if early_exit_at_zero_weight(function_of(code, impl))}
     assert early == {"mx_dielectric_bsdf", "mx_generalized_schlick_bsdf", "mx_sheen_bsdf"}
 
 
@@ -521,7 +505,7 @@ def test_the_lobes_answering_the_transmission_context_agree_with_the_text_scan(c
     for nodedef, impl in lobes():
         if any(i.get("type") in CLOSURE_TYPES for i in nodedef.children_of("input")):
             continue
-        function = code.function(impl.path, impl.function)
+        function = function_of(code, impl)
         assert reads_constant(function, "CLOSURE_TYPE_TRANSMISSION") == convention.handles_transmission(impl.source), \
             impl.function
 
@@ -529,14 +513,14 @@ def test_the_lobes_answering_the_transmission_context_agree_with_the_text_scan(c
 def test_derivative_use_agrees_with_the_text_scan_for_every_function_implementation(code):
     implementations = source_implementations()
     for _, impl in implementations:
-        assert uses_derivatives(code.function(impl.path, impl.function)) == impl.uses_derivatives, impl.function
+        assert uses_derivatives(function_of(code, impl)) == impl.uses_derivatives, impl.function
     assert len(implementations) > 100
 
 
 def stage(code, impl, features, environment):
     """What a stage of the implementation alone keeps: its sections resolved, reach from calls of
     it (and its _prepare), then fields and forward until nothing changes."""
-    items, _ = sections.run(code.items(impl), features, environment_macros(environment))
+    items, _ = sections.run(items_of(code, impl), features, environment_macros(environment))
     called = {impl.function, impl.function + "_prepare"}
     roots = [do(ir.Call(i.name, [], callee=i)) for i in items if isinstance(i, ir.Function) and i.name in called]
     return [i for unit in reduced(items, roots) for i in flat_items([unit])]
