@@ -613,3 +613,45 @@ def test_the_librarys_forwarders_are_called_straight(code):
     reflected = lobe_stage(code, "mx_conductor_bsdf", frozenset(), "fis")
     assert "mx_environment_samples" in names(reflected) and "mx_environment_reflected" not in names(reflected)
     assert "mx_environment_reflected" in names(lobe_stage(code, "mx_conductor_bsdf", frozenset({"THIN_FILM"}), "fis"))
+
+
+# test_features' own source (its pragma at the top, where the libraries have theirs), parsed
+# (untyped: the sections pass needs no types)
+FEATURE_SOURCE = """#pragma shadergen feature A unless x == 0
+float f()
+{
+#ifdef MX_FEATURE_A
+    a();
+#ifdef MX_ENV_PREFILTER
+    prefiltered();
+#else
+    sampled();
+#endif
+#else
+    notA();
+#endif
+#ifndef MX_FEATURE_B
+    notB();
+#endif
+    return 0.0;
+}
+"""
+
+
+def test_the_text_tests_sections_resolve_alike_on_the_parsed_source():
+    from shadergen.code.parse import parse_module
+    module = parse_module("f.glsl", FEATURE_SOURCE)
+    assert module.features == (("A", "x", "==", "0"),)  # the pragma is the module's, not code
+    (both,), _ = sections.run(module.items, frozenset({"A", "B"}))
+    assert calls_of(both) == ["a", "prefiltered", "sampled"]
+    assert [n.macro for n in ir.walk(both) if isinstance(n, ir.Section)] == ["MX_ENV_PREFILTER"]
+    assert calls_of(sections.run(module.items, frozenset())[0][0]) == ["notA", "notB"]
+    assert calls_of(sections.run(module.items, None)[0][0]) == ["a", "prefiltered", "sampled"]
+
+
+def test_elif_in_a_section_is_refused_before_any_pass():
+    from shadergen.code.parse import parse_module
+    from shadergen.errors import ShaderGenError
+    with pytest.raises(ShaderGenError) as error:
+        parse_module("f.glsl", "float f()\n{\n#ifdef MX_FEATURE_A\n    a();\n#elif X\n#endif\n    return 0.0;\n}\n")
+    assert error.value.code == "invalid_source" and "f.glsl:5:1" in str(error.value)
