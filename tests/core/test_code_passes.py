@@ -300,12 +300,6 @@ def reduced(items, roots):
         reached, _ = reach.run(kept, roots)
 
 
-def main_reading(*names):
-    l_ = local("l", "Lobe")
-    return [ir.Declare("Lobe", "l", call(prepare(), lit(1.0)), False)] + \
-           [ir.Declare("float", "x" + n, member(l_, n, "float"), False) for n in names]
-
-
 def test_members_only_stored_go_with_their_stores_and_what_only_they_called():
     lobe_fn = prepare()
     roots = [ir.Declare("Lobe", "l", call(lobe_fn, lit(1.0)), False),
