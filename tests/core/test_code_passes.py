@@ -5,6 +5,7 @@ from shadergen.code import ir
 from shadergen.code.facts import (collect, early_exit_at_zero_weight, facts, prepared_state, reads_constant,
                                   uses_derivatives)
 from shadergen.code.passes import fields, forward, reach, sections
+from shadergen.code.passes import stage as stage_passes
 
 
 # -- building typed IR by hand ---------------------------------------------------------------------
@@ -290,14 +291,9 @@ def prepare(*extra):
 
 
 def reduced(items, roots):
-    """The stage's loop: reach, then fields and forward, until nothing changes."""
-    reached, _ = reach.run(items, roots)
-    while True:
-        kept, n = fields.run(reached.items, roots)
-        kept, m = forward.run(kept, roots)
-        if not n + m:
-            return reached.items
-        reached, _ = reach.run(kept, roots)
+    """What the stage's passes keep (code/passes/stage.py: reach, then fields and forward, until
+    nothing changes)."""
+    return stage_passes.run(items, None, frozenset(), roots)[0].items
 
 
 def test_members_only_stored_go_with_their_stores_and_what_only_they_called():
@@ -311,6 +307,16 @@ def test_members_only_stored_go_with_their_stores_and_what_only_they_called():
     assert TILT not in items  # only a dead member's store called it
     counted = fields.run([LOBE, TILT, lobe_fn], roots)[1]
     assert counted == 4 + 5  # frame, tilted, spare, flag; their five stores (the flag's under its if)
+
+
+def test_the_stage_counts_each_pass():
+    lobe_fn = prepare()
+    roots = [ir.Declare("Lobe", "l", call(lobe_fn, lit(1.0)), False),
+             ir.Declare("float", "x", member(local("l", "Lobe"), "weight", "float"), False)]
+    reached, counts = stage_passes.run([SECTIONED, LOBE, TILT, lobe_fn, SAMPLES, REFLECTED], frozenset(), frozenset(),
+                                       roots)
+    assert counts == {"sections": 2, "reach": 3 + 1, "fields": 9, "forward": 0}  # f, samples, reflected; tilt
+    assert [type(i).__name__ for i in reached.items] == ["Struct", "Function"]
 
 
 def test_a_member_the_roots_read_stays():
@@ -512,12 +518,12 @@ def test_derivative_use_agrees_with_the_text_scan_for_every_function_implementat
 
 
 def stage(code, impl, features, environment):
-    """What a stage of the implementation alone keeps: its sections resolved, reach from calls of
-    it (and its _prepare), then fields and forward until nothing changes."""
-    items, _ = sections.run(items_of(code, impl), features, environment_macros(environment))
+    """What a stage of the implementation alone keeps: calls of it (and its _prepare) its roots."""
     called = {impl.function, impl.function + "_prepare"}
-    roots = [do(ir.Call(i.name, [], callee=i)) for i in items if isinstance(i, ir.Function) and i.name in called]
-    return [i for unit in reduced(items, roots) for i in flat_items([unit])]
+    roots = [do(ir.Call(i.name, [], callee=i)) for i in flat_items(code.module(impl.files[-1][0]).items)
+             if isinstance(i, ir.Function) and i.name in called]
+    reached, _ = stage_passes.run(items_of(code, impl), features, environment_macros(environment), roots)
+    return [i for unit in reached.items for i in flat_items([unit])]
 
 
 def text_stage(impl, features, environment):
