@@ -113,10 +113,7 @@ class Checker:
 
     # -- expressions -------------------------------------------------------------------------------
     def expr(self, e: ir.Expr) -> ir.Expr:
-        method = getattr(self, "expr_" + type(e).__name__)
-        out = method(e)
-        assert out.type is not None, e
-        return out
+        return getattr(self, "expr_" + type(e).__name__)(e)
 
     def expr_Literal(self, e):
         if isinstance(e.value, bool):

@@ -364,3 +364,58 @@ void f(float a)
     assert first.then.body[0].comment == "early" and first.comment is None
     assert second.then.body[0].comment == "negative" and second.then.comment == "done"
     assert second.other.comment is None and second.other.body[0].comment == "the rest"
+
+
+@pytest.mark.parametrize("text", [
+    "(" * 5000 + "1.0" + ")" * 5000,
+    "- " * 5000 + "1.0",
+    " + ".join(["{{in}}"] * 5000),
+    "f(" * 3000 + "1.0" + ")" * 3000,
+])
+def test_deeply_nested_expressions_are_refused_not_a_recursion_error(code, text):
+    with pytest.raises(ShaderGenError) as info:
+        code.template(text, "doc.mtlx: IM_deep")
+    assert info.value.code == "invalid_source" and "nested more than" in info.value.message
+    assert info.value.message.startswith("doc.mtlx: IM_deep:1:")
+
+
+def test_deeply_nested_statements_are_refused_not_a_recursion_error():
+    body = "if (a) " * 3000 + "a = false;"
+    for source in (f"void f(bool a) {{ {body} }}", "void f(bool a) " + "{" * 3000 + "}" * 3000,
+                   "void f(bool a) { if (a) {} " + "else if (a) {} " * 3000 + "}"):
+        with pytest.raises(ShaderGenError) as info:
+            parse_module("x.glsl", source)
+        assert "nested more than" in info.value.message
+
+
+def test_an_else_section_with_an_else_side_and_a_second_final_else():
+    fn = function(checked({"x.glsl": """
+void f(bool a)
+{
+    int x = 0;
+    if (a)
+        x = 1;
+#ifdef T
+    else
+        x = 2;
+#else
+    else
+        x = 3;
+#endif
+}
+"""})["x.glsl"], "f")
+    assert resolved(fn.body.body, {"T"}) == [("if", "a", [("x", 1)], [("x", 2)])]
+    assert resolved(fn.body.body, set()) == [("if", "a", [("x", 1)], [("x", 3)])]
+    with pytest.raises(ShaderGenError) as info:
+        parse_module("x.glsl", "void f(bool a)\n{\n    if (a) {}\n#ifdef T\n    else {}\n#endif\n    else {}\n}\n")
+    assert info.value.message.startswith("x.glsl:7:5: an 'else' after the final 'else'")
+
+
+def test_modules_are_found_by_absolute_or_relative_path(code, library):
+    relative = os.path.join("pbrlib", "genglsl", "mx_dielectric_bsdf.glsl")
+    assert code.module(os.path.join(library.root, relative)) is code.module(relative)
+    assert code.module(relative).includes == (os.path.join("pbrlib", "genglsl", "lib", "mx_specular.glsl"),
+                                              os.path.join("pbrlib", "genglsl", "lib", "mx_albedo_dielectric.glsl"))
+    with pytest.raises(ShaderGenError) as info:
+        code.module("nowhere.glsl")
+    assert info.value.code == "missing_source"
