@@ -344,7 +344,10 @@ def replace(node, **changes):
     new = object.__new__(type(node))
     for cls in type(node).__mro__:
         for name in getattr(cls, "__slots__", ()):
-            setattr(new, name, changes[name] if name in changes else getattr(node, name))
-    if isinstance(new, Item):
-        new.facts = None  # read again for the copy (Item's doc)
+            if name in changes:
+                setattr(new, name, changes[name])
+            elif name != "facts":  # an item's facts are read again for the copy (Item's doc)
+                setattr(new, name, getattr(node, name))
+    if isinstance(new, Item) and "facts" not in changes:
+        new.facts = None
     return new

@@ -655,3 +655,14 @@ def test_elif_in_a_section_is_refused_before_any_pass():
     with pytest.raises(ShaderGenError) as error:
         parse_module("f.glsl", "float f()\n{\n#ifdef MX_FEATURE_A\n    a();\n#elif X\n#endif\n    return 0.0;\n}\n")
     assert error.value.code == "invalid_source" and "f.glsl:5:1" in str(error.value)
+
+
+def test_a_copy_of_an_item_reads_its_own_facts_even_from_a_cache_without_them():
+    import pickle
+    f = fn("float", "g", [], ret(call(TWICE, lit(1.0))))
+    assert facts(f).calls == ("twice(float)",) and f.facts is not None
+    copy = ir.replace(f, body=ir.Block([ret(lit(0.0))], True))
+    assert copy.facts is None and facts(copy).calls == () and facts(f).calls == ("twice(float)",)
+    old = pickle.loads(pickle.dumps(fn("float", "h", [], ret(lit(1.0)))))
+    del old.facts  # as an item of a library cache written before Item had its facts
+    assert facts(ir.replace(old, name="h2")).calls == () and facts(old).calls == ()
