@@ -47,8 +47,9 @@ class Facts:
     of kind "uniform"; types: the non-built-in type names it mentions (structs, aliases);
     members: every (struct, member) read or stored (a Counter of occurrences); stores: its member
     stores (Store); whole: structs whose every member it observes (built by their constructor,
-    compared whole, the type of a uniform or stage variable it reads: a layout); writes_params: a function with an out or inout parameter; writes_outside: it
-    assigns to a name that is not its own (a global, a stage output); derivatives: it calls a
+    compared whole, the type of a uniform or stage variable it reads: a layout); writes_params: a
+    function with an out or inout parameter; writes_outside: it assigns to a name that is not its
+    own (a global, a stage output); derivatives: it calls a
     derivative built-in itself; forwards: (target Function, arguments) when the item is a function
     whose whole body is `return target(...)`, each parameter passed once in its order with the
     qualifier and type of the target's parameter it becomes, the others literals, and the return
@@ -196,8 +197,9 @@ def _has_effects(node) -> bool:
 @lru_cache(maxsize=16384)
 def has_effects(function: ir.Function) -> bool:
     """Whether a call of `function` may change anything but its value: it writes through an out or
-    inout parameter, or assigns outside itself (itself or through what it calls)."""
-    return any(facts(f).writes_params or facts(f).writes_outside for f in _reached([function]))
+    inout parameter of its own, or assigns outside itself, itself or through what it calls (a
+    callee's out parameters are the caller's own variables)."""
+    return facts(function).writes_params or any(facts(f).writes_outside for f in _reached([function]))
 
 
 def _reached(functions) -> list:

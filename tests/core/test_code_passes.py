@@ -337,6 +337,17 @@ def test_a_store_that_calls_an_out_function_keeps_its_member():
     assert {"spare", "tilted"} <= {m for _, m in struct.members}
 
 
+def test_a_store_calling_a_function_that_writes_only_its_own_locals_goes():
+    fill2 = fn("vec3", "fill2", ["inout vec3 v"], ret(param("v", "vec3")))
+    pure = fn("vec3", "pure", ["vec3 v"], ir.Declare("vec3", "t", param("v", "vec3"), False),
+              do(call(fill2, local("t", "vec3"))), ret(local("t", "vec3")))
+    lobe_fn = prepare(store(member(L, "tilted", "vec3"), call(pure, member(L, "spare", "vec3"))))
+    roots = [ir.Declare("Lobe", "l", call(lobe_fn, lit(1.0)), False),
+             ir.Declare("float", "x", member(local("l", "Lobe"), "weight", "float"), False)]
+    struct = reduced([LOBE, TILT, fill2, pure, lobe_fn], roots)[0]
+    assert [m for _, m in struct.members] == ["weight"]
+
+
 def test_a_struct_built_by_its_constructor_or_a_globals_type_keeps_every_member():
     pair = ir.Struct("Pair", [("float", "a"), ("float", "b")])
     roots = [ir.Declare("Pair", "p", ir.Construct("Pair", [lit(1.0), lit(2.0)]), False),
