@@ -570,15 +570,24 @@ def test_the_ir_passes_keep_no_more_than_the_text_passes_of_every_implementation
 
 
 @pytest.mark.parametrize("features, environment", SETTINGS + [(frozenset({"LIGHTS"}), "hybrid")])
-def test_the_specular_lobes_structs_lose_the_members_the_text_pass_takes_out(code, features, environment):
-    for impl in [impl for _, impl in lobes() if impl.function in ("mx_dielectric_bsdf", "mx_conductor_bsdf",
-                                                                   "mx_generalized_schlick_bsdf")]:
+def test_structs_lose_the_members_the_text_pass_takes_out(code, features, environment):
+    """Every implementation's stage alone: the same members as the text pass keeps, except where
+    every member is dead (nothing builds the struct in such a stage: a generator's main builds
+    ClosureData): the text pass keeps the alphabetically first, the IR the first declared."""
+    compared = all_dead = 0
+    for _, impl in source_implementations():
         text = "\n".join(text_stage(impl, features, environment))
         for struct in [i for i in stage(code, impl, features, environment) if isinstance(i, ir.Struct)]:
             declared = re.search(r"struct %s\n\{\n(.*?)\n\};" % struct.name, text, re.S).group(1)
             members = [line.split()[1].rstrip(";") for line in declared.split("\n") if line.strip()
                        and not line.strip().startswith("//")]
-            assert [m for _, m in struct.members] == members, (impl.function, struct.name)
+            kept = [m for _, m in struct.members]
+            if members != kept:
+                assert len(members) == len(kept) == 1 and kept == [code.struct(struct.name).members[0][1]] \
+                    and members == [min(m for _, m in code.struct(struct.name).members)], (impl.function, struct.name)
+                all_dead += 1
+            compared += 1
+    assert compared > 30 and all_dead < compared
 
 
 def lobe_stage(code, function, features, environment=None):
