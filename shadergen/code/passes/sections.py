@@ -21,7 +21,7 @@ FEATURE_PREFIX = "MX_FEATURE_"
 def run(items: list, features: frozenset | None, macros: frozenset = frozenset()) -> tuple[list, int]:
     """The items with their sections resolved, and how many sections were resolved. Memoised per
     (items, features, macros): a module's items recur in every request."""
-    out, count = _run(tuple(items), features, frozenset(macros))
+    out, count = _run(tuple(items), None if features is None else frozenset(features), frozenset(macros))
     return list(out), count
 
 
