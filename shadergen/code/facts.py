@@ -2,7 +2,8 @@
 
 Library items are parsed and checked once per library and recur in every request (the sections
 pass hands back the same resolved copy for the same decisions), so `facts(item)` is memoised on
-the item (nodes hash by identity; a rebuilt item is a new node with facts of its own). Generated
+the item (ir.Item.facts: read once per process, or once per library where the library's cache is
+written after reading them; a rebuilt item is a new node with facts of its own). Generated
 code (main, nodegraph functions) is read with `collect`, unmemoised: it is new in every request.
 
 The facts are exact on the typed IR: a call names the Function the checker resolved, a member is
@@ -46,8 +47,9 @@ class Facts:
     of kind "uniform"; types: the non-built-in type names it mentions (structs, aliases);
     members: every (struct, member) read or stored (a Counter of occurrences); stores: its member
     stores (Store); whole: structs whose every member it observes (built by their constructor,
-    compared whole, the type of a uniform or stage variable it reads: a layout); writes_params: a function with an out or inout parameter; writes_outside: it
-    assigns to a name that is not its own (a global, a stage output); derivatives: it calls a
+    compared whole, the type of a uniform or stage variable it reads: a layout); writes_params: a
+    function with an out or inout parameter; writes_outside: it assigns to a name that is not its
+    own (a global, a stage output); derivatives: it calls a
     derivative built-in itself; forwards: (target Function, arguments) when the item is a function
     whose whole body is `return target(...)`, each parameter passed once in its order with the
     qualifier and type of the target's parameter it becomes, the others literals, and the return
@@ -57,10 +59,13 @@ class Facts:
                  "writes_params", "writes_outside", "derivatives", "forwards")
 
 
-@lru_cache(maxsize=16384)
-def facts(item) -> Facts:
-    """The facts of a top-level item (Function, Struct, Constant, Global, or a Section of them)."""
-    return _read([item], item if isinstance(item, ir.Function) else None)
+def facts(item: ir.Item) -> Facts:
+    """The facts of a top-level item (Function, Struct, Constant, Global), memoised on it
+    (ir.Item.facts; a library cache written before the slot existed reads as unread)."""
+    found = getattr(item, "facts", None)
+    if found is None:
+        found = item.facts = _read([item], item if isinstance(item, ir.Function) else None)
+    return found
 
 
 def collect(nodes) -> Facts:
@@ -69,41 +74,60 @@ def collect(nodes) -> Facts:
 
 
 def _read(nodes, function: ir.Function | None) -> Facts:
+    """One pass over the nodes (the walk is inlined: facts of a library's functions are read on a
+    cold process's first request, where a generic walk costs several times as much)."""
     callees: dict[int, ir.Function] = {}
-    builtins, names, uniforms, types = set(), {}, set(), {}
+    builtins, names, uniforms, mentioned = set(), {}, set(), {}
     members: Counter = Counter()
     stores, whole = [], set()
     writes_outside = False
-    for node in nodes:
-        for n in ir.walk(node):
-            for type_name in _types_of(n):
-                _note_type(type_name, types, names)
-            if isinstance(n, ir.Call):
-                if n.builtin or n.callee is None:
-                    builtins.add(n.name)
-                else:
-                    callees.setdefault(id(n.callee), n.callee)
-            elif isinstance(n, ir.Name):
-                if n.kind not in LOCAL_KINDS:
-                    names.setdefault(n.name)
-                    if n.kind == "uniform":
-                        uniforms.add(n.name)
-                    if n.kind in INTERFACE_KINDS and n.type:
-                        whole.add(n.type.partition("[")[0])  # a uniform's or a stage variable's layout stays
-            elif isinstance(n, ir.Field):
-                if not n.swizzle:
-                    members[(struct_of(n.base), n.name)] += 1
-            elif isinstance(n, ir.Construct):
-                whole.add(n.type.partition("[")[0])
-            elif isinstance(n, ir.Binary) and n.op in ("==", "!=") and n.left.type not in BUILTIN_TYPES:
+    stack = list(nodes)
+    while stack:
+        n = stack.pop()
+        cls = n.__class__
+        for field in cls.FIELDS:
+            value = getattr(n, field)
+            if isinstance(value, ir.Node):
+                stack.append(value)
+            elif value.__class__ is list or value.__class__ is tuple:
+                stack.extend(v for v in value if isinstance(v, ir.Node))
+        type_name = getattr(n, "type", None)
+        if type_name is not None:
+            mentioned[type_name] = None
+        if cls is ir.Call:
+            if n.builtin or n.callee is None:
+                builtins.add(n.name)
+            else:
+                callees.setdefault(id(n.callee), n.callee)
+        elif cls is ir.Name:
+            if n.kind not in LOCAL_KINDS:
+                names.setdefault(n.name)
+                if n.kind == "uniform":
+                    uniforms.add(n.name)
+                if n.kind in INTERFACE_KINDS and n.type:
+                    whole.add(n.type.partition("[")[0])  # a uniform's or a stage variable's layout stays
+        elif cls is ir.Field:
+            if not n.swizzle:
+                members[(struct_of(n.base), n.name)] += 1
+        elif cls is ir.Construct:
+            whole.add(n.type.partition("[")[0])
+        elif cls is ir.Binary:
+            if n.op in ("==", "!=") and n.left.type not in BUILTIN_TYPES:
                 whole.add(n.left.type)  # a struct compared whole: every member is observed
-            elif isinstance(n, ir.Assign):
-                root = _target_root(n.target)
-                if isinstance(root, ir.Name) and root.kind not in LOCAL_KINDS:
-                    writes_outside = True
-                stored = stored_members(n.target)
-                if stored:
-                    stores.append(Store(n, stored, _occurrences(n), not _has_effects(n)))
+        elif cls is ir.Assign:
+            root = _target_root(n.target)
+            if isinstance(root, ir.Name) and root.kind not in LOCAL_KINDS:
+                writes_outside = True
+            stored = stored_members(n.target)
+            if stored:
+                stores.append(Store(n, stored, _occurrences(n), not _has_effects(n)))
+        elif cls is ir.Function:
+            mentioned[n.returns] = None
+        elif cls is ir.Struct:
+            mentioned.update((t, None) for t, _ in n.members)
+    types: dict[str, None] = {}
+    for type_name in mentioned:
+        _note_type(type_name, types, names)
     out = Facts()
     out.callees = tuple(callees.values())
     out.calls = tuple(f.key for f in out.callees)
@@ -119,19 +143,6 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     out.derivatives = not DERIVATIVE_BUILTINS.isdisjoint(builtins)
     out.forwards = _forwards(function) if function is not None else None
     return out
-
-
-def _types_of(node) -> tuple:
-    """The type names a node mentions: its declared type, its value's type."""
-    if isinstance(node, ir.Expr):
-        return (node.type,) if node.type else ()
-    if isinstance(node, (ir.Declare, ir.Param, ir.Constant, ir.Global)):
-        return (node.type,) if node.type else ()
-    if isinstance(node, ir.Function):
-        return (node.returns,)
-    if isinstance(node, ir.Struct):
-        return tuple(t for t, _ in node.members)
-    return ()
 
 
 def _note_type(type_name: str, types: dict, names: dict) -> None:
@@ -186,8 +197,9 @@ def _has_effects(node) -> bool:
 @lru_cache(maxsize=16384)
 def has_effects(function: ir.Function) -> bool:
     """Whether a call of `function` may change anything but its value: it writes through an out or
-    inout parameter, or assigns outside itself (itself or through what it calls)."""
-    return any(facts(f).writes_params or facts(f).writes_outside for f in _reached([function]))
+    inout parameter of its own, or assigns outside itself, itself or through what it calls (a
+    callee's out parameters are the caller's own variables)."""
+    return facts(function).writes_params or any(facts(f).writes_outside for f in _reached([function]))
 
 
 def _reached(functions) -> list:

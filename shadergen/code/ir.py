@@ -246,12 +246,16 @@ class Section(Stmt):
 
 # -- top-level items -------------------------------------------------------------------------------
 class Item(Node):
-    """A top-level definition. `comment`: the comment lines above it in the source (kept)."""
-    __slots__ = ("comment",)
+    """A top-level definition. `comment`: the comment lines above it in the source (kept).
+    `facts`: what code/facts.py read of the item, memoised on it (None until read; pickled with
+    the library when read before, so a cold process need not walk the library's functions; a
+    copy `replace` makes starts without: its fields may differ). Added by code/facts.py's author."""
+    __slots__ = ("comment", "facts")
 
     def __init__(self, *values, where=None, comment=None):
         super().__init__(*values, where=where)
         self.comment = comment
+        self.facts = None
 
 
 class Struct(Item):
@@ -340,5 +344,10 @@ def replace(node, **changes):
     new = object.__new__(type(node))
     for cls in type(node).__mro__:
         for name in getattr(cls, "__slots__", ()):
-            setattr(new, name, changes[name] if name in changes else getattr(node, name))
+            if name in changes:
+                setattr(new, name, changes[name])
+            elif name != "facts":  # an item's facts are read again for the copy (Item's doc)
+                setattr(new, name, getattr(node, name))
+    if isinstance(new, Item) and "facts" not in changes:
+        new.facts = None
     return new

@@ -5,6 +5,7 @@ from shadergen.code import ir
 from shadergen.code.facts import (collect, early_exit_at_zero_weight, facts, prepared_state, reads_constant,
                                   uses_derivatives)
 from shadergen.code.passes import fields, forward, reach, sections
+from shadergen.code.passes import stage as stage_passes
 
 
 # -- building typed IR by hand ---------------------------------------------------------------------
@@ -290,20 +291,9 @@ def prepare(*extra):
 
 
 def reduced(items, roots):
-    """The stage's loop: reach, then fields and forward, until nothing changes."""
-    reached, _ = reach.run(items, roots)
-    while True:
-        kept, n = fields.run(reached.items, roots)
-        kept, m = forward.run(kept, roots)
-        if not n + m:
-            return reached.items
-        reached, _ = reach.run(kept, roots)
-
-
-def main_reading(*names):
-    l_ = local("l", "Lobe")
-    return [ir.Declare("Lobe", "l", call(prepare(), lit(1.0)), False)] + \
-           [ir.Declare("float", "x" + n, member(l_, n, "float"), False) for n in names]
+    """What the stage's passes keep (code/passes/stage.py: reach, then fields and forward, until
+    nothing changes)."""
+    return stage_passes.run(items, None, frozenset(), roots)[0].items
 
 
 def test_members_only_stored_go_with_their_stores_and_what_only_they_called():
@@ -317,6 +307,16 @@ def test_members_only_stored_go_with_their_stores_and_what_only_they_called():
     assert TILT not in items  # only a dead member's store called it
     counted = fields.run([LOBE, TILT, lobe_fn], roots)[1]
     assert counted == 4 + 5  # frame, tilted, spare, flag; their five stores (the flag's under its if)
+
+
+def test_the_stage_counts_each_pass():
+    lobe_fn = prepare()
+    roots = [ir.Declare("Lobe", "l", call(lobe_fn, lit(1.0)), False),
+             ir.Declare("float", "x", member(local("l", "Lobe"), "weight", "float"), False)]
+    reached, counts = stage_passes.run([SECTIONED, LOBE, TILT, lobe_fn, SAMPLES, REFLECTED], frozenset(), frozenset(),
+                                       roots)
+    assert counts == {"sections": 2, "reach": 3 + 1, "fields": 9, "forward": 0}  # f, samples, reflected; tilt
+    assert [type(i).__name__ for i in reached.items] == ["Struct", "Function"]
 
 
 def test_a_member_the_roots_read_stays():
@@ -335,6 +335,17 @@ def test_a_store_that_calls_an_out_function_keeps_its_member():
              ir.Declare("float", "x", member(local("l", "Lobe"), "weight", "float"), False)]
     struct = reduced([LOBE, TILT, fill2, lobe_fn], roots)[0]
     assert {"spare", "tilted"} <= {m for _, m in struct.members}
+
+
+def test_a_store_calling_a_function_that_writes_only_its_own_locals_goes():
+    fill2 = fn("vec3", "fill2", ["inout vec3 v"], ret(param("v", "vec3")))
+    pure = fn("vec3", "pure", ["vec3 v"], ir.Declare("vec3", "t", param("v", "vec3"), False),
+              do(call(fill2, local("t", "vec3"))), ret(local("t", "vec3")))
+    lobe_fn = prepare(store(member(L, "tilted", "vec3"), call(pure, member(L, "spare", "vec3"))))
+    roots = [ir.Declare("Lobe", "l", call(lobe_fn, lit(1.0)), False),
+             ir.Declare("float", "x", member(local("l", "Lobe"), "weight", "float"), False)]
+    struct = reduced([LOBE, TILT, fill2, pure, lobe_fn], roots)[0]
+    assert [m for _, m in struct.members] == ["weight"]
 
 
 def test_a_struct_built_by_its_constructor_or_a_globals_type_keeps_every_member():
@@ -407,6 +418,13 @@ def test_a_target_with_two_definitions_keeps_its_forwards():
     assert forward.run([SAMPLES, other, REFLECTED, lobe], [do(call(lobe, N))])[1] == 0
 
 
+def test_a_forward_with_a_twin_in_a_sections_other_side_stays():
+    twin = fn("float", "reflected", ["vec3 N", "out vec3 albedo"], ret(lit(1.0)))
+    lobe = lobe_calling(REFLECTED)
+    section = ir.Section("MX_ENV_HYBRID", True, [REFLECTED], [twin])
+    assert forward.run([SAMPLES, section, lobe], [do(call(lobe, N))]) == ([SAMPLES, section, lobe], 0)
+
+
 def test_chains_of_forwards_reach_the_last_target():
     outer = fn("float", "outer", ["vec3 N", "out vec3 albedo"], ret(call(REFLECTED, N, ALBEDO)))
     user = fn("float", "user", ["vec3 N"], ir.Declare("vec3", "a", None, False), ret(call(outer, N, A)))
@@ -418,14 +436,14 @@ def test_chains_of_forwards_reach_the_last_target():
 # -- on the library's own IR -----------------------------------------------------------------------
 # The text passes and scans of today are the reference: the IR passes keep no more than they do,
 # and read the same facts of every lobe (test_source_scans, test_passes).
-import glob  # noqa: E402
 import os  # noqa: E402
 import re  # noqa: E402
 
 import pytest  # noqa: E402
 
-from shadergen.code.check import check_modules, flat_items  # noqa: E402
-from shadergen.code.parse import parse_module  # noqa: E402
+from shadergen.code.check import flat_items  # noqa: E402
+from shadergen.code.library import CodeLibrary  # noqa: E402
+from shadergen.code.types import ir_type  # noqa: E402
 from shadergen.features import environment_macros, resolve  # noqa: E402
 from shadergen.library import default_library  # noqa: E402
 from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
@@ -433,44 +451,28 @@ from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS  # noqa: E402
 from shadergen.targets.deadcode import split_items, used_functions  # noqa: E402
 from shadergen.targets.glsl import ClosureConvention  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CLOSURE_TYPES = {"BSDF", "EDF", "VDF"}
-IR_TYPES = {"matrix44": "mat4", "filename": "sampler2D", "float": "float", "integer": "int", "boolean": "bool",
-            "vector3": "vec3"}
-
-
-class CheckedLibrary:
-    """Every library source parsed and checked (as code/library.py does once per library hash)."""
-
-    def __init__(self):
-        prelude = os.path.join(ROOT, "shadergen", "code", "prelude.glsl")
-        paths = [prelude] + sorted(os.path.abspath(p) for p in glob.glob(os.path.join(ROOT, "libraries", "*", "genglsl",
-                                                                                      "**", "*.glsl"), recursive=True))
-        self.modules = {p: parse_module(p, open(p).read()) for p in paths}
-        externals = {name: IR_TYPES[t] for name, t in ENVIRONMENT_UNIFORMS}
-        externals.update(u_numActiveLightSources="int", u_lightData="LightData[3]")
-        check_modules(self.modules, externals, (prelude,))
-        self.by_name: dict[str, list] = {}
-        for path in paths:
-            for item in flat_items(self.modules[path].items):
-                if isinstance(item, ir.Function):
-                    self.by_name.setdefault(item.name, []).append(item)
-
-    def functions(self, name):
-        return self.by_name.get(name, [])
-
-    def function(self, path, name):
-        return next(i for i in flat_items(self.modules[os.path.abspath(path)].items)
-                    if isinstance(i, ir.Function) and i.name == name)
-
-    def items(self, impl) -> list:
-        """The items of an implementation's files, its includes first (the generator's order)."""
-        return [item for path, _ in impl.files for item in self.modules[os.path.abspath(path)].items]
+EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
+             "u_numActiveLightSources": "int", "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
 
 
 @pytest.fixture(scope="module")
-def code():
-    return CheckedLibrary()
+def code(tmp_path_factory):
+    os.environ["SHADERGEN_CACHE_DIR"] = str(tmp_path_factory.mktemp("code-cache"))
+    try:
+        return CodeLibrary.load(default_library(), EXTERNALS)
+    finally:
+        del os.environ["SHADERGEN_CACHE_DIR"]
+
+
+def function_of(code, impl):
+    return next(i for i in flat_items(code.module(impl.path).items)
+                if isinstance(i, ir.Function) and i.name == impl.function)
+
+
+def items_of(code, impl) -> list:
+    """The items of an implementation's files, its includes first (the generator's order)."""
+    return [item for path, _ in impl.files for item in code.module(path).items]
 
 
 def source_implementations():
@@ -496,13 +498,13 @@ def lobes():
 def test_every_lobes_zero_weight_exit_and_prepared_state_agree_with_the_text_scans(code):
     convention, checked = ClosureConvention(), 0
     for _, impl in lobes():
-        function = code.function(impl.path, impl.function)
+        function = function_of(code, impl)
         assert early_exit_at_zero_weight(function) == convention.empty_at_zero_weight(impl.source, impl.function), \
             impl.function
         assert prepared_state(function, code) == convention.prepared_state(impl.source, impl.function), impl.function
         checked += 1
     assert checked >= 25
-    early = {impl.function for _, impl in lobes() if early_exit_at_zero_weight(code.function(impl.path, impl.function))}
+    early = {impl.function for _, impl in lobes() if early_exit_at_zero_weight(function_of(code, impl))}
     assert early == {"mx_dielectric_bsdf", "mx_generalized_schlick_bsdf", "mx_sheen_bsdf"}
 
 
@@ -514,7 +516,7 @@ def test_the_lobes_answering_the_transmission_context_agree_with_the_text_scan(c
     for nodedef, impl in lobes():
         if any(i.get("type") in CLOSURE_TYPES for i in nodedef.children_of("input")):
             continue
-        function = code.function(impl.path, impl.function)
+        function = function_of(code, impl)
         assert reads_constant(function, "CLOSURE_TYPE_TRANSMISSION") == convention.handles_transmission(impl.source), \
             impl.function
 
@@ -522,17 +524,17 @@ def test_the_lobes_answering_the_transmission_context_agree_with_the_text_scan(c
 def test_derivative_use_agrees_with_the_text_scan_for_every_function_implementation(code):
     implementations = source_implementations()
     for _, impl in implementations:
-        assert uses_derivatives(code.function(impl.path, impl.function)) == impl.uses_derivatives, impl.function
+        assert uses_derivatives(function_of(code, impl)) == impl.uses_derivatives, impl.function
     assert len(implementations) > 100
 
 
 def stage(code, impl, features, environment):
-    """What a stage of the implementation alone keeps: its sections resolved, reach from calls of
-    it (and its _prepare), then fields and forward until nothing changes."""
-    items, _ = sections.run(code.items(impl), features, environment_macros(environment))
+    """What a stage of the implementation alone keeps: calls of it (and its _prepare) its roots."""
     called = {impl.function, impl.function + "_prepare"}
-    roots = [do(ir.Call(i.name, [], callee=i)) for i in items if isinstance(i, ir.Function) and i.name in called]
-    return [i for unit in reduced(items, roots) for i in flat_items([unit])]
+    roots = [do(ir.Call(i.name, [], callee=i)) for i in flat_items(code.module(impl.files[-1][0]).items)
+             if isinstance(i, ir.Function) and i.name in called]
+    reached, _ = stage_passes.run(items_of(code, impl), features, environment_macros(environment), roots)
+    return [i for unit in reached.items for i in flat_items([unit])]
 
 
 def text_stage(impl, features, environment):
@@ -568,15 +570,24 @@ def test_the_ir_passes_keep_no_more_than_the_text_passes_of_every_implementation
 
 
 @pytest.mark.parametrize("features, environment", SETTINGS + [(frozenset({"LIGHTS"}), "hybrid")])
-def test_the_specular_lobes_structs_lose_the_members_the_text_pass_takes_out(code, features, environment):
-    for impl in [impl for _, impl in lobes() if impl.function in ("mx_dielectric_bsdf", "mx_conductor_bsdf",
-                                                                   "mx_generalized_schlick_bsdf")]:
+def test_structs_lose_the_members_the_text_pass_takes_out(code, features, environment):
+    """Every implementation's stage alone: the same members as the text pass keeps, except where
+    every member is dead (nothing builds the struct in such a stage: a generator's main builds
+    ClosureData): the text pass keeps the alphabetically first, the IR the first declared."""
+    compared = all_dead = 0
+    for _, impl in source_implementations():
         text = "\n".join(text_stage(impl, features, environment))
         for struct in [i for i in stage(code, impl, features, environment) if isinstance(i, ir.Struct)]:
             declared = re.search(r"struct %s\n\{\n(.*?)\n\};" % struct.name, text, re.S).group(1)
             members = [line.split()[1].rstrip(";") for line in declared.split("\n") if line.strip()
                        and not line.strip().startswith("//")]
-            assert [m for _, m in struct.members] == members, (impl.function, struct.name)
+            kept = [m for _, m in struct.members]
+            if members != kept:
+                assert len(members) == len(kept) == 1 and kept == [code.struct(struct.name).members[0][1]] \
+                    and members == [min(m for _, m in code.struct(struct.name).members)], (impl.function, struct.name)
+                all_dead += 1
+            compared += 1
+    assert compared > 30 and all_dead < compared
 
 
 def lobe_stage(code, function, features, environment=None):
@@ -622,3 +633,56 @@ def test_the_librarys_forwarders_are_called_straight(code):
     reflected = lobe_stage(code, "mx_conductor_bsdf", frozenset(), "fis")
     assert "mx_environment_samples" in names(reflected) and "mx_environment_reflected" not in names(reflected)
     assert "mx_environment_reflected" in names(lobe_stage(code, "mx_conductor_bsdf", frozenset({"THIN_FILM"}), "fis"))
+
+
+# test_features' own source (its pragma at the top, where the libraries have theirs), parsed
+# (untyped: the sections pass needs no types)
+FEATURE_SOURCE = """#pragma shadergen feature A unless x == 0
+float f()
+{
+#ifdef MX_FEATURE_A
+    a();
+#ifdef MX_ENV_PREFILTER
+    prefiltered();
+#else
+    sampled();
+#endif
+#else
+    notA();
+#endif
+#ifndef MX_FEATURE_B
+    notB();
+#endif
+    return 0.0;
+}
+"""
+
+
+def test_the_text_tests_sections_resolve_alike_on_the_parsed_source():
+    from shadergen.code.parse import parse_module
+    module = parse_module("f.glsl", FEATURE_SOURCE)
+    assert module.features == (("A", "x", "==", "0"),)  # the pragma is the module's, not code
+    (both,), _ = sections.run(module.items, frozenset({"A", "B"}))
+    assert calls_of(both) == ["a", "prefiltered", "sampled"]
+    assert [n.macro for n in ir.walk(both) if isinstance(n, ir.Section)] == ["MX_ENV_PREFILTER"]
+    assert calls_of(sections.run(module.items, frozenset())[0][0]) == ["notA", "notB"]
+    assert calls_of(sections.run(module.items, None)[0][0]) == ["a", "prefiltered", "sampled"]
+
+
+def test_elif_in_a_section_is_refused_before_any_pass():
+    from shadergen.code.parse import parse_module
+    from shadergen.errors import ShaderGenError
+    with pytest.raises(ShaderGenError) as error:
+        parse_module("f.glsl", "float f()\n{\n#ifdef MX_FEATURE_A\n    a();\n#elif X\n#endif\n    return 0.0;\n}\n")
+    assert error.value.code == "invalid_source" and "f.glsl:5:1" in str(error.value)
+
+
+def test_a_copy_of_an_item_reads_its_own_facts_even_from_a_cache_without_them():
+    import pickle
+    f = fn("float", "g", [], ret(call(TWICE, lit(1.0))))
+    assert facts(f).calls == ("twice(float)",) and f.facts is not None
+    copy = ir.replace(f, body=ir.Block([ret(lit(0.0))], True))
+    assert copy.facts is None and facts(copy).calls == () and facts(f).calls == ("twice(float)",)
+    old = pickle.loads(pickle.dumps(fn("float", "h", [], ret(lit(1.0)))))
+    del old.facts  # as an item of a library cache written before Item had its facts
+    assert facts(ir.replace(old, name="h2")).calls == () and facts(old).calls == ()

@@ -9,8 +9,10 @@ occurrence of it in the stage's kept items is inside a store to a dead member (`
 nothing else (no call that writes through a parameter or outside itself). Those statements go, and
 the members. A member the roots (main, generated functions) mention stays: they are read, never
 edited. A struct built by its constructor (positional arguments), compared whole, or the type of a
-global (an interface: a uniform's layout) keeps every member, and every struct keeps at least its
-first (no target has empty structs).
+global, a uniform or a stage variable (an interface: a layout a client binds) keeps every member,
+and every struct keeps at least its first (no target has empty structs). Unlike the text pass, a
+store under a brace-less `if` goes too (the IR has no braces to keep right); an `if` left with
+nothing to do goes with it when its condition calls nothing.
 
 Rewritten items are memoised per (item, the dead members it holds): a request adds up facts, and
 rebuilds only what its dead set has not rebuilt before.

@@ -7,8 +7,9 @@ reflects, without a thin film, is the samples without the film). Its callers cal
 instead, with their own arguments put where the parameters were, and the forwarding function
 leaves the stage. The same computation (facts.py checks it per function): every parameter is passed
 once, in order, with the same type and qualifier as the target's parameter it becomes, and the
-return types are equal; here, per stage, the target has one definition among the items, so no
-overload could be chosen differently by a target that resolves names. A forwarding function the
+return types are equal; here, per stage, the target and the forwarding function each have one
+definition among the items (by name: no overload a target resolving names could choose otherwise,
+no other side of a section the key would also name). A forwarding function the
 roots (main) call is left alone, and so are its callers: the roots are not edited.
 """
 from functools import lru_cache
@@ -35,7 +36,8 @@ def _run(items: tuple, called_by_roots: frozenset) -> tuple[tuple, int]:
         if isinstance(i, ir.Function):
             definitions[i.name] = definitions.get(i.name, 0) + 1
     forwarders = frozenset(i for i in flat if isinstance(i, ir.Function) and facts(i).forwards is not None
-                           and definitions.get(facts(i).forwards[0].name) == 1 and i.key not in called_by_roots)
+                           and definitions[i.name] == 1 and definitions.get(facts(i).forwards[0].name) == 1
+                           and i.key not in called_by_roots)
     if not forwarders:
         return items, 0
     keys = {f.key for f in forwarders}

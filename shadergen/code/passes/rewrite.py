@@ -4,19 +4,15 @@ its memoised facts."""
 from .. import ir
 
 
-def rebuild(node, statement=None, expression=None):
-    """`node` with `statement(stmt)` and `expression(expr)` applied at every depth.
+def rebuild_list(nodes: list, statement=None, expression=None) -> list:
+    """A list of items or statements with `statement(stmt)` and `expression(expr)` applied at every
+    depth (`nodes` itself when nothing changed).
 
     `statement(stmt)`: None keeps the statement (its insides rebuilt), a list of statements takes
     its place (those rebuilt in turn); `expression(expr)`: called on each expression after its
     insides, returns it or its replacement. An if, loop or block whose insides changed is tidied:
     an emptied `else` goes, an emptied brace-less body gets braces, and an if left with nothing to
     do and no call in its condition goes."""
-    return _rebuilt(node, statement, expression)
-
-
-def rebuild_list(nodes: list, statement=None, expression=None) -> list:
-    """A list of items or statements rebuilt (`nodes` itself when nothing changed)."""
     return _many(nodes, statement, expression)
 
 

@@ -21,7 +21,7 @@ FEATURE_PREFIX = "MX_FEATURE_"
 def run(items: list, features: frozenset | None, macros: frozenset = frozenset()) -> tuple[list, int]:
     """The items with their sections resolved, and how many sections were resolved. Memoised per
     (items, features, macros): a module's items recur in every request."""
-    out, count = _run(tuple(items), features, frozenset(macros))
+    out, count = _run(tuple(items), None if features is None else frozenset(features), frozenset(macros))
     return list(out), count
 
 
@@ -51,8 +51,26 @@ def decision(macro: str, features: frozenset | None, decided: dict) -> bool | No
 
 @lru_cache(maxsize=16384)
 def macros_in(item) -> tuple[str, ...]:
-    """The macros the sections of an item test, sorted."""
-    return tuple(sorted({n.macro for n in ir.walk(item) if isinstance(n, ir.Section)}))
+    """The macros the sections of an item test, sorted. Sections are statements or items: only
+    those are walked, not the expressions (most of an item's nodes)."""
+    found, stack = set(), [item]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ir.Section):
+            found.add(node.macro)
+            stack.extend(node.body)
+            stack.extend(node.other or ())
+        elif isinstance(node, ir.Block):
+            stack.extend(node.body)
+        elif isinstance(node, ir.Function):
+            stack.append(node.body)
+        elif isinstance(node, ir.If):
+            stack.append(node.then)
+            if node.other is not None:
+                stack.append(node.other)
+        elif isinstance(node, (ir.For, ir.While)):
+            stack.append(node.body)
+    return tuple(sorted(found))
 
 
 @lru_cache(maxsize=16384)
