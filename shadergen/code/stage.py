@@ -9,12 +9,12 @@ record's `"passes"`:
 - `fields`: struct members nothing reads, with the statements that only store them
   (passes/fields.py).
 
-The result, a StageCode, is what every target's stage assembler prints: one mechanism for all.
+(passes/stage.py runs them, reach again after fields and forward until nothing changes.) The
+result, a StageCode, is what every target's stage assembler prints: one mechanism for all.
 """
 from ..shader import PIXEL, VERTEX
 from . import build, ir
-from .facts import collect
-from .passes import fields, forward, reach, sections
+from .passes import stage as stage_passes
 from .types import ir_type
 
 PRELUDE = "prelude.glsl"  # the closure, shader and light structs every shader may name
@@ -67,14 +67,12 @@ def run(ctx, counts: dict) -> StageCode:
     stage_variables = externals(ctx, PIXEL)
     generated = ctx.pixel.generated
     code.check_generated(generated, [main], stage_variables)
-    roots = collect([main, *generated])  # read, never edited
     # the structs a stage variable has (a uniform's, the light array's) are part of its layout
     layouts = [t.split("[")[0] for t in stage_variables.values() if code.struct(t.split("[")[0]) is not None]
     items = code.module(PRELUDE).items + ctx.pixel.items
-    items, counts["sections"] = sections.run(items, ctx.features, ctx.macros)
-    items, counts["forward"] = forward.run(items, roots)
-    reached, counts["reach"] = reach.run(items, roots, layouts)
-    items, counts["fields"] = fields.run(reached.items, roots)
+    reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts)
+    counts.update(passes)
+    items = reached.items
     structs = [i for i in items if isinstance(i, ir.Struct)]
     functions = [i for i in items if has_function(i)]
     constants = [i for i in items if not isinstance(i, ir.Struct) and not has_function(i)]
