@@ -1,8 +1,9 @@
 """Typing the code the generator writes (main, nodegraph functions, the light dispatch) against
-the library's: the same checker as the library's sources (check.py), with two differences. The
-generator names its stage variables itself (a uniform, a stage input or output, vertex data, the
-target's position output) and gives them their IR type, which the checker keeps; and those
-variables may be assigned. The library's symbol table is shared by every request and never
+the library's: the same checker as the library's sources (check.py), with three differences. An
+expression the generator made typed is taken as it is (values, typed templates); the generator
+names its stage variables itself (a uniform, a stage input or output, vertex data, the target's
+position output) and gives them their IR type, which the checker keeps; and those variables may
+be assigned. The library's symbol table is shared by every request and never
 changed: the generated functions join a copy of it.
 """
 from . import ir
@@ -12,6 +13,11 @@ GENERATED_KINDS = frozenset({"uniform", "input", "output", "vertexdata", "builti
 
 
 class GeneratedChecker(Checker):
+    def expr(self, e: ir.Expr) -> ir.Expr:
+        """What the generator made typed (its values, an inline template instantiated with its
+        inputs' types: code/library.py's `expression`) is typed already, all the way down."""
+        return e if e.type is not None else super().expr(e)
+
     def expr_Name(self, e):
         if e.kind in GENERATED_KINDS and e.type is not None and not any(e.name in s for s in self.scopes):
             e.type = self.resolve_type(e.type, e)

@@ -32,14 +32,28 @@ __all__ = [
 ]
 
 
+def initializer(fields: tuple[str, ...], keywords: tuple, initial: tuple):
+    """An __init__ taking `fields` positionally and `keywords` ((slot, default) pairs) by name,
+    and setting `initial` slots to their values: each assigned directly, since requests make
+    nodes by the thousand and a loop over a class's fields costs several times as much."""
+    params = ", ".join(("self", *fields, *(["*"] if keywords else []), *(f"{k}={d!r}" for k, d in keywords)))
+    body = [f"self.{f} = {f}" for f in fields] + [f"self.{k} = {k}" for k, _ in keywords]
+    body += [f"self.{k} = {v!r}" for k, v in initial] or ["pass"]
+    namespace: dict = {}
+    exec(f"def __init__({params}):\n    " + "\n    ".join(body), namespace)  # noqa: S102 (our own text)
+    return namespace["__init__"]
+
+
 class Node:
     __slots__ = ("where",)
     FIELDS: tuple[str, ...] = ()  # the child-bearing and value fields, in order (replace, children)
+    KEYWORDS: tuple = (("where", None),)  # slots given by keyword, with their defaults
+    INITIAL: tuple = ()  # slots every new node starts with, and their values
 
-    def __init__(self, *values, where=None):
-        for name, value in zip(self.FIELDS, values, strict=True):
-            setattr(self, name, value)
-        self.where = where
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "__init__" not in cls.__dict__:
+            cls.__init__ = initializer(cls.FIELDS, cls.KEYWORDS, cls.INITIAL)
 
     def __getstate__(self):
         # (None, slots): pickle and copy set the slots themselves, without a Python call per
@@ -54,10 +68,7 @@ class Node:
 # -- expressions -----------------------------------------------------------------------------------
 class Expr(Node):
     __slots__ = ("type",)
-
-    def __init__(self, *values, type=None, where=None):
-        super().__init__(*values, where=where)
-        self.type = type
+    KEYWORDS = (("type", None), ("where", None))
 
 
 class Literal(Expr):
@@ -88,11 +99,7 @@ class Call(Expr):
     parameter's argument is an lvalue expression."""
     __slots__ = ("name", "args", "callee", "builtin")
     FIELDS = ("name", "args")
-
-    def __init__(self, name, args, type=None, where=None, callee=None, builtin=False):
-        super().__init__(name, args, type=type, where=where)
-        self.callee = callee
-        self.builtin = builtin
+    KEYWORDS = Expr.KEYWORDS + (("callee", None), ("builtin", False))
 
 
 class Construct(Expr):
@@ -103,7 +110,9 @@ class Construct(Expr):
     FIELDS = ("args",)
 
     def __init__(self, type, args, where=None):
-        super().__init__(args, type=type, where=where)
+        self.args = args
+        self.type = type
+        self.where = where
 
 
 class Field(Expr):
@@ -111,10 +120,7 @@ class Field(Expr):
     `xyz` or `rg` (always written with xyzw letters once checked)."""
     __slots__ = ("base", "name", "swizzle")
     FIELDS = ("base", "name")
-
-    def __init__(self, base, name, type=None, where=None, swizzle=False):
-        super().__init__(base, name, type=type, where=where)
-        self.swizzle = swizzle
+    KEYWORDS = Expr.KEYWORDS + (("swizzle", False),)
 
 
 class Index(Expr):
@@ -147,18 +153,17 @@ class Convert(Expr):
     FIELDS = ("operand",)
 
     def __init__(self, type, operand, implicit=False, where=None):
-        super().__init__(operand, type=type, where=where)
+        self.operand = operand
+        self.type = type
         self.implicit = implicit
+        self.where = where
 
 
 # -- statements ------------------------------------------------------------------------------------
 class Stmt(Node):
     """A statement. `comment`: a comment after it on its line, kept by printers."""
     __slots__ = ("comment",)
-
-    def __init__(self, *values, where=None, comment=None):
-        super().__init__(*values, where=where)
-        self.comment = comment
+    KEYWORDS = (("where", None), ("comment", None))
 
 
 class Declare(Stmt):
@@ -238,10 +243,7 @@ class Section(Stmt):
     __slots__ = ("macro", "defined", "body", "other", "else_branch")
     FIELDS = ("macro", "defined", "body", "other")
 
-    # else_branch: the slot the docstring above names (added by code/parse.py's author)
-    def __init__(self, macro, defined, body, other, where=None, comment=None, else_branch=False):
-        super().__init__(macro, defined, body, other, where=where, comment=comment)
-        self.else_branch = else_branch
+    KEYWORDS = Stmt.KEYWORDS + (("else_branch", False),)
 
 
 # -- top-level items -------------------------------------------------------------------------------
@@ -251,11 +253,8 @@ class Item(Node):
     the library when read before, so a cold process need not walk the library's functions; a
     copy `replace` makes starts without: its fields may differ). Added by code/facts.py's author."""
     __slots__ = ("comment", "facts")
-
-    def __init__(self, *values, where=None, comment=None):
-        super().__init__(*values, where=where)
-        self.comment = comment
-        self.facts = None
+    KEYWORDS = (("where", None), ("comment", None))
+    INITIAL = (("facts", None),)
 
 
 class Struct(Item):
@@ -278,7 +277,8 @@ class Global(Item):
     FIELDS = ("type", "name", "kind", "block", "init")
 
     def __init__(self, type, name, kind="global", block=None, init=None, where=None, comment=None):
-        super().__init__(type, name, kind, block, init, where=where, comment=comment)
+        self.type, self.name, self.kind, self.block, self.init = type, name, kind, block, init
+        self.where, self.comment, self.facts = where, comment, None
 
 
 class Param(Node):
@@ -294,7 +294,8 @@ class Function(Item):
     FIELDS = ("returns", "name", "params", "body")
 
     def __init__(self, returns, name, params, body, where=None, comment=None):
-        super().__init__(returns, name, params, body, where=where, comment=comment)
+        self.returns, self.name, self.params, self.body = returns, name, params, body
+        self.where, self.comment, self.facts = where, comment, None
         self.key = name + "(" + ",".join(p.type for p in params) + ")"
 
 

@@ -57,7 +57,8 @@ class NodeImpl:
 
 class InlineImpl(NodeImpl):
     """An expression of the node's inputs (`{{input}}` placeholders), parsed into the IR once per
-    library (code/library.py templates); each call puts the inputs' values in its placeholders."""
+    library (code/library.py templates) and typed once per set of input types; each call puts the
+    inputs' values in its placeholders."""
 
     def __init__(self, expression: str, where: str | None = None):
         self.expression = expression.strip()
@@ -68,12 +69,13 @@ class InlineImpl(NodeImpl):
         return cls(read_source(_source_path(elem, elem.get("file"))), elem.name)
 
     def emit_function_call(self, node, ctx) -> None:
-        template = ctx.code.template(self.expression, self.where)
-        for name in placeholders(template):
+        for name in placeholders(ctx.code.template(self.expression, self.where)):
             if name not in node.inputs:
                 raise ShaderGenError("invalid_implementation", f"inline expression names unknown input '{name}'",
                                      node.path)
         inputs = {name: ctx.value(i) for name, i in node.inputs.items()}
+        # typed once per library for these input types (the checker's conversions in place)
+        template = ctx.code.expression(self.expression, {n: v.type for n, v in inputs.items()}, self.where)
         ctx.assign(next(iter(node.outputs.values())), substitute(template, inputs))
 
 

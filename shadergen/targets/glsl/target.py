@@ -6,6 +6,8 @@ the code passes kept, the uniform blocks, the stage's inputs and outputs (vertex
 interface block `vd`, or in ESSL, which has none, as `vd_<member>` variables), the functions,
 main. Uniforms are initialised to their values where GLSL allows it (not in ESSL).
 """
+from functools import lru_cache
+
 from ...code import ir
 from ...code.types import ir_type
 from ...code.values import value_expr
@@ -38,6 +40,13 @@ class GlslTarget:
             return BUILTINS.get(name.name, name.name)  # the library reads GLSL's own (gl_FrontFacing)
         return name.name
 
+    def item(self, item) -> tuple[str, ...]:
+        """An item's lines: a library item's printed once per process (they recur in every
+        request, and the code passes hand back the same rewritten item for the same edit)."""
+        if item.where is None:  # generated for this shader
+            return tuple(self.printer.item(item))
+        return printed(type(self), item)
+
     def layout(self, ctx) -> dict | None:
         """Where a client puts each uniform: GLSL uniforms are bound by name."""
         return None
@@ -48,7 +57,7 @@ class GlslTarget:
         w = self._start()
         items = code.structs + code.constants
         for item in items:
-            w.extend(self.printer.item(item))
+            w.extend(self.item(item))
         if items:
             w.line()
         self._uniforms(ctx.pixel, w)
@@ -57,7 +66,7 @@ class GlslTarget:
             w.line(f"out vec4 {v.name};")
         w.line()
         for function in code.functions:
-            w.extend(self.printer.item(function))
+            w.extend(self.item(function))
             w.line()
         self._main(code.main, w)
         return w.text()
@@ -109,6 +118,11 @@ class GlslTarget:
             for v in members:
                 w.line(f"{direction} {self.printer.type_name(_type(v))} vd_{v.name};")
         w.line()
+
+
+@lru_cache(maxsize=8192)
+def printed(target_class, item) -> tuple[str, ...]:
+    return tuple(target_class().printer.item(item))
 
 
 def _type(v) -> str:
