@@ -10,36 +10,41 @@ import pytest
 
 from required_tools import tool_path
 from shadergen.code import ir
+from shadergen.code.check import check_modules
 from shadergen.code.parse import parse_expression, parse_module
-from shadergen.targets.glsl import STRUCTS
+from shadergen.code.types import ir_type
+from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
 from shadergen.targets.glsl.printer import GlslPrinter, same
-from shadergen.targets.wgsl.printer import WgslPrinter
+from shadergen.targets.wgsl.printer import DEFINED, WgslPrinter, function_names, helpers, wgsl_type
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SOURCES = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "libraries/*/genglsl/**/*.glsl"),
-                                                               recursive=True))
-# The globals the libraries read and do not define (BRIEF: environment uniforms, lights, facing).
-GLOBALS = """\
-uniform mat4 u_envMatrix;
-uniform sampler2D u_envRadiance;
-uniform float u_envLightIntensity;
-uniform int u_envRadianceMips;
-uniform int u_envRadianceSamples;
-uniform sampler2D u_envIrradiance;
-uniform bool u_refractionTwoSided;
-uniform vec3 u_viewPosition;
-uniform int u_numActiveLightSources;
-uniform LightData u_lightData[MAX_LIGHT_SOURCES];
-"""
-HEADERS = {"glsl": "#version 400\n", "essl": "#version 300 es\nprecision highp float;\nprecision highp int;\n"}
+LIBRARIES = os.path.join(ROOT, "libraries")
+SOURCES = sorted(os.path.relpath(p, LIBRARIES)
+                 for p in glob.glob(os.path.join(LIBRARIES, "*/genglsl/**/*.glsl"), recursive=True))
+PRELUDE = "prelude.glsl"
+# The globals the libraries read and do not define (the generator declares them).
+EXTERNALS = {**{n: ir_type(t) for n, t in ENVIRONMENT_UNIFORMS}, "u_numActiveLightSources": "int",
+             "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
+HEADERS = {"glsl": "#version 400", "essl": "#version 300 es\nprecision highp float;\nprecision highp int;"}
+
+
+def read(path: str) -> str:
+    with open(path) as f:
+        return f.read()
+
+
+def parsed() -> dict[str, ir.Module]:
+    modules = {PRELUDE: parse_module(PRELUDE, read(os.path.join(ROOT, "shadergen/code/prelude.glsl")))}
+    for path in SOURCES:
+        modules[path] = parse_module(path, read(os.path.join(LIBRARIES, path)))
+    return modules
 
 
 @pytest.fixture(scope="module")
 def modules() -> dict[str, ir.Module]:
-    out = {}
-    for path in SOURCES:
-        with open(os.path.join(ROOT, path)) as f:
-            out[path] = parse_module(path, f.read())
+    """Every library file parsed and checked (typed), with the prelude."""
+    out = parsed()
+    check_modules(out, EXTERNALS, (PRELUDE,))
     return out
 
 
@@ -54,7 +59,7 @@ def in_include_order(path: str, modules: dict, seen: set) -> list[str]:
     return order + [path]
 
 
-def macros(modules: dict) -> list[str]:
+def feature_macros(modules: dict) -> list[str]:
     """Every feature macro a section of the libraries tests."""
     found = set()
     for module in modules.values():
@@ -63,50 +68,96 @@ def macros(modules: dict) -> list[str]:
     return sorted(found)
 
 
+def printed(printer, items) -> list[str]:
+    return [line for item in items for line in [*printer.item(item), ""]]
+
+
 def glsl_unit(path: str, modules: dict, printer: GlslPrinter, defined: list[str]) -> str:
-    lines = [HEADERS[printer.dialect].rstrip("\n")]
-    lines += [f"#define {m}" for m in defined]
-    lines += [STRUCTS[name] for name in STRUCTS]
-    lines.append(GLOBALS)
+    """One library file as a fragment shader: the prelude, the externals, the files it includes."""
+    lines = [HEADERS[printer.dialect], *[f"#define {m}" for m in defined], *printed(printer, modules[PRELUDE].items)]
+    for name, t in EXTERNALS.items():
+        lines.append(f"uniform {printer.declarator(t, name)};")
     for source in in_include_order(path, modules, set()):
-        for item in modules[source].items:
-            lines += printer.item(item)
-            lines.append("")
+        lines += printed(printer, modules[source].items)
     lines.append("out vec4 fragment_colour;\nvoid main() { fragment_colour = vec4(0.0); }")
     return "\n".join(lines) + "\n"
 
 
-def compile_all(units: dict[str, str], tmp_path) -> list[str]:
-    """glslangValidator over every unit at once: the names of those it rejects, with its log."""
-    tool = tool_path("glslangValidator")
+def wgsl_unit(path: str, modules: dict, printer: WgslPrinter) -> str:
+    """One library file as a WGSL module: the prelude, the externals (textures bound, the rest
+    private variables), the facing flag, the helpers its code calls, the files it includes."""
+    sources = [PRELUDE, *in_include_order(path, modules, set())]
+    lines, binding = [], 0
+    for name, t in EXTERNALS.items():
+        if t == "sampler2D":
+            lines.append(f"@group(0) @binding({binding}) var {name}: texture_2d<f32>;")
+            lines.append(f"@group(0) @binding({binding + 1}) var {name}_sampler: sampler;")
+            binding += 2
+        else:
+            lines.append(f"var<private> {name}: {wgsl_type(t.replace('MAX_LIGHT_SOURCES', '3'))};")
+    lines.append("var<private> front_facing: bool;")
+    lines += helpers([item for source in sources for item in modules[source].items])
+    for source in sources:
+        lines += printed(printer, modules[source].items)
+    lines.append("@fragment fn main() -> @location(0) vec4f { return vec4f(0.0); }")
+    return "\n".join(lines) + "\n"
+
+
+def rejected(tool: str, units: dict[str, str], suffix: str, tmp_path, together: bool) -> list[str]:
+    """The units the tool rejects, with its message (all at once where it takes several files)."""
     paths = []
     for i, (name, text) in enumerate(sorted(units.items())):
-        path = tmp_path / f"u{i}.frag"
+        path = tmp_path / f"u{i}.{suffix}"
         path.write_text(text)
         paths.append((name, path))
     failures = []
-    for start in range(0, len(paths), 50):  # bounded command lines
-        chunk = paths[start:start + 50]
+    for start in range(0, len(paths), 50 if together else 1):  # bounded command lines
+        chunk = paths[start:start + (50 if together else 1)]
         run = subprocess.run([tool, *[str(p) for _, p in chunk]], capture_output=True, text=True, timeout=300)
-        if run.returncode != 0:
-            for name, p in chunk:
-                one = subprocess.run([tool, str(p)], capture_output=True, text=True, timeout=60)
-                if one.returncode != 0:
-                    failures.append(f"{name}: {one.stdout[-800:]}")
+        if run.returncode == 0:
+            continue
+        for name, p in chunk:
+            one = run if len(chunk) == 1 else subprocess.run([tool, str(p)], capture_output=True, text=True, timeout=60)
+            if one.returncode != 0:
+                failures.append(f"{name}: {(one.stdout + one.stderr)[-800:]}")
     return failures
 
 
 @pytest.mark.parametrize("dialect", ["glsl", "essl"])
 def test_every_library_file_printed_compiles(modules, dialect, tmp_path):
     printer = GlslPrinter(dialect)
-    every = macros(modules)
+    every = feature_macros(modules)
+    assert len(every) >= 10
     units = {}
     for path in SOURCES:
         units[f"{path} (no features)"] = glsl_unit(path, modules, printer, [])
         units[f"{path} (every feature)"] = glsl_unit(path, modules, printer, every)
     assert len(units) == 2 * len(SOURCES) >= 200
-    failures = compile_all(units, tmp_path)
+    failures = rejected(tool_path("glslangValidator"), units, "frag", tmp_path, together=True)
     assert not failures, f"{len(failures)} of {len(units)} rejected:\n" + "\n".join(failures[:5])
+
+
+def test_every_library_file_printed_as_wgsl_validates(modules, tmp_path):
+    functions = [n for m in modules.values() for item in m.items for n in ir.walk(item) if type(n) is ir.Function]
+    names = function_names(functions)
+    every = feature_macros(modules)
+    units = {}
+    for defined, label in ((DEFINED, "no features"), (DEFINED | set(every), "every feature")):
+        printer = WgslPrinter(names, defined=defined)
+        for path in SOURCES:
+            units[f"{path} ({label})"] = wgsl_unit(path, modules, printer)
+    failures = rejected(tool_path("naga"), units, "wgsl", tmp_path, together=False)
+    assert not failures, f"{len(failures)} of {len(units)} rejected:\n" + "\n".join(failures[:5])
+
+
+def test_overloads_are_spelled_apart_whatever_the_order(modules):
+    functions = [n for m in modules.values() for item in m.items for n in ir.walk(item) if type(n) is ir.Function]
+    names = function_names(functions)
+    assert names == function_names(list(reversed(functions)))
+    assert len(set(names.values())) == len(names)  # one WGSL name per overload
+    overloads = sorted(key for key in names if key.startswith("mx_sqr("))
+    assert len(overloads) >= 2 and all(names[key].startswith("mx_sqr_") for key in overloads)
+    assert names["mx_mix_bsdf(ClosureData,BSDF,BSDF,float,BSDF)"] == "mx_mix_bsdf"  # one of its name: kept
 
 
 # -- precedence and round trips ---------------------------------------------------------------------
@@ -162,12 +213,12 @@ def test_wgsl_parentheses_where_its_grammar_needs_them(expr, text):
     assert WgslPrinter().expression(expr) == text
 
 
-def test_printed_library_parses_back_to_the_same_ir(modules):
+def test_printed_library_parses_back_to_the_same_ir():
     """Every library file printed as GLSL, parsed again: the same items (comments, sections,
     brace-less bodies and all)."""
     printer = GlslPrinter("glsl")
     differ = []
-    for path, module in modules.items():
+    for path, module in parsed().items():
         text = "\n".join(line for item in module.items for line in [*printer.item(item), ""])
         again = parse_module(path, text)
         if not same(again.items, module.items):

@@ -10,7 +10,8 @@ wrap at 110 columns (targets/printing.py).
 """
 from ...code import ir
 from ...errors import ShaderGenError
-from ..printing import INDENT, WIDTH, arguments, array_parts, comment_lines, end_column, scalar_of, with_trailing
+from ...code.types import array_element, is_array, scalar_of
+from ..printing import INDENT, WIDTH, arguments, comment_lines, end_column, with_trailing
 from . import _float
 
 # Binary operators' precedence, GLSL 4.00 section 5.1 (higher binds tighter); all left-associative.
@@ -259,9 +260,8 @@ class GlslPrinter:
 
     def declarator(self, ir_type: str, name: str) -> str:
         """`T name`, an array `T name[N]` as the library sources write it."""
-        array = array_parts(ir_type)
-        if array is not None:
-            return f"{array[0]} {name}[{array[1]}]"
+        if is_array(ir_type):  # the size as written: a number, or a constant's name before checking
+            return f"{array_element(ir_type)} {name}{ir_type[ir_type.rindex('['):]}"
         return f"{ir_type} {name}"
 
     def body(self, block, depth: int, lines: list[str]) -> None:

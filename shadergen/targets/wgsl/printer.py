@@ -15,8 +15,8 @@ What has no WGSL form raises ShaderGenError("unsupported_node", ...).
 from ...code import ir
 from ...errors import ShaderGenError
 from ..glsl.printer import literal_text
-from ..printing import (INDENT, WIDTH, arguments, array_parts, comment_lines, end_column, is_matrix, scalar_of,
-                        size_of, vector_of, with_trailing)
+from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
+from ..printing import INDENT, WIDTH, arguments, comment_lines, end_column, with_trailing
 from .builtins import COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
 
 DEFINED = frozenset({"GL_ES"})
@@ -52,11 +52,10 @@ def safe_name(name: str) -> str:
 
 
 def wgsl_type(ir_type: str) -> str:
-    array = array_parts(ir_type)
-    if array is not None:
-        if not array[1]:
+    if is_array(ir_type):
+        if array_size(ir_type) is None:
             raise ShaderGenError("unsupported_node", f"no WGSL form for an array of unknown size ({ir_type})")
-        return f"array<{wgsl_type(array[0])}, {array[1]}>"
+        return f"array<{wgsl_type(array_element(ir_type))}, {array_size(ir_type)}>"
     if ir_type == "sampler2D":
         return "texture_2d<f32>"
     return WGSL_TYPES.get(ir_type, ir_type)
@@ -93,18 +92,19 @@ def helpers(items) -> list[str]:
     return [line for name, text in HELPER_FUNCTIONS.items() if name in wanted for line in [*text.splitlines(), ""]]
 
 
-def resolve_sections(stmts) -> list:
-    """Statements (or items) with their macro sections replaced by the side WGSL takes."""
+def resolve_sections(stmts, defined) -> list:
+    """Statements (or items) with their macro sections replaced by the side WGSL takes (`defined`:
+    the macros taken as defined)."""
     out = []
     for s in stmts:
         if type(s) is ir.Section:
-            out.extend(resolve_sections(s.body if (s.macro in DEFINED) == s.defined else (s.other or [])))
+            out.extend(resolve_sections(s.body if (s.macro in defined) == s.defined else (s.other or []), defined))
         else:
             out.append(s)
     return out
 
 
-def else_chain(parts):
+def else_chain(parts, defined):
     """What follows an `else` as one statement: sections resolved, an `#ifdef X else ... #endif`
     after an `else if` attached to that `if` as the preprocessor would."""
     if not parts:
@@ -114,13 +114,13 @@ def else_chain(parts):
         return head
     if type(head) is not ir.If:
         raise unsupported("several else branches of one if", head)
-    after = [] if head.other is None else else_parts(head.other)
-    return ir.replace(head, other=ir.Block([else_chain(after + rest)], False))
+    after = [] if head.other is None else else_parts(head.other, defined)
+    return ir.replace(head, other=ir.Block([else_chain(after + rest, defined)], False))
 
 
-def else_parts(other) -> list:
+def else_parts(other, defined) -> list:
     if type(other) is ir.Block and not other.scoped:
-        return resolve_sections(other.body)
+        return resolve_sections(other.body, defined)
     return [other]
 
 
@@ -149,12 +149,14 @@ def assigned_roots(body) -> set[str]:
 
 class WgslPrinter:
     """`item`, `statements` and `expression` of typed IR as WGSL. `function_names`: Function.key ->
-    WGSL name (function_names() makes one); `spell(name_node)`: how a Name is written."""
-    __slots__ = ("function_names", "spell")
+    WGSL name (function_names() makes one); `spell(name_node)`: how a Name is written; `defined`:
+    the macros whose sections count as defined where a section is still in the IR."""
+    __slots__ = ("function_names", "spell", "defined")
 
-    def __init__(self, function_names: dict[str, str] | None = None, spell=None):
+    def __init__(self, function_names: dict[str, str] | None = None, spell=None, defined=DEFINED):
         self.function_names = function_names or {}
         self.spell = spell
+        self.defined = frozenset(defined)
 
     def expression(self, expr) -> str:
         writer = _Writer(self, frozenset())
@@ -171,7 +173,7 @@ class WgslPrinter:
     def item(self, item) -> list[str]:
         cls = type(item)
         if cls is ir.Section:
-            return [line for x in resolve_sections([item]) for line in self.item(x)]
+            return [line for x in resolve_sections([item], self.defined) for line in self.item(x)]
         lines = comment_lines(item.comment) if getattr(item, "comment", None) and cls is not ir.Comment else []
         writer = _Writer(self, frozenset())
         if cls is ir.Function:
@@ -185,7 +187,7 @@ class WgslPrinter:
             # A constant array indexed at run time is a value naga copies into a local at every
             # index (SPIR-V cannot index a value), which makes drivers compile for minutes; a
             # private variable is indexed in place.
-            keyword = "var<private>" if array_parts(ir_type) else "const"
+            keyword = "var<private>" if is_array(ir_type) else "const"
             head = f"{keyword} {safe_name(item.name)}: {wgsl_type(ir_type)} = "
             value = writer.converted(item.value, ir_type)
             lines.extend((head + writer.render(value, len(head), 0) + ";").split("\n"))
@@ -204,9 +206,8 @@ class WgslPrinter:
     @staticmethod
     def sized(ir_type: str, value) -> str:
         """`T[]` sized by its constructor's arguments."""
-        array = array_parts(ir_type)
-        if array is not None and not array[1] and type(value) is ir.Construct:
-            return f"{array[0]}[{len(value.args)}]"
+        if is_array(ir_type) and array_size(ir_type) is None and type(value) is ir.Construct:
+            return f"{array_element(ir_type)}[{len(value.args)}]"
         return ir_type
 
     def name_of(self, name: str) -> str:
@@ -294,7 +295,7 @@ class _Writer:
             return self.render(self.construct(e), column, indent)
         if cls is ir.Field:
             base = self.operand(e.base, column, indent, self.klass(e.base) != PRIMARY)
-            return base + "." + (e.name if e.swizzle or is_vector(e.base.type) else safe_name(e.name))
+            return base + "." + (e.name if e.swizzle else safe_name(e.name))
         if cls is ir.Index:
             base = self.operand(e.base, column, indent, self.klass(e.base) != PRIMARY)
             at = None if column is None else end_column(column, base) + 1
@@ -340,7 +341,7 @@ class _Writer:
             return e
         left, right = e.left, e.right
         sa, sb = scalar_of(ta), scalar_of(tb)
-        if sa and sb and sa != sb and "bool" not in (sa, sb):
+        if sa and sb and sa != sb and "bool" not in (sa, sb) and not (is_matrix(ta) or is_matrix(tb)):
             wider = "float" if "float" in (sa, sb) else "uint"
             if sa != wider:
                 left = ir.Convert(vector_of(wider, size_of(ta)), left, implicit=True)
@@ -357,7 +358,7 @@ class _Writer:
             column = ir.Construct(f"vec{n}", [scalar])
             spread = ir.Construct(matrix, [column] * n)
             return ir.replace(e, left=spread if left is scalar else left, right=spread if right is scalar else right)
-        if e.op in ("==", "!=") and e.type == "bool" and size_of(ta) > 1:
+        if e.op in ("==", "!=") and e.type == "bool" and is_vector(ta):
             reduce = "all" if e.op == "==" else "any"
             return Native(reduce, [ir.replace(e, left=left, right=right, type=vector_of("bool", size_of(ta)))],
                           type="bool")
@@ -392,10 +393,9 @@ class _Writer:
         """A GLSL constructor as WGSL's: arguments converted to the component type, a matrix's
         diagonal or the top-left of a larger matrix, an array's element type and size."""
         t, args = e.type, e.args
-        array = array_parts(t)
-        if array is not None:
-            element = array[0]
-            size = array[1] or str(len(args))
+        if is_array(t):
+            element = array_element(t)
+            size = array_size(t) or len(args)
             return Native(f"array<{wgsl_type(element)}, {size}>", [self.converted(a, element) for a in args], type=t)
         scalar = scalar_of(t)
         if scalar is None:  # a struct: members in order
@@ -423,7 +423,7 @@ class _Writer:
             if arg.type == t:
                 return arg
             return self.conversion(arg, t, e) if arg.type is not None else Native(wgsl_type(t), [arg], type=t)
-        if len(args) == 1 and types[0] is not None and size_of(types[0]) > size_of(t):  # vec3(v4): its first components
+        if len(args) == 1 and types[0] is not None and is_vector(types[0]) and size_of(types[0]) > size_of(t):  # vec3(v4): its first components
             return self.converted(ir.Field(args[0], "xyzw"[:size_of(t)], type=vector_of(scalar_of(types[0]), size_of(t)),
                                            swizzle=True), t)
         return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == scalar else
@@ -533,7 +533,7 @@ class _Writer:
 
     # -- statements --------------------------------------------------------------------------------
     def statements(self, stmts, depth: int, lines: list[str]) -> None:
-        for s in resolve_sections(stmts):
+        for s in resolve_sections(stmts, self.printer.defined):
             self.statement(s, depth, lines)
 
     def statement(self, s, depth: int, lines: list[str]) -> None:
@@ -555,14 +555,14 @@ class _Writer:
             condition = self.render(s.condition, None, 0) if s.condition is not None else ""
             update = self.simple(s.update, None, 0) if s.update is not None else ""
             self.header_done(s)
-            self.braced(with_trailing(f"{pad}for ({init}; {condition}; {update})", s.comment), s.body, depth, lines)
+            self.braced(f"{pad}for ({init}; {condition}; {update})", s.body, depth, lines, s.comment)
         elif cls is ir.While:
             condition = self.render(s.condition, None, 0)
             self.header_done(s)
-            self.braced(with_trailing(f"{pad}while ({condition})", s.comment), s.body, depth, lines)
+            self.braced(f"{pad}while ({condition})", s.body, depth, lines, s.comment)
         elif cls is ir.Assign and s.op != "=" and s.value is None:
             self.flush(with_trailing(pad + self.step(s) + ";", s.comment), depth, lines)
-        elif cls is ir.Assign and type(s.target) is ir.Field and len(s.target.name) > 1 and is_vector(s.target.base.type):
+        elif cls is ir.Assign and type(s.target) is ir.Field and s.target.swizzle and len(s.target.name) > 1:
             self.swizzle_assign(s, depth, lines)
         elif cls is ir.Return and s.value is not None:
             value = self.render(self.converted(s.value, self.returns), len(pad) + 7, len(pad))
@@ -601,7 +601,7 @@ class _Writer:
         cls = type(s)
         if cls is ir.Declare:
             ir_type = self.printer.sized(s.type, s.init)
-            keyword = "let" if s.const and s.init is not None and not array_parts(ir_type) else "var"
+            keyword = "let" if s.const and s.init is not None and not is_array(ir_type) else "var"
             head = f"{keyword} {self.spelled(ir.Name(s.name, 'local'))}: {wgsl_type(ir_type)}"
             if s.init is None:
                 return head
@@ -653,16 +653,16 @@ class _Writer:
         if s.comment:
             lines[-1] = with_trailing(lines[-1], s.comment)
 
-    def braced(self, opener: str, body, depth: int, lines: list[str]) -> None:
-        """`opener {`, the body, `}`; a brace-less body of one line in the source stays one line."""
+    def braced(self, opener: str, body, depth: int, lines: list[str], comment=None) -> None:
+        """`opener {`, the body, `}`; a brace-less body of one line in the source stays one line.
+        `comment`: the opener's own, after the source's `)` or `else`."""
         inner: list[str] = []
         self.statements(body.body if type(body) is ir.Block else [body], depth + 1, inner)
         if type(body) is ir.Block and not body.scoped and len(inner) == 1 and "//" not in inner[0] \
                 and len(opener) + len(inner[0].strip()) + 6 <= WIDTH:
-            lines.append(f"{opener} {{ {inner[0].strip()} }}")
+            lines.append(with_trailing(f"{opener} {{ {inner[0].strip()} }}", comment))
             return
-        comment = body.comment if type(body) is ir.Block else None
-        lines.append(with_trailing(opener + " {", comment))
+        lines.append(with_trailing(opener + " {", comment or (body.comment if type(body) is ir.Block else None)))
         lines.extend(inner)
         lines.append(INDENT * depth + "}")
 
@@ -673,17 +673,14 @@ class _Writer:
             raise unsupported("an out argument of a member or element in an if's condition", s)
         lines.extend(pad + line for line in self.before)
         self.before.clear()
-        self.braced(with_trailing(f"{pad}{prefix}if ({condition})", s.comment), s.then, depth, lines)
+        self.braced(f"{pad}{prefix}if ({condition})", s.then, depth, lines, s.comment)
         if s.other is None:
             return
-        other = else_chain(else_parts(s.other))
+        defined = self.printer.defined
+        other = else_chain(else_parts(s.other, defined), defined)
         if other is None:
             return
         if type(other) is ir.If:
             self.if_chain(other, depth, lines, "else ")
         else:
             self.braced(f"{pad}else", other, depth, lines)
-
-
-def is_vector(ir_type) -> bool:
-    return ir_type is not None and scalar_of(ir_type) is not None and size_of(ir_type) > 1
