@@ -13,6 +13,7 @@ from shadergen.code import ir
 from shadergen.code.check import check_modules
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
+from shadergen.errors import ShaderGenError
 from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
 from shadergen.targets.glsl.printer import GlslPrinter, same
 from shadergen.targets.wgsl.printer import DEFINED, WgslPrinter, function_names, helpers, wgsl_type
@@ -227,10 +228,46 @@ def test_printed_library_parses_back_to_the_same_ir():
 
 
 def test_printing_is_deterministic(modules):
-    printer = GlslPrinter("glsl")
-    first = [printer.item(item) for m in modules.values() for item in m.items]
-    again = [GlslPrinter("glsl").item(item) for m in modules.values() for item in m.items]
-    assert first == again
+    """The same text from another printer, and from items printed in the reverse order."""
+    functions = [n for m in modules.values() for item in m.items for n in ir.walk(item) if type(n) is ir.Function]
+    items = [item for m in modules.values() for item in m.items]
+    for make in (lambda: GlslPrinter("glsl"), lambda: GlslPrinter("essl"), lambda: WgslPrinter(function_names(functions))):
+        first = [make().item(item) for item in items]
+        printer = make()
+        backwards = [printer.item(item) for item in reversed(items)]
+        assert first == list(reversed(backwards))
+
+
+def test_what_wgsl_cannot_say_is_an_unsupported_node_error_naming_it(modules):
+    texture = ir.Name("tex", "param", type="sampler2D")
+    uv = ir.Name("uv", "local", type="vec2")
+    query = ir.Call("textureQueryLod", [texture, uv], type="vec2", where=("lib/x.glsl", 3, 7), builtin=True)
+    with pytest.raises(ShaderGenError) as caught:
+        WgslPrinter().expression(query)
+    assert caught.value.code == "unsupported_node" and "textureQueryLod" in caught.value.message
+    assert caught.value.where == "lib/x.glsl:3:7"
+    placeholder = ir.Placeholder("in", type="float")
+    for printer in (GlslPrinter("glsl"), WgslPrinter()):
+        with pytest.raises(ShaderGenError) as caught:
+            printer.expression(placeholder)
+        assert caught.value.code == "unsupported_node" and "laceholder" in caught.value.message
+
+
+def test_wgsl_out_parameters_pointers_and_copies():
+    """An out parameter is a pointer (`*r` read, `&a` passed), an assigned in parameter a copy,
+    a member passed as an out argument goes through a variable copied back after the call."""
+    writes = ir.Function("void", "mx_write", [ir.Param("in", "float", "k", False), ir.Param("out", "float", "r", False)],
+                         ir.Block([ir.Assign("*=", ir.Name("k", "param", type="float"), ir.Literal(2.0, "2.0", type="float")),
+                                   ir.Assign("=", ir.Name("r", "param", type="float"), ir.Name("k", "param", type="float"))],
+                                  True))
+    v = ir.Name("v", "local", type="vec3")
+    call = ir.Call("mx_write", [ir.Literal(1.0, "1.0", type="float"), ir.Field(v, "x", type="float", swizzle=True)],
+                   type="void", callee=writes)
+    printer = WgslPrinter(function_names([writes]))
+    assert printer.item(writes) == ["fn mx_write(k__in: f32, r: ptr<function, f32>) {", "    var k: f32 = k__in;",
+                                    "    k *= 2.0;", "    *r = k;", "}"]
+    assert printer.statements([ir.ExprStatement(call)], 1) == [
+        "    var written_0: f32 = v.x;", "    mx_write(1.0, &written_0);", "    v.x = written_0;"]
 
 
 def test_long_argument_lists_wrap_aligned_after_the_parenthesis():

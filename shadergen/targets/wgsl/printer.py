@@ -12,6 +12,8 @@ functions (`helpers()`), which the assembler writes once. Sections of macros sti
 the side WGSL stands on: GL_ES defined (a web target, as ESSL), every other macro undefined.
 What has no WGSL form raises ShaderGenError("unsupported_node", ...).
 """
+from functools import lru_cache
+
 from ...code import ir
 from ...errors import ShaderGenError
 from ..glsl.printer import literal_text
@@ -51,6 +53,7 @@ def safe_name(name: str) -> str:
     return f"{name}_" if name in WGSL_RESERVED else name
 
 
+@lru_cache(maxsize=None)
 def wgsl_type(ir_type: str) -> str:
     if is_array(ir_type):
         if array_size(ir_type) is None:
@@ -119,9 +122,11 @@ def else_chain(parts, defined):
 
 
 def else_parts(other, defined) -> list:
-    if type(other) is ir.Block and not other.scoped:
-        return resolve_sections(other.body, defined)
-    return [other]
+    """The else clauses `other` stands for, its sections resolved (none where all of them drop
+    theirs)."""
+    if type(other) is not ir.Block or other.scoped or not any(type(s) is ir.Section for s in other.body):
+        return [other]
+    return [part for s in resolve_sections(other.body, defined) for part in else_parts(s, defined)]
 
 
 class Native(ir.Expr):
@@ -132,19 +137,36 @@ class Native(ir.Expr):
 
 def assigned_roots(body) -> set[str]:
     """Names a body assigns or passes as an out argument (WGSL parameters are immutable)."""
-    names = set()
-    for node in ir.walk(body):
-        targets = []
-        if type(node) is ir.Assign:
-            targets.append(node.target)
-        elif type(node) is ir.Call and node.callee is not None:
-            targets.extend(a for p, a in zip(node.callee.params, node.args) if p.qualifier != "in")
-        for t in targets:
-            while type(t) in (ir.Field, ir.Index):
-                t = t.base
-            if type(t) is ir.Name:
-                names.add(t.name)
+    names: set[str] = set()
+    _assigned(body, names)
     return names
+
+
+def _assigned(node, names: set) -> None:
+    cls = type(node)
+    if cls is ir.Assign:
+        _add_root(node.target, names)
+    elif cls is ir.Call and node.callee is not None:
+        for p, a in zip(node.callee.params, node.args):
+            if p.qualifier != "in":
+                _add_root(a, names)
+    elif cls is ir.Name or cls is ir.Literal:
+        return
+    for field in cls.FIELDS:  # (ir.walk, but without a list per node: this runs per function printed)
+        value = getattr(node, field)
+        if isinstance(value, ir.Node):
+            _assigned(value, names)
+        elif type(value) is list or type(value) is tuple:
+            for v in value:
+                if isinstance(v, ir.Node):
+                    _assigned(v, names)
+
+
+def _add_root(target, names: set) -> None:
+    while type(target) is ir.Field or type(target) is ir.Index:
+        target = target.base
+    if type(target) is ir.Name:
+        names.add(target.name)
 
 
 class WgslPrinter:
@@ -235,7 +257,7 @@ class WgslPrinter:
         arrow = "" if f.returns == "void" else f" -> {wgsl_type(f.returns)}"
         signature = head + arguments(lambda text, column, indent: text, parts, len(head), 0) + ")" + arrow + " {"
         lines = [*signature.split("\n"), *copies]
-        _Writer(self, pointers, f.returns).statements(body, 1, lines)
+        _Writer(self, pointers, f.returns, assigned).statements(body, 1, lines)
         lines.append("}")
         return lines
 
@@ -244,12 +266,13 @@ class _Writer:
     """Prints one function's statements: knows its pointer parameters, and gathers the lines a
     statement needs before and after it (copies through which a member is passed as an out
     argument: naga's SPIR-V writer in wgpu 0.32 panics on a pointer into a composite)."""
-    __slots__ = ("printer", "pointers", "returns", "before", "after", "temporaries")
+    __slots__ = ("printer", "pointers", "returns", "assigned", "before", "after", "temporaries")
 
-    def __init__(self, printer: WgslPrinter, pointers, returns=None):
+    def __init__(self, printer: WgslPrinter, pointers, returns=None, assigned=None):
         self.printer = printer
         self.pointers = pointers
         self.returns = returns
+        self.assigned = assigned  # names the body assigns (None: unknown, every local a var)
         self.before: list[str] = []
         self.after: list[str] = []
         self.temporaries = 0
@@ -601,7 +624,10 @@ class _Writer:
         cls = type(s)
         if cls is ir.Declare:
             ir_type = self.printer.sized(s.type, s.init)
-            keyword = "let" if s.const and s.init is not None and not is_array(ir_type) else "var"
+            # a local nothing assigns is a `let` (an array stays a variable: indexed at run time,
+            # a value would be copied)
+            constant = s.const or (self.assigned is not None and s.name not in self.assigned)
+            keyword = "let" if constant and s.init is not None and not is_array(ir_type) else "var"
             head = f"{keyword} {self.spelled(ir.Name(s.name, 'local'))}: {wgsl_type(ir_type)}"
             if s.init is None:
                 return head
