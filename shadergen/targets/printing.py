@@ -33,6 +33,22 @@ def end_column(start: int, text: str) -> int:
     return start + len(text) if newline < 0 else len(text) - newline - 1
 
 
+def binary_text(render_left, op: str, render_right, column, indent: int) -> str:
+    """`left op right` for an expression starting at `column` (`render_left(column, indent)` and
+    `render_right` render the operands, parenthesised as they need). Too long for its line, it
+    breaks after the operator where both operands then fit, the right one aligned with the
+    expression's start (not too far right); else its operands wrap inside."""
+    if column is None:
+        return f"{render_left(None, indent)} {op} {render_right(None, indent)}"
+    left, right = render_left(None, indent), render_right(None, indent)
+    if column + len(left) + len(op) + 2 + len(right) <= WIDTH:
+        return f"{left} {op} {right}"
+    if column <= HANGING and column + len(left) + len(op) + 1 <= WIDTH and column + len(right) <= WIDTH:
+        return f"{left} {op}\n{' ' * column}{right}"
+    left = render_left(column, indent)
+    return f"{left} {op} {render_right(end_column(column, left) + len(op) + 2, indent)}"
+
+
 def arguments(render, args, column: int, indent: int) -> str:
     """The arguments of a call whose `(` ends at `column`, in a statement indented `indent`
     columns: on the line while they fit, else on the next, aligned after the `(`."""

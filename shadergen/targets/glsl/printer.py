@@ -11,7 +11,7 @@ wrap at 110 columns (targets/printing.py).
 from ...code import ir
 from ...errors import ShaderGenError
 from ...code.types import array_element, is_array, scalar_of
-from ..printing import INDENT, WIDTH, arguments, comment_lines, end_column, with_trailing
+from ..printing import HANGING, INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
 from . import _float
 
 # Binary operators' precedence, GLSL 4.00 section 5.1 (higher binds tighter); all left-associative.
@@ -138,11 +138,10 @@ class GlslPrinter:
                 return flat
         if cls is ir.Binary:
             p = BINARY[e.op]
-            left = self.operand(e.left, column, indent, self.precedence(e.left) < p or self.mixed(e, e.left))
-            op = f" {e.op} "
-            right_at = None if column is None else end_column(column, left) + len(op)
-            right = self.operand(e.right, right_at, indent, self.precedence(e.right) <= p or self.mixed(e, e.right))
-            return left + op + right
+            left = self.precedence(e.left) < p or self.mixed(e, e.left)
+            right = self.precedence(e.right) <= p or self.mixed(e, e.right)
+            return binary_text(lambda at, indent: self.operand(e.left, at, indent, left), e.op,
+                               lambda at, indent: self.operand(e.right, at, indent, right), column, indent)
         if cls is ir.Unary:
             inner = self.precedence(e.operand) <= UNARY  # also `-(-x)`: `--x` is a decrement
             return e.op + self.operand(e.operand, None if column is None else column + len(e.op), indent, inner)
@@ -161,7 +160,13 @@ class GlslPrinter:
             at = None if column is None else end_column(column, condition) + 3
             if_true = self.operand(e.if_true, at, indent, type(e.if_true) is ir.Select)
             at = None if column is None else end_column(at, if_true) + 3
-            return f"{condition} ? {if_true} : {self.render(e.if_false, at, indent)}"
+            if_false = self.render(e.if_false, at, indent)
+            if column is not None and "\n" not in if_true + if_false and at + len(if_false) > WIDTH:
+                # too long: the other branch on a line of its own, its `:` under the `?`
+                question = end_column(column, condition) + 1
+                if question <= HANGING and question + 2 + len(if_false) <= WIDTH:
+                    return f"{condition} ? {if_true}\n{' ' * question}: {if_false}"
+            return f"{condition} ? {if_true} : {if_false}"
         if cls is ir.Convert:
             if not self.written(e):
                 return self.render(e.operand, column, indent)

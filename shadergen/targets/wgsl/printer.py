@@ -18,7 +18,7 @@ from ...code import ir
 from ...errors import ShaderGenError
 from ..glsl.printer import literal_text
 from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
-from ..printing import INDENT, WIDTH, arguments, comment_lines, end_column, with_trailing
+from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
 from .builtins import COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
 
 DEFINED = frozenset({"GL_ES"})
@@ -350,10 +350,9 @@ class _Writer:
             left_ok, right_ok = _TIGHT | ({BITS} if type(e.left) is ir.Binary and e.left.op == e.op else set()), _TIGHT
         else:
             left_ok, right_ok = OPERANDS[kind]
-        left = self.operand(e.left, column, indent, self.klass(e.left) not in left_ok)
-        op = f" {e.op} "
-        at = None if column is None else end_column(column, left) + len(op)
-        return left + op + self.operand(e.right, at, indent, self.klass(e.right) not in right_ok)
+        left, right = self.klass(e.left) not in left_ok, self.klass(e.right) not in right_ok
+        return binary_text(lambda at, indent: self.operand(e.left, at, indent, left), e.op,
+                           lambda at, indent: self.operand(e.right, at, indent, right), column, indent)
 
     def binary_operands(self, e: ir.Binary):
         """GLSL's binary operators as WGSL takes them: scalar kinds made equal, a scalar added to
@@ -446,9 +445,11 @@ class _Writer:
             if arg.type == t:
                 return arg
             return self.conversion(arg, t, e) if arg.type is not None else Native(wgsl_type(t), [arg], type=t)
-        if len(args) == 1 and types[0] is not None and is_vector(types[0]) and size_of(types[0]) > size_of(t):  # vec3(v4): its first components
-            return self.converted(ir.Field(args[0], "xyzw"[:size_of(t)], type=vector_of(scalar_of(types[0]), size_of(t)),
-                                           swizzle=True), t)
+        if len(args) == 1 and types[0] is not None and is_vector(types[0]):
+            arg = args[0]
+            if size_of(types[0]) > size_of(t):  # vec3(v4): its first components
+                arg = ir.Field(arg, "xyzw"[:size_of(t)], type=vector_of(scalar_of(types[0]), size_of(t)), swizzle=True)
+            return self.converted(arg, t)  # vec2(ivec2): the conversion itself
         return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == scalar else
                                      self.conversion(a, vector_of(scalar, size_of(ta))) for a, ta in zip(args, types)],
                       type=t)
