@@ -9,13 +9,13 @@ nothing implicitly, so there a conversion between scalar kinds is written. Long 
 wrap at 110 columns (targets/printing.py).
 """
 from ...code import ir
-from ...errors import ShaderGenError
 from ...code.types import array_element, is_array, scalar_of
+from ...errors import ShaderGenError
 from ..printing import HANGING, INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
 from . import _float
 
 # Binary operators' precedence, GLSL 4.00 section 5.1 (higher binds tighter); all left-associative.
-BINARY = {"||": 2, "^^": 3, "&&": 4, "|": 5, "^": 6, "&": 7, "==": 8, "!=": 8, "<": 9, ">": 9, "<=": 9, ">=": 9,
+BINARY = {"||": 2, "&&": 4, "|": 5, "^": 6, "&": 7, "==": 8, "!=": 8, "<": 9, ">": 9, "<=": 9, ">=": 9,
           "<<": 10, ">>": 10, "+": 11, "-": 11, "*": 12, "/": 12, "%": 12}
 SELECT, UNARY, PRIMARY = 1, 13, 15
 
@@ -148,7 +148,7 @@ class GlslPrinter:
         if cls is ir.Call:
             return self.call(e.name, e.args, column, indent)
         if cls is ir.Construct:
-            return self.call(self.type_name(e.type), e.args, column, indent)
+            return self.call(e.type, e.args, column, indent)  # IR types are GLSL's spellings
         if cls is ir.Field:
             return self.operand(e.base, column, indent, self.precedence(e.base) < PRIMARY) + "." + e.name
         if cls is ir.Index:
@@ -172,7 +172,7 @@ class GlslPrinter:
                 return self.render(e.operand, column, indent)
             if type(e.operand) is ir.Literal and e.type == "float" and isinstance(e.operand.value, int):
                 return _float(float(e.operand.value))
-            return self.call(self.type_name(e.type), [e.operand], column, indent)
+            return self.call(e.type, [e.operand], column, indent)
         raise unsupported(f"a {cls.__name__} expression", e)
 
     @staticmethod
@@ -190,10 +190,6 @@ class GlslPrinter:
         if column is None:
             return name + "(" + ", ".join([self.render(a, None, indent) for a in args]) + ")"
         return name + "(" + arguments(self.render, args, column + len(name) + 1, indent) + ")"
-
-    def type_name(self, ir_type: str) -> str:
-        """A type in a constructor: IR types are spelled as GLSL spells them (`float[3]` too)."""
-        return ir_type
 
     # -- statements --------------------------------------------------------------------------------
     def statements(self, stmts, depth: int) -> list[str]:

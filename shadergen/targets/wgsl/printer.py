@@ -215,7 +215,7 @@ class WgslPrinter:
             lines.extend((head + writer.render(value, len(head), 0) + ";").split("\n"))
         elif cls is ir.Global:
             if item.kind != "builtin":  # the target's own variable: nothing to declare
-                head = f"var<private> {self.name_of(item.name)}: {wgsl_type(self.sized(item.type, item.init))}"
+                head = f"var<private> {safe_name(item.name)}: {wgsl_type(self.sized(item.type, item.init))}"
                 if item.init is not None:
                     head += " = " + writer.render(writer.converted(item.init, item.type), len(head) + 3, 0)
                 lines.extend((head + ";").split("\n"))
@@ -231,9 +231,6 @@ class WgslPrinter:
         if is_array(ir_type) and array_size(ir_type) is None and type(value) is ir.Construct:
             return f"{array_element(ir_type)}[{len(value.args)}]"
         return ir_type
-
-    def name_of(self, name: str) -> str:
-        return safe_name(name)
 
     def function(self, f: ir.Function) -> list[str]:
         body = f.body.body if type(f.body) is ir.Block else f.body
