@@ -42,14 +42,16 @@ SWIZZLE_SETS = ("xyzw", "rgba", "stpq")
 
 class Symbols:
     """What code of one module sees: types (structs and aliases of the whole set), functions by
-    name (name -> key -> Function, in the order met), values (name -> (type, kind))."""
-    __slots__ = ("structs", "aliases", "functions", "values")
+    name (name -> key -> Function, in the order met), values (name -> (type, kind)); `items`,
+    filled for the whole library only (code/library.py): structs, constants and globals by name."""
+    __slots__ = ("structs", "aliases", "functions", "values", "items")
 
     def __init__(self, structs, aliases, functions=None, values=None):
         self.structs: dict[str, list[tuple[str, str]]] = structs
         self.aliases: dict[str, str] = aliases
         self.functions: dict[str, dict[str, ir.Function]] = functions if functions is not None else {}
         self.values: dict[str, tuple[str, str]] = values if values is not None else {}
+        self.items: dict[str, ir.Item] = {}
 
     def merged(self, other: "Symbols") -> None:
         for name, family in other.functions.items():
@@ -107,14 +109,11 @@ class Checker:
             return e
         if implicitly_converts(t, to):
             return ir.Convert(to, e, implicit=True, where=e.where)
-        raise self.error(node or e, f"a {t} where a {to} is expected")
+        raise self.error(e if e.where else node, f"a {t} where a {to} is expected")
 
     # -- expressions -------------------------------------------------------------------------------
     def expr(self, e: ir.Expr) -> ir.Expr:
-        method = getattr(self, "expr_" + type(e).__name__)
-        out = method(e)
-        assert out.type is not None, e
-        return out
+        return getattr(self, "expr_" + type(e).__name__)(e)
 
     def expr_Literal(self, e):
         if isinstance(e.value, bool):
@@ -140,7 +139,7 @@ class Checker:
             e.type, e.kind = self.symbols.values[e.name]
             return e
         if e.name in self.externals:
-            e.type, e.kind = self.externals[e.name], "uniform"
+            e.type, e.kind = self.resolve_type(self.externals[e.name], e), "uniform"
             return e
         if e.name in BUILTIN_VARIABLES:
             e.type, e.kind = BUILTIN_VARIABLES[e.name], "builtin"
@@ -264,7 +263,7 @@ class Checker:
                 e.if_false = self.convert(e.if_false, a)
             else:
                 raise self.error(e, f"'?:' between a {a} and a {b}")
-        e.type = e.if_false.type if a != b and implicitly_converts(a, b) else e.if_true.type
+        e.type = e.if_true.type
         return e
 
     def expr_Convert(self, e):
@@ -667,10 +666,21 @@ def library_symbols(per_module: dict[str, Symbols]) -> Symbols:
     return out if out is not None else Symbols({}, {})
 
 
-def check_expression(expr: ir.Expr, placeholder_types: dict[str, str], symbols: Symbols,
-                     externals: dict[str, str] | None = None, where: str = "inline expression") -> ir.Expr:
-    """A typed copy of an inline template (`expr` is left as it is), its placeholders of the
-    given IR types. code/library.py memoises it per (template, types)."""
-    checker = Checker(where, symbols, externals or {})
-    checker.placeholders = placeholder_types
-    return checker.expr(copy.deepcopy(expr))
+MAX_TYPED = 65536  # typed templates a library keeps (their keys come from requests)
+
+
+def check_expression(expr: ir.Expr, placeholder_types: dict[str, str], library) -> ir.Expr:
+    """A typed copy of an inline template (`expr` itself is left untyped), its placeholders of
+    the given IR types, against `library` (a code/library.py CodeLibrary: its `symbols` and
+    `externals`). Memoised in `library.typed` per (template, types): it runs per request, and the
+    result is shared (build new nodes rather than change it)."""
+    memo_key = (expr, tuple(sorted(placeholder_types.items())))
+    found = library.typed.get(memo_key)
+    if found is None:
+        where = expr.where[0] if expr.where else "inline expression"
+        checker = Checker(where, library.symbols, library.externals)
+        checker.placeholders = placeholder_types
+        found = checker.expr(copy.deepcopy(expr))
+        if len(library.typed) < MAX_TYPED:
+            library.typed[memo_key] = found
+    return found

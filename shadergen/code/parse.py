@@ -44,7 +44,8 @@ GLSL_TYPES = frozenset({
     "void", "bool", "int", "uint", "float", "vec2", "vec3", "vec4", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3",
     "uvec4", "bvec2", "bvec3", "bvec4", "mat2", "mat3", "mat4", "sampler2D"})
 BINARY = (("||",), ("&&",), ("|",), ("^",), ("&",), ("==", "!="), ("<", ">", "<=", ">="), ("<<", ">>"),
-          ("+", "-"), ("*", "/", "%"))
+          ("+", "-"), ("*", "/", "%"))  # loosest first
+PRECEDENCE = {op: level for level, ops in enumerate(BINARY) for op in ops}
 ASSIGN = frozenset({"=", "+=", "-=", "*=", "/=", "%=", "&=", "|=", "^=", "<<=", ">>="})
 QUALIFIERS = frozenset({"in", "out", "inout", "const"})
 DIRECTIVE = re.compile(r"#\s*(\w*)\s*(.*)$")
@@ -52,11 +53,21 @@ INCLUDE = re.compile(r'"([^"]+)"$')
 DEFINE = re.compile(r"(\w+)(?:\s+(.*))?$")
 SECTION_OPEN = frozenset({"ifdef", "ifndef"})
 SECTION_CLOSE = frozenset({"else", "endif"})
+# Bounds on what a source may nest, so that the recursive parser, checker, printers and copies stay
+# well inside Python's recursion limit (a document's own inline expression is read with these
+# too): parentheses, calls and blocks inside each other, and the height of the tree it makes
+# (`a + a + ... + a` is read by a loop but makes a tree as high as it is long). The library's
+# highest expression is 11 nodes high.
+MAX_NESTING = 40
+MAX_HEIGHT = 128
 
 
 def parse_module(path: str, text: str) -> ir.Module:
     """One library source file as an ir.Module (untyped: code/check.py types it)."""
-    return Parser(path, tokenize(path, text)).module()
+    module = Parser(path, tokenize(path, text)).module()
+    for item in module.items:
+        check_height(item, path)
+    return module
 
 
 def parse_expression(text: str, where: str) -> ir.Expr:
@@ -65,7 +76,19 @@ def parse_expression(text: str, where: str) -> ir.Expr:
     expr = parser.expression()
     if parser.peek().kind != "eof":
         raise parser.error(f"unexpected '{parser.peek().text}' after the expression")
+    check_height(expr, where)
     return expr
+
+
+def check_height(node: ir.Node, path: str) -> None:
+    """Refuses a tree higher than MAX_HEIGHT (walked without recursion)."""
+    stack = [(node, 1)]
+    while stack:
+        n, height = stack.pop()
+        if height > MAX_HEIGHT:
+            where = n.where or (path, 1, 1)
+            raise source_error(where[0], where[1], where[2], f"code nested more than {MAX_HEIGHT} deep")
+        stack.extend((child, height + 1) for child in ir.children(n))
 
 
 def directive(tok: Token) -> tuple[str, str]:
@@ -86,12 +109,16 @@ class Parser:
             else:
                 self.t.append(tok)
         self.i = 0
+        self.last = len(self.t) - 1  # the eof token's index
+        self.claimed: set[int] = set()  # gaps whose trailing comment a statement has taken
+        self.nesting = 0  # levels of expressions and blocks now open (MAX_NESTING)
         # the #endif before a dangling else's clause -> (the token after the clause, the clause)
         self.dangling: dict[int, tuple[int, ir.Block]] = {}
 
     # -- tokens ------------------------------------------------------------------------------------
     def peek(self, k: int = 0) -> Token:
-        return self.t[min(self.i + k, len(self.t) - 1)]
+        i = self.i + k
+        return self.t[i] if i < self.last else self.t[-1]
 
     def next(self) -> Token:
         tok = self.peek()
@@ -153,8 +180,15 @@ class Parser:
         return self.trailing_here()
 
     def trailing_here(self) -> str | None:
+        """The comment after code at the current gap, unless a statement took it already (the
+        innermost of those ending there: `if (c) return;  // x` is the return's)."""
+        if self.i in self.claimed:
+            return None
         texts = [tok.text for tok in self.gaps.get(self.i, ()) if tok.kind == "trailing"]
-        return " ".join(texts) if texts else None
+        if not texts:
+            return None
+        self.claimed.add(self.i)
+        return " ".join(texts)
 
     def item_comment(self, pending: list[Token]) -> list[Token]:
         """The top-level comments above the next token, after `pending` ones: a blank line drops
@@ -167,31 +201,42 @@ class Parser:
             pending = pending + [tok]
         return [] if self.peek().blank else pending
 
+    def nested(self):
+        """One level deeper (an expression, block or prefix operator inside another)."""
+        self.nesting += 1
+        if self.nesting > MAX_NESTING:
+            raise self.error(f"code nested more than {MAX_NESTING} deep")
+
     # -- expressions -------------------------------------------------------------------------------
     def expression(self) -> ir.Expr:
+        self.nested()
         cond = self.binary(0)
         if self.at("?"):
             tok = self.next()
             if_true = self.expression()
             self.expect(":")
-            return ir.Select(cond, if_true, self.expression(), where=self.where(tok))
+            cond = ir.Select(cond, if_true, self.expression(), where=self.where(tok))
+        self.nesting -= 1
         return cond
 
-    def binary(self, level: int) -> ir.Expr:
-        if level == len(BINARY):
-            return self.unary()
-        left = self.binary(level + 1)
-        ops = BINARY[level]
-        while self.peek().kind == "op" and self.peek().text in ops:
-            tok = self.next()
+    def binary(self, loosest: int) -> ir.Expr:
+        """Operators binding at least as tightly as level `loosest` (BINARY), left to right."""
+        left = self.unary()
+        while True:
+            tok = self.peek()
+            level = PRECEDENCE.get(tok.text) if tok.kind == "op" else None
+            if level is None or level < loosest:
+                return left
+            self.next()
             left = ir.Binary(tok.text, left, self.binary(level + 1), where=left.where)
-        return left
 
     def unary(self) -> ir.Expr:
         tok = self.peek()
         if tok.kind == "op" and tok.text in ("-", "+", "!", "~"):
             self.next()
+            self.nested()
             operand = self.unary()
+            self.nesting -= 1
             return operand if tok.text == "+" else ir.Unary(tok.text, operand, where=self.where(tok))
         if tok.kind == "op" and tok.text in ("++", "--"):
             raise self.error(f"'{tok.text}' inside an expression")
@@ -300,11 +345,13 @@ class Parser:
 
         def stop(parser):
             return parser.at_directive(SECTION_CLOSE) or parser.peek().kind == "eof"
+        self.nested()
         body = body_of(stop)
         other: list = []
         if self.at_directive(frozenset({"else"})):
             self.next()
             other = body_of(stop)
+        self.nesting -= 1
         endif = self.i
         self.close_section(tok)
         if endif in self.dangling:  # an else of the body's last if, after the #endif
@@ -319,8 +366,10 @@ class Parser:
 
     def block(self) -> ir.Block:
         tok = self.expect("{")
+        self.nested()
         body = self.statement_list(lambda p: p.at("}") or p.peek().kind == "eof")
         self.expect("}")
+        self.nesting -= 1
         return ir.Block(body, True, where=self.where(tok))
 
     def body(self) -> ir.Block:
@@ -328,21 +377,20 @@ class Parser:
         if self.at("{"):
             lead = self.leading_trailing()
             block = self.block()
-            block.comment = self.statement_end(block) or lead
+            block.comment = self.trailing_here() or lead
             return block
         where = self.where(self.peek())
         comments = self.own_line_comments()
-        return ir.Block(comments + self.statement(), False, where=where)
-
-    def statement_end(self, stmt) -> str | None:
-        """The comment after the statement just read, on its last line."""
-        return self.trailing_here()
+        self.nested()
+        body = comments + self.statement()
+        self.nesting -= 1
+        return ir.Block(body, False, where=where)
 
     def statement(self) -> list[ir.Stmt]:
         """One statement (several Declares for `T a, b;`), its comments attached."""
         lead = self.leading_trailing()
         stmts = self.one_statement()
-        trailing = self.statement_end(stmts[-1])
+        trailing = self.trailing_here()
         if trailing or lead:
             stmts[-1].comment = " ".join(c for c in (lead, trailing) if c)
         return stmts
@@ -390,11 +438,14 @@ class Parser:
 
     def if_statement(self) -> ir.If:
         tok = self.expect("if")
+        self.nested()  # an else-if chain is read by recursion
         self.expect("(")
         cond = self.expression()
         self.expect(")")
         then = self.body()
-        return ir.If(cond, then, self.else_tail(), where=self.where(tok))
+        stmt = ir.If(cond, then, self.else_tail(), where=self.where(tok))
+        self.nesting -= 1
+        return stmt
 
     def else_tail(self) -> ir.Block | None:
         """What follows an `if`'s body: its `else` clause, a section holding one, or nothing."""

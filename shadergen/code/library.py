@@ -1,0 +1,184 @@
+"""The library's shader code as typed IR: every source file parsed and checked once per library.
+
+A CodeLibrary is made from a loaded data library (shadergen/library.py's Library: its folder and
+the hash that names its content). Its source files (`*.glsl` under a `genglsl` folder) and the
+prelude (code/prelude.glsl: the closure, shader and light types) are parsed (code/parse.py) and
+checked (code/check.py) together, and every inline implementation's expression (`sourcecode`, or
+an `.inline` file, as nodes/base.py reads them) is parsed into a template. The result is pickled
+in the cache folder beside the data library's JSON Lines cache, under a name made of the
+library's hash, the prelude and the externals, so a process after the first reads one file
+instead of parsing (the figures are in the commit that added this). A damaged file is rebuilt.
+
+Paths are relative to the library folder (`pbrlib/genglsl/lib/mx_fresnel.glsl`): they are in
+every node's `where`, and the pickle does not depend on where the library lies.
+"""
+import hashlib
+import os
+import pickle
+
+from ..errors import ShaderGenError
+from ..fingerprint import library_files
+from ..library import Library, cache_dir, collection_paused, read_source, write_atomically
+from . import ir
+from .check import check_expression, check_modules, flat_items, library_symbols
+from .parse import parse_expression, parse_module
+
+__all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
+
+PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
+PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
+CACHE_FORMAT = b"shadergen-code-1"
+MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
+
+
+class CodeLibrary:
+    """The typed IR of a library's code, with its symbol table (see the module's doc)."""
+    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "typed", "parsed")
+
+    def __init__(self, root: str, state: tuple):
+        self.root = root
+        self.key, self.modules, self.symbols, self.templates, self.externals = state
+        self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
+        self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
+
+    @classmethod
+    def load(cls, library: Library, externals: dict[str, str]) -> "CodeLibrary":
+        """The code of `library`, from the cache when it holds it. `externals`: name -> IR type of
+        every variable the generator declares that library code reads (the environment and light
+        uniforms)."""
+        key = cache_key(library, externals)
+        path = os.path.join(cache_dir(), f"code-{key[:24]}.pickle")
+        with collection_paused():
+            state = read_cache(path, key)
+            if state is None:
+                state = build(library, externals, key)
+                write_cache(path, state)
+        return cls(library.root, state)
+
+    def state(self) -> tuple:
+        """What the cache holds (equal for equal libraries, whatever order they were read in)."""
+        return (self.key, self.modules, self.symbols, self.templates, self.externals)
+
+    # -- lookups -----------------------------------------------------------------------------------
+    def module(self, path: str) -> ir.Module:
+        """A source file's module; `path` absolute or relative to the library folder."""
+        relative = os.path.relpath(os.path.realpath(path), self.root) if os.path.isabs(path) else os.path.normpath(path)
+        module = self.modules.get(relative)
+        if module is None:
+            raise ShaderGenError("missing_source", f"'{path}' is not a source file of the library", path)
+        return module
+
+    def functions(self, name: str) -> list[ir.Function]:
+        """Every overload of a library function (none: an empty list)."""
+        return list(self.symbols.functions.get(name, {}).values())
+
+    def struct(self, name: str) -> ir.Struct | None:
+        return self._item(name, ir.Struct)
+
+    def constant(self, name: str) -> ir.Constant | None:
+        return self._item(name, ir.Constant)
+
+    def _item(self, name: str, kind: type):
+        found = self.symbols.items.get(name)
+        return found if isinstance(found, kind) else None
+
+    def template(self, expression_text: str, where: str = "inline expression") -> ir.Expr:
+        """The untyped template of an inline expression (`{{input}}` an ir.Placeholder)."""
+        text = expression_text.strip()
+        found = self.templates.get(text) or self.parsed.get(text)
+        if found is None:
+            found = parse_expression(text, where)
+            if len(self.parsed) < MAX_MEMO:
+                self.parsed[text] = found
+        return found
+
+    def expression(self, expression_text: str, placeholder_types: dict[str, str],
+                   where: str = "inline expression") -> ir.Expr:
+        """The template instantiated for its inputs' IR types, typed (shared: build new nodes
+        rather than change it)."""
+        return check_expression(self.template(expression_text, where), placeholder_types, self)
+
+
+def cache_key(library: Library, externals: dict[str, str]) -> str:
+    h = hashlib.sha256(CACHE_FORMAT + b"\0" + library.content_hash.encode() + b"\0")
+    with open(PRELUDE_PATH, "rb") as f:  # a package file the generator's fingerprint (.py files) leaves out
+        h.update(f.read() + b"\0")
+    h.update(repr(sorted(externals.items())).encode())
+    return h.hexdigest()
+
+
+def source_files(root: str) -> list[str]:
+    """The library's shader sources: `*.glsl` files in a `genglsl` folder, relative to the root."""
+    return [os.path.relpath(p, root) for p in library_files(root)
+            if p.endswith(".glsl") and "genglsl" in os.path.relpath(p, root).split(os.sep)]
+
+
+def inline_sources(library: Library) -> list[tuple[str, str]]:
+    """(expression text, where) of every inline implementation, in file and document order."""
+    out = []
+    for root in sorted(library.roots, key=lambda r: r.source or ""):
+        relative = os.path.relpath(root.source, library.root) if root.source else "?"
+        for elem in root.children:
+            if elem.category != "implementation":
+                continue
+            if elem.get("sourcecode") is not None:
+                out.append((elem.get("sourcecode").strip(), f"{relative}: {elem.name}"))
+            elif (elem.get("file") or "").endswith(".inline"):
+                path = os.path.normpath(os.path.join(os.path.dirname(root.source), elem.get("file")))
+                out.append((read_source(path).strip(), os.path.relpath(path, library.root)))
+    return out
+
+
+def build(library: Library, externals: dict[str, str], key: str) -> tuple:
+    """The cache's state: parsed and checked modules, the symbol table, the inline templates."""
+    root = library.root
+    modules = {PRELUDE: parse_module(PRELUDE, read_source(PRELUDE_PATH))}
+    for relative in sorted(source_files(root)):
+        modules[relative] = parse_module(relative, read_source(os.path.join(root, relative)))
+    symbols = library_symbols(check_modules(modules, externals, (PRELUDE,)))
+    symbols.items = top_level_items(modules)
+    templates = {}
+    for text, where in inline_sources(library):
+        if text not in templates:
+            templates[text] = parse_expression(text, where)
+    return (key, modules, symbols, templates, dict(sorted(externals.items())))
+
+
+def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:
+    """Structs, constants, globals by name; a function's key defined twice is an error of the source."""
+    items: dict[str, ir.Item] = {}
+    keys: dict[str, ir.Function] = {}
+    for path in modules:
+        for item in flat_items(modules[path].items):
+            if isinstance(item, ir.Function):
+                if item.key in keys and keys[item.key] is not item:
+                    first = keys[item.key].where
+                    raise ShaderGenError("invalid_source", f"{item.where[0]}:{item.where[1]}:{item.where[2]}: "
+                                         f"{item.key} is defined again (first at {first[0]}:{first[1]})",
+                                         item.where[0])
+                keys[item.key] = item
+            elif isinstance(item, (ir.Struct, ir.Constant, ir.Global)):
+                items.setdefault(item.name, item)
+    return items
+
+
+def read_cache(path: str, key: str) -> tuple | None:
+    """The cached state, or None (missing, damaged, or another key's)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+        digest, body = data[:64], data[65:]
+        if data[64:65] != b"\n" or hashlib.sha256(body).hexdigest().encode() != digest:
+            return None
+        state = pickle.loads(body)
+        return state if isinstance(state, tuple) and len(state) == 5 and state[0] == key else None
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
+        return None
+
+
+def write_cache(path: str, state: tuple) -> None:
+    body = pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+    try:
+        write_atomically(path, hashlib.sha256(body).hexdigest().encode() + b"\n" + body)
+    except OSError:
+        pass  # a read-only home is not fatal: the next process parses again
