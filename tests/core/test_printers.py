@@ -10,10 +10,11 @@ import pytest
 
 from required_tools import tool_path
 from shadergen.code import ir
-from shadergen.code.check import check_modules
+from shadergen.code.library import PRELUDE, CodeLibrary
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
+from shadergen.library import Library, Scope
 from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
 from shadergen.targets.glsl.printer import GlslPrinter, same
 from shadergen.targets.wgsl.printer import DEFINED, WgslPrinter, function_names, helpers, wgsl_type
@@ -22,7 +23,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 LIBRARIES = os.path.join(ROOT, "libraries")
 SOURCES = sorted(os.path.relpath(p, LIBRARIES)
                  for p in glob.glob(os.path.join(LIBRARIES, "*/genglsl/**/*.glsl"), recursive=True))
-PRELUDE = "prelude.glsl"
 # The globals the libraries read and do not define (the generator declares them).
 EXTERNALS = {**{n: ir_type(t) for n, t in ENVIRONMENT_UNIFORMS}, "u_numActiveLightSources": "int",
              "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
@@ -35,6 +35,7 @@ def read(path: str) -> str:
 
 
 def parsed() -> dict[str, ir.Module]:
+    """Every library file and the prelude, parsed only."""
     modules = {PRELUDE: parse_module(PRELUDE, read(os.path.join(ROOT, "shadergen/code/prelude.glsl")))}
     for path in SOURCES:
         modules[path] = parse_module(path, read(os.path.join(LIBRARIES, path)))
@@ -42,11 +43,24 @@ def parsed() -> dict[str, ir.Module]:
 
 
 @pytest.fixture(scope="module")
-def modules() -> dict[str, ir.Module]:
-    """Every library file parsed and checked (typed), with the prelude."""
-    out = parsed()
-    check_modules(out, EXTERNALS, (PRELUDE,))
-    return out
+def library() -> Library:
+    return Library.load()
+
+
+@pytest.fixture(scope="module")
+def code(library, tmp_path_factory) -> CodeLibrary:
+    """Every library file and the prelude parsed and checked (typed), as the generator gets them."""
+    os.environ["SHADERGEN_CACHE_DIR"] = str(tmp_path_factory.mktemp("code-cache"))
+    try:
+        return CodeLibrary.load(library, EXTERNALS)
+    finally:
+        del os.environ["SHADERGEN_CACHE_DIR"]
+
+
+@pytest.fixture(scope="module")
+def modules(code) -> dict[str, ir.Module]:
+    assert sorted(code.modules) == sorted([PRELUDE, *SOURCES])
+    return code.modules
 
 
 def in_include_order(path: str, modules: dict, seen: set) -> list[str]:
@@ -84,10 +98,9 @@ def glsl_unit(path: str, modules: dict, printer: GlslPrinter, defined: list[str]
     return "\n".join(lines) + "\n"
 
 
-def wgsl_unit(path: str, modules: dict, printer: WgslPrinter) -> str:
-    """One library file as a WGSL module: the prelude, the externals (textures bound, the rest
-    private variables), the facing flag, the helpers its code calls, the files it includes."""
-    sources = [PRELUDE, *in_include_order(path, modules, set())]
+def externals_wgsl() -> list[str]:
+    """The externals as WGSL: textures bound with their samplers, the rest private variables,
+    and the facing flag the entry point copies."""
     lines, binding = [], 0
     for name, t in EXTERNALS.items():
         if t == "sampler2D":
@@ -96,7 +109,14 @@ def wgsl_unit(path: str, modules: dict, printer: WgslPrinter) -> str:
             binding += 2
         else:
             lines.append(f"var<private> {name}: {wgsl_type(t.replace('MAX_LIGHT_SOURCES', '3'))};")
-    lines.append("var<private> front_facing: bool;")
+    return [*lines, "var<private> front_facing: bool;"]
+
+
+def wgsl_unit(path: str, modules: dict, printer: WgslPrinter) -> str:
+    """One library file as a WGSL module: the prelude, the externals (textures bound, the rest
+    private variables), the facing flag, the helpers its code calls, the files it includes."""
+    sources = [PRELUDE, *in_include_order(path, modules, set())]
+    lines = externals_wgsl()
     lines += helpers([item for source in sources for item in modules[source].items])
     for source in sources:
         lines += printed(printer, modules[source].items)
@@ -159,6 +179,67 @@ def test_overloads_are_spelled_apart_whatever_the_order(modules):
     overloads = sorted(key for key in names if key.startswith("mx_sqr("))
     assert len(overloads) >= 2 and all(names[key].startswith("mx_sqr_") for key in overloads)
     assert names["mx_mix_bsdf(ClosureData,BSDF,BSDF,float,BSDF)"] == "mx_mix_bsdf"  # one of its name: kept
+
+
+def instantiated(expr, placeholders: set):
+    """`expr` with each `{{input}}` a parameter `in_input` of its type (as a node's function)."""
+    if type(expr) is ir.Placeholder:
+        placeholders.add(expr.name)
+        return ir.Name(f"in_{expr.name}", "param", type=expr.type)
+    changes = {}
+    for field in expr.FIELDS:
+        value = getattr(expr, field)
+        if isinstance(value, ir.Node):
+            changes[field] = instantiated(value, placeholders)
+        elif isinstance(value, list):
+            changes[field] = [instantiated(v, placeholders) if isinstance(v, ir.Node) else v for v in value]
+    return ir.replace(expr, **changes)
+
+
+def inline_functions(code, library) -> list[ir.Function]:
+    """Every inline implementation's expression, typed for its nodedef's inputs, as a function."""
+    scope = Scope(library, None)
+    out = []
+    for name in sorted(library.implementations):
+        for impl in library.implementations[name]:
+            text = impl.get("sourcecode")
+            if text is None:
+                continue
+            nodedef = library.nodedefs[impl.get("nodedef")]
+            types = {i.name: ir_type(i.get("type")) for i in scope.nodedef_inputs(nodedef)}
+            used: set = set()
+            expr = instantiated(code.expression(text, types), used)
+            if expr.type == "sampler2D":  # a texture passed on (`{{value}}` of a filename): no value to return
+                continue
+            params = [ir.Param("in", types[n], f"in_{n}", False) for n in sorted(used)]
+            out.append(ir.Function(expr.type, f"inline_{len(out)}", params, ir.Block([ir.Return(expr)], True)))
+    return out
+
+
+def test_every_inline_expression_printed_compiles(code, library, modules, tmp_path):
+    """The 516 inline expressions, each the body of a function, after the whole library: one
+    fragment shader per GLSL dialect, one WGSL module."""
+    inline = inline_functions(code, library)
+    assert len(inline) >= 500
+    order = [PRELUDE, *[p for path in SOURCES for p in in_include_order(path, modules, set()) if p != PRELUDE]]
+    order = list(dict.fromkeys(order))
+    items = [item for path in order for item in modules[path].items]
+    units = {}
+    for dialect in ("glsl", "essl"):
+        printer = GlslPrinter(dialect)
+        lines = [HEADERS[dialect], *[f"uniform {printer.declarator(t, n)};" for n, t in EXTERNALS.items() if n != "u_lightData"]]
+        lines += printed(printer, items[:len(modules[PRELUDE].items)])
+        lines.append(f"uniform {printer.declarator(EXTERNALS['u_lightData'], 'u_lightData')};")
+        lines += printed(printer, items[len(modules[PRELUDE].items):] + inline)
+        lines.append("out vec4 fragment_colour;\nvoid main() { fragment_colour = vec4(0.0); }")
+        units[dialect] = "\n".join(lines) + "\n"
+    failures = rejected(tool_path("glslangValidator"), units, "frag", tmp_path, together=False)
+    functions = [n for item in items for n in ir.walk(item) if type(n) is ir.Function] + inline
+    printer = WgslPrinter(function_names(functions))
+    wgsl = [*externals_wgsl(), *helpers(items + inline), *printed(printer, items + inline)]
+    wgsl.append("@fragment fn main() -> @location(0) vec4f { return vec4f(0.0); }")
+    failures += rejected(tool_path("naga"), {"wgsl": "\n".join(wgsl) + "\n"}, "wgsl", tmp_path, together=False)
+    assert not failures, "\n".join(failures)
 
 
 # -- precedence and round trips ---------------------------------------------------------------------

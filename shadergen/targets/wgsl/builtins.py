@@ -91,6 +91,13 @@ HELPER_FUNCTIONS.update((f"mx_runtime_{t}", f"fn mx_runtime_{t}(value: {t}) -> {
 # all of them as one text (the IR printer, wgsl/printer.py, writes only those a stage calls)
 HELPERS = "\n".join(HELPER_FUNCTIONS.values())
 
+# `?:` between matrices: WGSL's select() takes scalars and vectors only (the IR printer's; the
+# text translator chooses column by column between names)
+SELECT_HELPERS = {"mat2": "mx_select_mat2x2f", "mat3": "mx_select_mat3x3f", "mat4": "mx_select_mat4x4f"}
+HELPER_FUNCTIONS.update(
+    (name, f"fn {name}(f: {t}, t: {t}, condition: bool) -> {t} {{\n    if (condition) {{ return t; }}\n    return f;\n}}\n")
+    for name, t in ((n, n.removeprefix("mx_select_")) for n in SELECT_HELPERS.values()))
+
 WGSL_RESERVED = set("""
 alias break case const const_assert continue continuing default diagnostic discard else enable false fn for if let
 loop override requires return struct switch true var while NULL Self abstract active alignas alignof as asm

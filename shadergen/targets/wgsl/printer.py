@@ -19,7 +19,8 @@ from ...errors import ShaderGenError
 from ..glsl.printer import literal_text
 from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
-from .builtins import COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
+from .builtins import (COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, SELECT_HELPERS, TEXTURE_CALLS, WGSL_RESERVED,
+                       WGSL_TYPES)
 
 DEFINED = frozenset({"GL_ES"})
 
@@ -92,6 +93,8 @@ def helpers(items) -> list[str]:
         for node in ir.walk(item):
             if type(node) is ir.Call and node.builtin and node.name == "inverse" and node.args[0].type in INVERSE_HELPERS:
                 wanted.add(INVERSE_HELPERS[node.args[0].type])
+            elif type(node) is ir.Select and node.type in SELECT_HELPERS:
+                wanted.add(SELECT_HELPERS[node.type])
     return [line for name, text in HELPER_FUNCTIONS.items() if name in wanted for line in [*text.splitlines(), ""]]
 
 
@@ -454,14 +457,8 @@ class _Writer:
     def select(self, e: ir.Select):
         t = e.type
         if_true, if_false = self.converted(e.if_true, t), self.converted(e.if_false, t)
-        if is_matrix(t):  # select() takes scalars and vectors: a matrix column by column
-            if not all(type(x) is ir.Name for x in (e.if_true, e.if_false)):
-                raise unsupported("a choice between matrix expressions", e)
-            n = int(t[3])
-            index = [ir.Literal(i, None, type="int") for i in range(n)]
-            return Native(wgsl_type(t), [Native("select", [ir.Index(if_false, index[i], type=f"vec{n}"),
-                                                           ir.Index(if_true, index[i], type=f"vec{n}"), e.condition],
-                                                type=f"vec{n}") for i in range(n)], type=t)
+        if is_matrix(t):  # select() takes scalars and vectors: a helper function (helpers())
+            return Native(SELECT_HELPERS[t], [if_false, if_true, e.condition], type=t)
         return Native("select", [if_false, if_true, e.condition], type=t)
 
     def lower_call(self, e: ir.Call):
