@@ -10,7 +10,8 @@ import pytest
 
 from required_tools import tool_path
 from shadergen.code import ir
-from shadergen.code.library import PRELUDE, CodeLibrary
+from shadergen.code.check import check_modules
+from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
@@ -36,7 +37,7 @@ def read(path: str) -> str:
 
 def parsed() -> dict[str, ir.Module]:
     """Every library file and the prelude, parsed only."""
-    modules = {PRELUDE: parse_module(PRELUDE, read(os.path.join(ROOT, "shadergen/code/prelude.glsl")))}
+    modules = {PRELUDE: parse_module(PRELUDE, read(PRELUDE_PATH))}
     for path in SOURCES:
         modules[path] = parse_module(path, read(os.path.join(LIBRARIES, path)))
     return modules
@@ -240,6 +241,62 @@ def test_every_inline_expression_printed_compiles(code, library, modules, tmp_pa
     wgsl.append("@fragment fn main() -> @location(0) vec4f { return vec4f(0.0); }")
     failures += rejected(tool_path("naga"), {"wgsl": "\n".join(wgsl) + "\n"}, "wgsl", tmp_path, together=False)
     assert not failures, "\n".join(failures)
+
+
+RULES = """
+vec4 mx_rules(vec3 v, float x, int i, sampler2D tex, vec2 uv, mat3 m, bool c, out float r)
+{
+    vec3 a = mod(v, 2.0);
+    float b = atan(x, 1.0) + inversesqrt(x) + dFdx(x) + dFdy(x);
+    vec3 d = clamp(v, 0.0, 1.0) * float(i) + vec3(i);
+    bvec3 below = lessThan(v, vec3(0.5));
+    bool nan = isnan(x) || v == a;
+    mat3 n = c ? m : inverse(m);
+    mat3 s = mat3(2.0);
+    float w[3] = float[3](1.0, 2.0, 3.0);
+    a.xy = uv * 2.0;
+    x += 1;
+    i++;
+    r = x;
+    if (c)
+        return textureLod(tex, uv, 0);
+    return texture(tex, uv) + vec4(mix(a, d, below), w[i]);
+}
+"""
+
+
+def test_wgsl_rules_on_checked_code(tmp_path):
+    """GLSL's built-ins, conversions, spreads, choices and writes as WGSL has them; naga takes it."""
+    modules = {PRELUDE: parse_module(PRELUDE, read(PRELUDE_PATH)), "t.glsl": parse_module("t.glsl", RULES)}
+    check_modules(modules, {}, (PRELUDE,))
+    items = modules["t.glsl"].items
+    (function,) = [item for item in items if type(item) is ir.Function]
+    printed_lines = WgslPrinter(function_names([function])).item(function)
+    assert printed_lines == [
+        'fn mx_rules(v: vec3f, x__in: f32, i__in: i32, tex: texture_2d<f32>, tex_sampler: sampler, uv: vec2f,',
+        '            m: mat3x3f, c: bool, r: ptr<function, f32>) -> vec4f {',
+        '    var x: f32 = x__in;',
+        '    var i: i32 = i__in;',
+        '    var a: vec3f = v - vec3f(2.0) * floor(v / vec3f(2.0));',
+        '    let b: f32 = atan2(x, 1.0) + inverseSqrt(x) + dpdx(x) + -dpdy(x);',
+        '    let d: vec3f = clamp(v, vec3f(0.0), vec3f(1.0)) * f32(i) + vec3f(f32(i));',
+        '    let below: vec3<bool> = v < vec3f(0.5);',
+        '    let nan: bool = (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u || all(v == a);',
+        '    let n: mat3x3f = mx_select_mat3x3f(mx_inverse_mat3(m), m, c);',
+        '    let s: mat3x3f = mat3x3f(2.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 2.0);',
+        '    var w: array<f32, 3> = array<f32, 3>(1.0, 2.0, 3.0);',
+        '    let swizzled_0 = uv * 2.0;',
+        '    a.x = swizzled_0.x;',
+        '    a.y = swizzled_0.y;',
+        '    x += 1.0;',
+        '    i++;',
+        '    *r = x;',
+        '    if (c) { return textureSampleLevel(tex, tex_sampler, uv, 0.0); }',
+        '    return textureSample(tex, tex_sampler, uv) + vec4f(select(a, d, below), w[i]);',
+        '}',
+    ]
+    module = [*printed(WgslPrinter(), modules[PRELUDE].items), *helpers(items), *printed_lines]
+    assert not rejected(tool_path("naga"), {"rules": "\n".join(module) + "\n"}, "wgsl", tmp_path, together=False)
 
 
 # -- precedence and round trips ---------------------------------------------------------------------

@@ -16,7 +16,7 @@ from functools import lru_cache
 
 from ...code import ir
 from ...errors import ShaderGenError
-from ..glsl.printer import literal_text
+from ..glsl.printer import literal_text as glsl_literal
 from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
 from .builtins import (COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, SELECT_HELPERS, TEXTURE_CALLS, WGSL_RESERVED,
@@ -40,6 +40,13 @@ OPERANDS = {  # class -> (left operands, right operands) taken without parenthes
 }
 COMPARISONS = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "greaterThanEqual": ">=", "equal": "==",
                "notEqual": "!="}
+
+
+def literal_text(node: ir.Literal) -> str:
+    """A literal as GLSL spells it, whose suffixes WGSL takes in lower case only (`1.0F`, `2U`)."""
+    text = glsl_literal(node)
+    hexadecimal = text.startswith(("0x", "0X"))  # where F is a digit
+    return text[:-1] + text[-1].lower() if text[-1] == "U" or (text[-1] == "F" and not hexadecimal) else text
 
 
 def unsupported(what: str, node) -> ShaderGenError:
