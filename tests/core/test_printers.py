@@ -299,6 +299,13 @@ def test_wgsl_rules_on_checked_code(tmp_path):
     assert not rejected(tool_path("naga"), {"rules": "\n".join(module) + "\n"}, "wgsl", tmp_path, together=False)
 
 
+def test_wgsl_matrix_of_another_size_as_glsl_fills_it():
+    m3, m4 = ir.Name("m", "local", type="mat3"), ir.Name("q", "local", type="mat4")
+    assert WgslPrinter().expression(ir.Construct("mat4", [m3])) == \
+        "mat4x4f(vec4f(m[0], 0.0), vec4f(m[1], 0.0), vec4f(m[2], 0.0), vec4f(0.0, 0.0, 0.0, 1.0))"
+    assert WgslPrinter().expression(ir.Construct("mat3", [m4])) == "mat3x3f(q[0].xyz, q[1].xyz, q[2].xyz)"
+
+
 # -- precedence and round trips ---------------------------------------------------------------------
 def name(n):
     return ir.Name(n, None)

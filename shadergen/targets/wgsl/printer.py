@@ -437,11 +437,7 @@ class _Writer:
                 zero = ir.Literal(0.0, "0.0", type="float")
                 return Native(wgsl_type(t), [diagonal if i % (n + 1) == 0 else zero for i in range(n * n)], type=t)
             if len(args) == 1 and is_matrix(types[0]) and types[0] != t:
-                if int(types[0][3]) < n:
-                    raise unsupported(f"{t} of a smaller matrix", e)
-                columns = [ir.Field(ir.Index(args[0], ir.Literal(i, None, type="int"), type=f"vec{types[0][3]}"),
-                                    "xyzw"[:n], type=f"vec{n}", swizzle=True) for i in range(n)]
-                return Native(wgsl_type(t), columns, type=t)
+                return Native(wgsl_type(t), self.resized_columns(args[0], int(types[0][3]), n), type=t)
             return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == "float" else
                                          self.conversion(a, vector_of("float", size_of(ta))) for a, ta in zip(args, types)],
                           type=t)
@@ -460,6 +456,24 @@ class _Writer:
         return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == scalar else
                                      self.conversion(a, vector_of(scalar, size_of(ta))) for a, ta in zip(args, types)],
                       type=t)
+
+    @staticmethod
+    def resized_columns(matrix, k: int, n: int) -> list:
+        """The columns of `mat<n>(mat<k>)` as GLSL fills it: the top-left of a larger matrix; a
+        smaller one in the top-left of the identity."""
+        columns = []
+        for i in range(n):
+            if i >= k:  # the identity's column
+                columns.append(Native(f"vec{n}f", [ir.Literal(float(j == i), None, type="float") for j in range(n)],
+                                      type=f"vec{n}"))
+                continue
+            column = ir.Index(matrix, ir.Literal(i, None, type="int"), type=f"vec{k}")
+            if k >= n:
+                columns.append(ir.Field(column, "xyzw"[:n], type=f"vec{n}", swizzle=True) if k > n else column)
+            else:
+                zeros = [ir.Literal(0.0, None, type="float")] * (n - k)
+                columns.append(Native(f"vec{n}f", [column, *zeros], type=f"vec{n}"))
+        return columns
 
     def select(self, e: ir.Select):
         t = e.type
