@@ -246,7 +246,7 @@ class Parser:
         tok = self.next()
         where = self.where(tok)
         if tok.kind == "num":
-            return number(tok.text, where)
+            return number(tok, where)
         if tok.kind == "placeholder":
             return ir.Placeholder(tok.text, where=where)
         if tok.kind == "op" and tok.text == "(":
@@ -726,13 +726,20 @@ def continue_chain(side: list, rest: ir.Block) -> bool:
     return True
 
 
-def number(text: str, where) -> ir.Literal:
+def number(tok: Token, where) -> ir.Literal:
+    text = tok.text
     lower = text.lower()
     if lower.startswith("0x"):
-        return ir.Literal(int(lower.rstrip("u"), 16), text, where=where)
-    if lower.endswith("u"):
-        return ir.Literal(int(lower[:-1]), text, where=where)
-    body = lower.rstrip("f")
-    if any(c in body for c in ".e"):
-        return ir.Literal(float(body), text, where=where)
-    return ir.Literal(int(body), text, where=where)
+        value = int(lower.rstrip("u"), 16)
+    else:
+        body = lower.rstrip("fu")
+        if any(c in body for c in ".e"):
+            if lower.endswith("u"):
+                raise source_error(where[0], where[1], where[2], f"'{text}': a float with an unsigned suffix")
+            return ir.Literal(float(body), text, where=where)
+        if lower.endswith("f"):
+            raise source_error(where[0], where[1], where[2], f"'{text}': an integer with a float suffix")
+        value = int(body)
+    if value >= 2 ** 32:
+        raise source_error(where[0], where[1], where[2], f"'{text}' does not fit in 32 bits")
+    return ir.Literal(value, text, where=where)

@@ -7,13 +7,14 @@ import pytest
 
 from shadergen.code import ir
 from shadergen.code.check import check_modules, flat_items
-from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary, build, cache_key, source_files
+from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary, build, cache_key, inline_sources, source_files
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
 from shadergen.features import declarations
 from shadergen.library import Library, Scope, read_source
 from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
+from shadergen.targets.glsl import STRUCTS
 
 EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
              "u_numActiveLightSources": "int", "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
@@ -92,6 +93,19 @@ def test_every_inline_expression_parses_and_checks(code, library):
             # the template itself stays untyped
             assert all(n.type is None for n in ir.walk(code.template(text)) if not isinstance(n, ir.Construct))
     assert count >= 500
+    assert len(inline_sources(library)) == count and set(code.templates) == {t for t, _ in inline_sources(library)}
+
+
+def test_the_prelude_declares_what_the_glsl_targets_declare(code):
+    """The prelude's types are those of targets/glsl.py STRUCTS, which the GLSL targets write today."""
+    targets = parse_module("STRUCTS", "\n".join(STRUCTS.values()))
+    for item in targets.items:
+        if isinstance(item, ir.Struct):
+            assert code.struct(item.name).members == item.members
+        elif item.name in ("EDF", "material"):
+            assert code.symbols.aliases[item.name] == item.value.name
+        else:
+            assert code.constant(item.name).value.value == item.value.value
 
 
 def test_implicit_conversions_are_written_out():
@@ -145,6 +159,8 @@ EDF e(S s, vec4 c)
     ("void f()\n{\n    float a = 1.0;\n", "x.glsl:4:1", "expected '}'"),
     ("#ifdef X\nvoid f() {}\n", "x.glsl:3:1", "has no #endif"),
     ("#version 400\n", "x.glsl:1:1", "preprocessor line"),
+    ("const float A = 1.0u;\n", "x.glsl:1:17", "a float with an unsigned suffix"),
+    ("const int A = 4294967296;\n", "x.glsl:1:15", "does not fit in 32 bits"),
 ])
 def test_parse_errors_name_file_line_and_column(source, where, what):
     with pytest.raises(ShaderGenError) as info:
