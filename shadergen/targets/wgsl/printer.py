@@ -44,7 +44,11 @@ COMPARISONS = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "grea
 
 def literal_text(node: ir.Literal) -> str:
     """A literal as GLSL spells it, whose suffixes WGSL takes in lower case only (`1.0F`, `2U`)."""
-    text = glsl_literal(node)
+    text = node.text
+    if text is None:
+        return glsl_literal(node)
+    if text[-1] not in "FU":
+        return text
     hexadecimal = text.startswith(("0x", "0X"))  # where F is a digit
     return text[:-1] + text[-1].lower() if text[-1] == "U" or (text[-1] == "F" and not hexadecimal) else text
 
