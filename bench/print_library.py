@@ -47,7 +47,8 @@ def main() -> None:
         code = CodeLibrary.load(library, EXTERNALS)
     items = [item for path in sorted(code.modules) for item in code.modules[path].items]
     functions = [n for item in items for n in ir.walk(item) if type(n) is ir.Function]
-    source_lines = sum(len(read_source(os.path.join(library.root, p)).splitlines()) for p in code.modules if p != PRELUDE)
+    sources = [os.path.join(library.root, p) for p in code.modules if p != PRELUDE]
+    source_lines = sum(len(read_source(p).splitlines()) for p in sources)
     figures = {}
     for name, printer in (("glsl", GlslPrinter("glsl")), ("essl", GlslPrinter("essl")),
                           ("wgsl", WgslPrinter(function_names(functions)))):

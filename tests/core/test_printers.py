@@ -228,7 +228,8 @@ def test_every_inline_expression_printed_compiles(code, library, modules, tmp_pa
     units = {}
     for dialect in ("glsl", "essl"):
         printer = GlslPrinter(dialect)
-        lines = [HEADERS[dialect], *[f"uniform {printer.declarator(t, n)};" for n, t in EXTERNALS.items() if n != "u_lightData"]]
+        uniforms = [f"uniform {printer.declarator(t, n)};" for n, t in EXTERNALS.items() if n != "u_lightData"]
+        lines = [HEADERS[dialect], *uniforms]
         lines += printed(printer, items[:len(modules[PRELUDE].items)])
         lines.append(f"uniform {printer.declarator(EXTERNALS['u_lightData'], 'u_lightData')};")
         lines += printed(printer, items[len(modules[PRELUDE].items):] + inline)
@@ -306,6 +307,22 @@ def test_wgsl_matrix_of_another_size_as_glsl_fills_it():
     assert WgslPrinter().expression(ir.Construct("mat3", [m4])) == "mat3x3f(q[0].xyz, q[1].xyz, q[2].xyz)"
 
 
+def test_names_are_spelled_by_the_caller():
+    """`spell` decides how a Name prints (the stage assembler's vertex data): in expressions,
+    declarations and parameters alike."""
+    def spell(name):
+        return f"vd.{name.name}" if name.kind == "vertexdata" else f"my_{name.name}"
+
+    position = ir.Name("position", "vertexdata", type="vec3")
+    stmt = ir.Declare("vec3", "p", ir.Binary("*", position, ir.Literal(2.0, "2.0", type="float"), type="vec3"), False)
+    assert GlslPrinter("glsl", spell=spell).statements([stmt], 0) == ["vec3 my_p = vd.position * 2.0;"]
+    assert WgslPrinter(spell=spell).statements([stmt], 0) == ["var my_p: vec3f = vd.position * 2.0;"]
+    f = ir.Function("float", "f", [ir.Param("in", "float", "x", False)],
+                    ir.Block([ir.Return(ir.Name("x", "param", type="float"))], True))
+    assert GlslPrinter("glsl", spell=spell).item(f)[0] == "float f(float my_x)"
+    assert WgslPrinter(spell=spell).item(f) == ["fn f(my_x: f32) -> f32 {", "    return my_x;", "}"]
+
+
 # -- precedence and round trips ---------------------------------------------------------------------
 def name(n):
     return ir.Name(n, None)
@@ -376,7 +393,8 @@ def test_printing_is_deterministic(modules):
     """The same text from another printer, and from items printed in the reverse order."""
     functions = [n for m in modules.values() for item in m.items for n in ir.walk(item) if type(n) is ir.Function]
     items = [item for m in modules.values() for item in m.items]
-    for make in (lambda: GlslPrinter("glsl"), lambda: GlslPrinter("essl"), lambda: WgslPrinter(function_names(functions))):
+    names = function_names(functions)
+    for make in (lambda: GlslPrinter("glsl"), lambda: GlslPrinter("essl"), lambda: WgslPrinter(names)):
         first = [make().item(item) for item in items]
         printer = make()
         backwards = [printer.item(item) for item in reversed(items)]
@@ -401,10 +419,10 @@ def test_what_wgsl_cannot_say_is_an_unsupported_node_error_naming_it(modules):
 def test_wgsl_out_parameters_pointers_and_copies():
     """An out parameter is a pointer (`*r` read, `&a` passed), an assigned in parameter a copy,
     a member passed as an out argument goes through a variable copied back after the call."""
-    writes = ir.Function("void", "mx_write", [ir.Param("in", "float", "k", False), ir.Param("out", "float", "r", False)],
-                         ir.Block([ir.Assign("*=", ir.Name("k", "param", type="float"), ir.Literal(2.0, "2.0", type="float")),
-                                   ir.Assign("=", ir.Name("r", "param", type="float"), ir.Name("k", "param", type="float"))],
-                                  True))
+    k, r = ir.Name("k", "param", type="float"), ir.Name("r", "param", type="float")
+    body = ir.Block([ir.Assign("*=", k, ir.Literal(2.0, "2.0", type="float")), ir.Assign("=", r, k)], True)
+    params = [ir.Param("in", "float", "k", False), ir.Param("out", "float", "r", False)]
+    writes = ir.Function("void", "mx_write", params, body)
     v = ir.Name("v", "local", type="vec3")
     call = ir.Call("mx_write", [ir.Literal(1.0, "1.0", type="float"), ir.Field(v, "x", type="float", swizzle=True)],
                    type="void", callee=writes)

@@ -360,7 +360,8 @@ class GlslPrinter:
 
     def parameter(self, p: ir.Param) -> str:
         qualifier = "" if p.qualifier == "in" else p.qualifier + " "
-        return ("const " if p.const else "") + qualifier + self.declarator(p.type, p.name)
+        name = p.name if self.spell is None else self.spell(ir.Name(p.name, "param"))
+        return ("const " if p.const else "") + qualifier + self.declarator(p.type, name)
 
     def global_declaration(self, g: ir.Global) -> str:
         """A uniform, stage input or output, or a library global. (A variable of a block is

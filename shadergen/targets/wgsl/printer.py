@@ -19,8 +19,8 @@ from ...errors import ShaderGenError
 from ..glsl.printer import literal_text as glsl_literal
 from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
-from .builtins import (COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, SELECT_HELPERS, TEXTURE_CALLS, WGSL_RESERVED,
-                       WGSL_TYPES)
+from .builtins import (COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, SELECT_HELPERS, TEXTURE_CALLS,
+                       WGSL_RESERVED, WGSL_TYPES)
 
 DEFINED = frozenset({"GL_ES"})
 
@@ -29,7 +29,8 @@ DEFINED = frozenset({"GL_ES"})
 FRAGMENT_BUILTINS = {"gl_FrontFacing": "front_facing"}
 
 # Precedence classes (WGSL section 8.19): which kinds of operand each operator takes unparenthesised.
-PRIMARY, UNARY, MUL, ADD, SHIFT, REL, AND, OR, BITS = "primary", "unary", "mul", "add", "shift", "rel", "and", "or", "bits"
+PRIMARY, UNARY, MUL, ADD, SHIFT, REL, AND, OR, BITS = ("primary", "unary", "mul", "add", "shift", "rel", "and", "or",
+                                                        "bits")
 CLASS = {"*": MUL, "/": MUL, "%": MUL, "+": ADD, "-": ADD, "<<": SHIFT, ">>": SHIFT, "<": REL, ">": REL, "<=": REL,
          ">=": REL, "==": REL, "!=": REL, "&&": AND, "||": OR, "&": BITS, "|": BITS, "^": BITS}
 _TIGHT = {PRIMARY, UNARY}
@@ -102,8 +103,9 @@ def helpers(items) -> list[str]:
     wanted = set()
     for item in items:
         for node in ir.walk(item):
-            if type(node) is ir.Call and node.builtin and node.name == "inverse" and node.args[0].type in INVERSE_HELPERS:
-                wanted.add(INVERSE_HELPERS[node.args[0].type])
+            if type(node) is ir.Call and node.builtin and node.name == "inverse":
+                if node.args[0].type in INVERSE_HELPERS:
+                    wanted.add(INVERSE_HELPERS[node.args[0].type])
             elif type(node) is ir.Select and node.type in SELECT_HELPERS:
                 wanted.add(SELECT_HELPERS[node.type])
     return [line for name, text in HELPER_FUNCTIONS.items() if name in wanted for line in [*text.splitlines(), ""]]
@@ -251,8 +253,9 @@ class WgslPrinter:
         assigned = assigned_roots(f.body)
         pointers = frozenset(p.name for p in f.params if p.qualifier != "in")
         parts, copies = [], []
+        writer = _Writer(self, pointers, f.returns, assigned)
         for p in f.params:
-            name = safe_name(p.name)
+            name = writer.spelled(ir.Name(p.name, "param"))
             if p.type == "sampler2D":
                 parts.append(f"{name}: texture_2d<f32>")
                 parts.append(f"{name}_sampler: sampler")
@@ -268,7 +271,7 @@ class WgslPrinter:
         arrow = "" if f.returns == "void" else f" -> {wgsl_type(f.returns)}"
         signature = head + arguments(lambda text, column, indent: text, parts, len(head), 0) + ")" + arrow + " {"
         lines = [*signature.split("\n"), *copies]
-        _Writer(self, pointers, f.returns, assigned).statements(body, 1, lines)
+        writer.statements(body, 1, lines)
         lines.append("}")
         return lines
 
@@ -442,9 +445,9 @@ class _Writer:
                 return Native(wgsl_type(t), [diagonal if i % (n + 1) == 0 else zero for i in range(n * n)], type=t)
             if len(args) == 1 and is_matrix(types[0]) and types[0] != t:
                 return Native(wgsl_type(t), self.resized_columns(args[0], int(types[0][3]), n), type=t)
-            return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == "float" else
-                                         self.conversion(a, vector_of("float", size_of(ta))) for a, ta in zip(args, types)],
-                          type=t)
+            floats = [a if ta is None or scalar_of(ta) == "float" else
+                      self.conversion(a, vector_of("float", size_of(ta))) for a, ta in zip(args, types)]
+            return Native(wgsl_type(t), floats, type=t)
         if size_of(t) == 1:  # float(x), int(x): a vector's first component
             (arg,) = args
             if arg.type is not None and size_of(arg.type) > 1:
