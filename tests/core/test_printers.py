@@ -1,6 +1,7 @@
 """The IR printers (targets/glsl/printer.py, targets/wgsl/printer.py): every library source file
-printed compiles with the real compilers (glslangValidator for GLSL 4.00 and ESSL 3.00, naga for
-WGSL), in a translation unit of its own with the files it includes; parentheses come out where
+printed compiles with the real compilers (glslangValidator for GLSL 4.00 and ESSL 3.00; for WGSL
+naga inside wgpu, the validator the WGSL tests use), in a translation unit of its own with the
+files it includes; parentheses come out where
 precedence needs them and the printed text parses back to the same IR; printing is deterministic."""
 import glob
 import os
@@ -8,7 +9,7 @@ import subprocess
 
 import pytest
 
-from required_tools import tool_path
+from required_tools import require_wgpu, tool_path
 from shadergen.code import ir
 from shadergen.code.check import check_modules
 from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary
@@ -125,11 +126,13 @@ def wgsl_unit(path: str, modules: dict, printer: WgslPrinter) -> str:
     return "\n".join(lines) + "\n"
 
 
-def rejected(tool: str, units: dict[str, str], suffix: str, tmp_path, together: bool) -> list[str]:
-    """The units the tool rejects, with its message (all at once where it takes several files)."""
+def rejected(units: dict[str, str], tmp_path, together: bool) -> list[str]:
+    """The units glslangValidator rejects, with its log (`together`: 50 files a run, the one
+    rejected found again alone)."""
+    tool = tool_path("glslangValidator")
     paths = []
     for i, (name, text) in enumerate(sorted(units.items())):
-        path = tmp_path / f"u{i}.{suffix}"
+        path = tmp_path / f"u{i}.frag"
         path.write_text(text)
         paths.append((name, path))
     failures = []
@@ -155,11 +158,17 @@ def test_every_library_file_printed_compiles(modules, dialect, tmp_path):
         units[f"{path} (no features)"] = glsl_unit(path, modules, printer, [])
         units[f"{path} (every feature)"] = glsl_unit(path, modules, printer, every)
     assert len(units) == 2 * len(SOURCES) >= 200
-    failures = rejected(tool_path("glslangValidator"), units, "frag", tmp_path, together=True)
+    failures = rejected(units, tmp_path, together=True)
     assert not failures, f"{len(failures)} of {len(units)} rejected:\n" + "\n".join(failures[:5])
 
 
-def test_every_library_file_printed_as_wgsl_validates(modules, tmp_path):
+@pytest.fixture(scope="module")
+def wgsl_validator():
+    """name -> source => name -> message of every WGSL module rejected (naga in wgpu-native)."""
+    return require_wgpu()
+
+
+def test_every_library_file_printed_as_wgsl_validates(modules, wgsl_validator):
     functions = [n for m in modules.values() for item in m.items for n in ir.walk(item) if type(n) is ir.Function]
     names = function_names(functions)
     every = feature_macros(modules)
@@ -168,8 +177,10 @@ def test_every_library_file_printed_as_wgsl_validates(modules, tmp_path):
         printer = WgslPrinter(names, defined=defined)
         for path in SOURCES:
             units[f"{path} ({label})"] = wgsl_unit(path, modules, printer)
-    failures = rejected(tool_path("naga"), units, "wgsl", tmp_path, together=False)
-    assert not failures, f"{len(failures)} of {len(units)} rejected:\n" + "\n".join(failures[:5])
+    failures = wgsl_validator(units)
+    assert len(units) == 2 * len(SOURCES)
+    assert not failures, f"{len(failures)} of {len(units)} rejected:\n" + "\n".join(
+        f"{name}: {message[:800]}" for name, message in sorted(failures.items())[:5])
 
 
 def test_overloads_are_spelled_apart_whatever_the_order(modules):
@@ -217,7 +228,7 @@ def inline_functions(code, library) -> list[ir.Function]:
     return out
 
 
-def test_every_inline_expression_printed_compiles(code, library, modules, tmp_path):
+def test_every_inline_expression_printed_compiles(code, library, modules, wgsl_validator, tmp_path):
     """The 516 inline expressions, each the body of a function, after the whole library: one
     fragment shader per GLSL dialect, one WGSL module."""
     inline = inline_functions(code, library)
@@ -235,12 +246,12 @@ def test_every_inline_expression_printed_compiles(code, library, modules, tmp_pa
         lines += printed(printer, items[len(modules[PRELUDE].items):] + inline)
         lines.append("out vec4 fragment_colour;\nvoid main() { fragment_colour = vec4(0.0); }")
         units[dialect] = "\n".join(lines) + "\n"
-    failures = rejected(tool_path("glslangValidator"), units, "frag", tmp_path, together=False)
+    failures = rejected(units, tmp_path, together=False)
     functions = [n for item in items for n in ir.walk(item) if type(n) is ir.Function] + inline
     printer = WgslPrinter(function_names(functions))
     wgsl = [*externals_wgsl(), *helpers(items + inline), *printed(printer, items + inline)]
     wgsl.append("@fragment fn main() -> @location(0) vec4f { return vec4f(0.0); }")
-    failures += rejected(tool_path("naga"), {"wgsl": "\n".join(wgsl) + "\n"}, "wgsl", tmp_path, together=False)
+    failures += [f"wgsl: {message}" for message in wgsl_validator({"wgsl": "\n".join(wgsl) + "\n"}).values()]
     assert not failures, "\n".join(failures)
 
 
@@ -266,8 +277,9 @@ vec4 mx_rules(vec3 v, float x, int i, sampler2D tex, vec2 uv, mat3 m, bool c, ou
 """
 
 
-def test_wgsl_rules_on_checked_code(tmp_path):
-    """GLSL's built-ins, conversions, spreads, choices and writes as WGSL has them; naga takes it."""
+def test_wgsl_rules_on_checked_code(wgsl_validator):
+    """GLSL's built-ins, conversions, spreads, choices and writes as WGSL has them; the validator
+    takes it."""
     modules = {PRELUDE: parse_module(PRELUDE, read(PRELUDE_PATH)), "t.glsl": parse_module("t.glsl", RULES)}
     check_modules(modules, {}, (PRELUDE,))
     items = modules["t.glsl"].items
@@ -297,7 +309,7 @@ def test_wgsl_rules_on_checked_code(tmp_path):
         '}',
     ]
     module = [*printed(WgslPrinter(), modules[PRELUDE].items), *helpers(items), *printed_lines]
-    assert not rejected(tool_path("naga"), {"rules": "\n".join(module) + "\n"}, "wgsl", tmp_path, together=False)
+    assert not wgsl_validator({"rules": "\n".join(module) + "\n"})
 
 
 def test_wgsl_matrix_of_another_size_as_glsl_fills_it():
