@@ -230,6 +230,8 @@ class WgslPrinter:
             value = writer.converted(item.value, ir_type)
             lines.extend((head + writer.render(value, len(head), 0) + ";").split("\n"))
         elif cls is ir.Global:
+            # a module-scope variable; uniforms and stage inputs and outputs are the assembler's
+            # (bound buffers, entry point parameters), which declares them itself
             if item.kind != "builtin":  # the target's own variable: nothing to declare
                 head = f"var<private> {safe_name(item.name)}: {wgsl_type(self.sized(item.type, item.init))}"
                 if item.init is not None:
