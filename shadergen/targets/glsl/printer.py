@@ -138,8 +138,10 @@ class GlslPrinter:
                 return flat
         if cls is ir.Binary:
             p = BINARY[e.op]
-            left = self.precedence(e.left) < p or self.mixed(e, e.left)
-            right = self.precedence(e.right) <= p or self.mixed(e, e.right)
+            left = self.precedence(e.left) < p or (p == 2 and self.mixed(e, e.left))
+            right = self.precedence(e.right) <= p or (p == 2 and self.mixed(e, e.right))
+            if column is None:  # (the common case, without the wrapping's closures)
+                return f"{self.operand(e.left, None, indent, left)} {e.op} {self.operand(e.right, None, indent, right)}"
             return binary_text(lambda at, indent: self.operand(e.left, at, indent, left), e.op,
                                lambda at, indent: self.operand(e.right, at, indent, right), column, indent)
         if cls is ir.Unary:

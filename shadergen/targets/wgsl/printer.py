@@ -367,6 +367,8 @@ class _Writer:
         else:
             left_ok, right_ok = OPERANDS[kind]
         left, right = self.klass(e.left) not in left_ok, self.klass(e.right) not in right_ok
+        if column is None:  # (the common case, without the wrapping's closures)
+            return f"{self.operand(e.left, None, indent, left)} {e.op} {self.operand(e.right, None, indent, right)}"
         return binary_text(lambda at, indent: self.operand(e.left, at, indent, left), e.op,
                            lambda at, indent: self.operand(e.right, at, indent, right), column, indent)
 
