@@ -312,6 +312,13 @@ def test_wgsl_rules_on_checked_code(wgsl_validator):
     assert not wgsl_validator({"rules": "\n".join(module) + "\n"})
 
 
+def test_wgsl_shifts_by_an_unsigned_amount():
+    i, u = ir.Name("i", "local", type="int"), ir.Name("u", "local", type="uint")
+    assert WgslPrinter().expression(ir.Binary("<<", u, i, type="uint")) == "u << u32(i)"
+    assert WgslPrinter().expression(ir.Binary(">>", u, ir.Literal(16, "16", type="int"), type="uint")) == "u >> 16"
+    assert WgslPrinter().statements([ir.Assign("<<=", u, i)], 0) == ["u <<= u32(i);"]
+
+
 def test_wgsl_matrix_of_another_size_as_glsl_fills_it():
     m3, m4 = ir.Name("m", "local", type="mat3"), ir.Name("q", "local", type="mat4")
     assert WgslPrinter().expression(ir.Construct("mat4", [m3])) == \

@@ -375,10 +375,14 @@ class _Writer:
     def binary_operands(self, e: ir.Binary):
         """GLSL's binary operators as WGSL takes them: scalar kinds made equal, a scalar added to
         a matrix spread over it, a matrix divided by a scalar multiplied by its inverse, `==` of
-        vectors reduced to one bool."""
+        vectors reduced to one bool, a shift by a signed amount by an unsigned one."""
         ta, tb = e.left.type, e.right.type
-        if ta is None or tb is None or e.op in ("&&", "||", "<<", ">>"):
+        if ta is None or tb is None or e.op in ("&&", "||"):
             return e
+        if e.op in ("<<", ">>"):  # WGSL shifts by u32 only (a literal amount is abstract)
+            if scalar_of(tb) != "int" or type(e.right) is ir.Literal:
+                return e
+            return ir.replace(e, right=ir.Convert(vector_of("uint", size_of(tb)), e.right, implicit=True))
         left, right = e.left, e.right
         sa, sb = scalar_of(ta), scalar_of(tb)
         if sa and sb and sa != sb and "bool" not in (sa, sb) and not (is_matrix(ta) or is_matrix(tb)):
@@ -667,6 +671,8 @@ class _Writer:
             value = s.value
             if s.op == "=":
                 value = self.converted(value, s.target.type)
+            elif s.op in ("<<=", ">>=") and value.type and scalar_of(value.type) == "int" and type(value) is not ir.Literal:
+                value = self.conversion(value, vector_of("uint", size_of(value.type)))  # shifts by u32 only
             at = None if column is None else end_column(column, target) + len(s.op) + 2
             return f"{target} {s.op} {self.render(value, at, indent)}"
         if cls is ir.ExprStatement:
