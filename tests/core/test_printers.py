@@ -312,6 +312,38 @@ def test_wgsl_rules_on_checked_code(wgsl_validator):
     assert not wgsl_validator({"rules": "\n".join(module) + "\n"})
 
 
+MORE_BUILTINS = """
+float mx_more(float x, uint u, int i, vec3 v, mat3 m, mat3 n, sampler2D tex)
+{
+    int a = floatBitsToInt(x) + findMSB(i) + findLSB(i) + bitCount(i) + textureQueryLevels(tex);
+    uvec3 b = floatBitsToUint(v);
+    float c = uintBitsToFloat(u) + intBitsToFloat(i) + roundEven(x) + acosh(x) + trunc(x) + fma(x, x, x);
+    mat3 d = matrixCompMult(m, n);
+    return c + float(a) + d[0].x + float(b.x);
+}
+"""
+
+
+def test_wgsl_forms_of_the_other_builtins(wgsl_validator):
+    """Bit casts and bit counts, roundEven, matrixCompMult column by column, textureQueryLevels."""
+    modules = {PRELUDE: parse_module(PRELUDE, read(PRELUDE_PATH)), "t.glsl": parse_module("t.glsl", MORE_BUILTINS)}
+    check_modules(modules, {}, (PRELUDE,))
+    (function,) = [item for item in modules["t.glsl"].items if type(item) is ir.Function]
+    printed_lines = WgslPrinter().item(function)
+    assert printed_lines == [
+        'fn mx_more(x: f32, u: u32, i: i32, v: vec3f, m: mat3x3f, n: mat3x3f, tex: texture_2d<f32>,',
+        '           tex_sampler: sampler) -> f32 {',
+        '    let a: i32 = bitcast<i32>(x) + firstLeadingBit(i) + firstTrailingBit(i) + countOneBits(i) +',
+        '                 i32(textureNumLevels(tex));',
+        '    let b: vec3u = bitcast<vec3u>(v);',
+        '    let c: f32 = bitcast<f32>(u) + bitcast<f32>(i) + round(x) + acosh(x) + trunc(x) + fma(x, x, x);',
+        '    let d: mat3x3f = mat3x3f(m[0] * n[0], m[1] * n[1], m[2] * n[2]);',
+        '    return c + f32(a) + d[0].x + f32(b.x);',
+        '}',
+    ]
+    assert not wgsl_validator({"more": "\n".join(printed_lines) + "\n"})
+
+
 def test_wgsl_shifts_by_an_unsigned_amount():
     i, u = ir.Name("i", "local", type="int"), ir.Name("u", "local", type="uint")
     assert WgslPrinter().expression(ir.Binary("<<", u, i, type="uint")) == "u << u32(i)"

@@ -38,6 +38,11 @@ TEXTURE_CALLS = {"texture": "textureSample", "textureGrad": "textureSampleGrad",
                  "textureSize": "textureDimensions", "texelFetch": "textureLoad"}
 
 RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx"}
+# more of them, for the IR printer (wgsl/printer.py; the translator keeps to the above): WGSL's
+# round() is GLSL's roundEven(), and findMSB() of a negative int is firstLeadingBit()'s highest 0
+IR_RENAMED = {**RENAMED, "bitCount": "countOneBits", "findLSB": "firstTrailingBit", "findMSB": "firstLeadingBit",
+              "roundEven": "round"}
+BITCASTS = {"floatBitsToInt": "int", "floatBitsToUint": "uint", "intBitsToFloat": "float", "uintBitsToFloat": "float"}
 
 # GLSL built-ins WGSL lacks, as WGSL functions every stage may call (the dead-code pass drops
 # those it does not). inverse(): the adjugate over the determinant. For a 3x3 matrix of columns

@@ -19,8 +19,8 @@ from ...errors import ShaderGenError
 from ..glsl.printer import literal_text as glsl_literal
 from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
-from .builtins import (COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, SELECT_HELPERS, TEXTURE_CALLS,
-                       WGSL_RESERVED, WGSL_TYPES)
+from .builtins import (BITCASTS, COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, IR_RENAMED, SELECT_HELPERS,
+                       TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES)
 
 DEFINED = frozenset({"GL_ES"})
 
@@ -524,11 +524,24 @@ class _Writer:
             return ir.Unary("-", Native("dpdy", list(args), type=e.type), type=e.type)
         if name == "not":
             return ir.Unary("!", args[0], type=e.type)
+        if name in BITCASTS:  # the bits of one scalar kind as another's
+            t = vector_of(BITCASTS[name], size_of(types[0]))
+            return Native(f"bitcast<{wgsl_type(t)}>", list(args), type=t)
+        if name == "matrixCompMult":  # column by column
+            n = int(e.type[3])
+            index = [ir.Literal(i, None, type="int") for i in range(n)]
+            columns = [ir.Binary("*", ir.Index(args[0], index[i], type=f"vec{n}"), ir.Index(args[1], index[i], type=f"vec{n}"),
+                                 type=f"vec{n}") for i in range(n)]
+            return Native(wgsl_type(e.type), columns, type=e.type)
+        if name == "textureQueryLevels":
+            if type(args[0]) is not ir.Name:
+                raise unsupported("textureQueryLevels of a texture that is not a name", e)
+            return Native("i32", [Native("textureNumLevels", [args[0]], type="uint")], type="int")
         if name in TEXTURE_CALLS:
             return self.texture_call(e)
         if name == "textureQueryLod":
             raise unsupported("textureQueryLod (WGSL has no query of the level of detail)", e)
-        wgsl = RENAMED.get((name, len(args)), RENAMED.get(name, name))
+        wgsl = IR_RENAMED.get((name, len(args)), IR_RENAMED.get(name, name))
         if name in COMPONENTWISE:
             if name == "mix" and types[2] is not None and scalar_of(types[2]) == "bool":
                 return Native("select", list(args), type=e.type)
