@@ -15,9 +15,9 @@ What has no WGSL form raises ShaderGenError("unsupported_node", ...).
 from functools import lru_cache
 
 from ...code import ir
+from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ...errors import ShaderGenError
 from ..glsl.printer import literal_text as glsl_literal
-from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
 from .builtins import (BITCASTS, COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, IR_RENAMED, SELECT_HELPERS,
                        TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES)
