@@ -33,6 +33,22 @@ def end_column(start: int, text: str) -> int:
     return start + len(text) if newline < 0 else len(text) - newline - 1
 
 
+def binary_text(render_left, op: str, render_right, column, indent: int) -> str:
+    """`left op right` for an expression starting at `column` (`render_left(column, indent)` and
+    `render_right` render the operands, parenthesised as they need). Too long for its line, it
+    breaks after the operator where both operands then fit, the right one aligned with the
+    expression's start (not too far right); else its operands wrap inside."""
+    if column is None:
+        return f"{render_left(None, indent)} {op} {render_right(None, indent)}"
+    left, right = render_left(None, indent), render_right(None, indent)
+    if column + len(left) + len(op) + 2 + len(right) <= WIDTH:
+        return f"{left} {op} {right}"
+    if column <= HANGING and column + len(left) + len(op) + 1 <= WIDTH and column + len(right) <= WIDTH:
+        return f"{left} {op}\n{' ' * column}{right}"
+    left = render_left(column, indent)
+    return f"{left} {op} {render_right(end_column(column, left) + len(op) + 2, indent)}"
+
+
 def arguments(render, args, column: int, indent: int) -> str:
     """The arguments of a call whose `(` ends at `column`, in a statement indented `indent`
     columns: on the line while they fit, else on the next, aligned after the `(`."""
@@ -59,43 +75,3 @@ def arguments(render, args, column: int, indent: int) -> str:
         out += text
         end = end_column(end, text)
     return out
-
-
-# -- type facts (IR type names, code/ir.py) -------------------------------------------------------
-_SCALARS = {"float", "int", "uint", "bool"}
-_VECTOR_SCALAR = {"vec": "float", "ivec": "int", "uvec": "uint", "bvec": "bool"}
-
-
-def scalar_of(ir_type: str) -> str | None:
-    """The scalar of a scalar, vector or matrix type (None for others)."""
-    if ir_type in _SCALARS:
-        return ir_type
-    if ir_type.startswith("mat"):
-        return "float"
-    prefix = ir_type[:-1]
-    if prefix in _VECTOR_SCALAR and ir_type[-1] in "234":
-        return _VECTOR_SCALAR[prefix]
-    return None
-
-
-def size_of(ir_type: str) -> int:
-    """Components of a vector (1 for a scalar)."""
-    return int(ir_type[-1]) if ir_type[:-1] in _VECTOR_SCALAR and ir_type[-1] in "234" else 1
-
-
-def is_matrix(ir_type: str | None) -> bool:
-    return bool(ir_type) and ir_type.startswith("mat") and len(ir_type) == 4
-
-
-def vector_of(scalar: str, size: int) -> str:
-    if size == 1:
-        return scalar
-    return {"float": "vec", "int": "ivec", "uint": "uvec", "bool": "bvec"}[scalar] + str(size)
-
-
-def array_parts(ir_type: str) -> tuple[str, str] | None:
-    """(element, size) of an array type `T[N]` (size "" for `T[]`), else None."""
-    if not ir_type.endswith("]"):
-        return None
-    open_ = ir_type.index("[")
-    return ir_type[:open_], ir_type[open_ + 1:-1]

@@ -9,12 +9,13 @@ nothing implicitly, so there a conversion between scalar kinds is written. Long 
 wrap at 110 columns (targets/printing.py).
 """
 from ...code import ir
+from ...code.types import array_element, is_array, scalar_of
 from ...errors import ShaderGenError
-from ..printing import INDENT, WIDTH, arguments, array_parts, comment_lines, end_column, scalar_of, with_trailing
+from ..printing import HANGING, INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
 from . import _float
 
 # Binary operators' precedence, GLSL 4.00 section 5.1 (higher binds tighter); all left-associative.
-BINARY = {"||": 2, "^^": 3, "&&": 4, "|": 5, "^": 6, "&": 7, "==": 8, "!=": 8, "<": 9, ">": 9, "<=": 9, ">=": 9,
+BINARY = {"||": 2, "&&": 4, "|": 5, "^": 6, "&": 7, "==": 8, "!=": 8, "<": 9, ">": 9, "<=": 9, ">=": 9,
           "<<": 10, ">>": 10, "+": 11, "-": 11, "*": 12, "/": 12, "%": 12}
 SELECT, UNARY, PRIMARY = 1, 13, 15
 BITWISE, SHIFTS, ARITHMETIC = frozenset("&|^"), frozenset({"<<", ">>"}), frozenset("+-*/%")
@@ -138,19 +139,19 @@ class GlslPrinter:
                 return flat
         if cls is ir.Binary:
             p = BINARY[e.op]
-            left = self.operand(e.left, column, indent, self.precedence(e.left) < p or
-                                (type(e.left) is not ir.Literal and self.mixed(e, e.left)))
-            op = f" {e.op} "
-            right_at = None if column is None else end_column(column, left) + len(op)
-            right = self.operand(e.right, right_at, indent, self.precedence(e.right) <= p or self.mixed(e, e.right))
-            return left + op + right
+            left = self.precedence(e.left) < p or (type(e.left) is not ir.Literal and self.mixed(e, e.left))
+            right = self.precedence(e.right) <= p or self.mixed(e, e.right)
+            if column is None:  # (the common case, without the wrapping's closures)
+                return f"{self.operand(e.left, None, indent, left)} {e.op} {self.operand(e.right, None, indent, right)}"
+            return binary_text(lambda at, indent: self.operand(e.left, at, indent, left), e.op,
+                               lambda at, indent: self.operand(e.right, at, indent, right), column, indent)
         if cls is ir.Unary:
             inner = self.precedence(e.operand) <= UNARY  # also `-(-x)`: `--x` is a decrement
             return e.op + self.operand(e.operand, None if column is None else column + len(e.op), indent, inner)
         if cls is ir.Call:
             return self.call(e.name, e.args, column, indent)
         if cls is ir.Construct:
-            return self.call(self.type_name(e.type), e.args, column, indent)
+            return self.call(e.type, e.args, column, indent)  # IR types are GLSL's spellings
         if cls is ir.Field:
             return self.operand(e.base, column, indent, self.precedence(e.base) < PRIMARY) + "." + e.name
         if cls is ir.Index:
@@ -162,13 +163,19 @@ class GlslPrinter:
             at = None if column is None else end_column(column, condition) + 3
             if_true = self.operand(e.if_true, at, indent, type(e.if_true) is ir.Select)
             at = None if column is None else end_column(at, if_true) + 3
-            return f"{condition} ? {if_true} : {self.render(e.if_false, at, indent)}"
+            if_false = self.render(e.if_false, at, indent)
+            if column is not None and "\n" not in if_true + if_false and at + len(if_false) > WIDTH:
+                # too long: the other branch on a line of its own, its `:` under the `?`
+                question = end_column(column, condition) + 1
+                if question <= HANGING and question + 2 + len(if_false) <= WIDTH:
+                    return f"{condition} ? {if_true}\n{' ' * question}: {if_false}"
+            return f"{condition} ? {if_true} : {if_false}"
         if cls is ir.Convert:
             if not self.written(e):
                 return self.render(e.operand, column, indent)
             if type(e.operand) is ir.Literal and e.type == "float" and isinstance(e.operand.value, int):
                 return _float(float(e.operand.value))
-            return self.call(self.type_name(e.type), [e.operand], column, indent)
+            return self.call(e.type, [e.operand], column, indent)
         raise unsupported(f"a {cls.__name__} expression", e)
 
     @staticmethod
@@ -196,10 +203,6 @@ class GlslPrinter:
         if column is None:
             return name + "(" + ", ".join([self.render(a, None, indent) for a in args]) + ")"
         return name + "(" + arguments(self.render, args, column + len(name) + 1, indent) + ")"
-
-    def type_name(self, ir_type: str) -> str:
-        """A type in a constructor: IR types are spelled as GLSL spells them (`float[3]` too)."""
-        return ir_type
 
     # -- statements --------------------------------------------------------------------------------
     def statements(self, stmts, depth: int) -> list[str]:
@@ -271,9 +274,8 @@ class GlslPrinter:
 
     def declarator(self, ir_type: str, name: str) -> str:
         """`T name`, an array `T name[N]` as the library sources write it."""
-        array = array_parts(ir_type)
-        if array is not None:
-            return f"{array[0]} {name}[{array[1]}]"
+        if is_array(ir_type):  # the size as written: a number, or a constant's name before checking
+            return f"{array_element(ir_type)} {name}{ir_type[ir_type.rindex('['):]}"
         return f"{ir_type} {name}"
 
     def body(self, block, depth: int, lines: list[str]) -> None:
@@ -371,7 +373,8 @@ class GlslPrinter:
 
     def parameter(self, p: ir.Param) -> str:
         qualifier = "" if p.qualifier == "in" else p.qualifier + " "
-        return ("const " if p.const else "") + qualifier + self.declarator(p.type, p.name)
+        name = p.name if self.spell is None else self.spell(ir.Name(p.name, "param"))
+        return ("const " if p.const else "") + qualifier + self.declarator(p.type, name)
 
     def global_declaration(self, g: ir.Global) -> str:
         """A uniform, stage input or output, or a library global. (A variable of a block is

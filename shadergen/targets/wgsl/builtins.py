@@ -38,6 +38,11 @@ TEXTURE_CALLS = {"texture": "textureSample", "textureGrad": "textureSampleGrad",
                  "textureSize": "textureDimensions", "texelFetch": "textureLoad"}
 
 RENAMED = {"inversesqrt": "inverseSqrt", ("atan", 2): "atan2", "dFdx": "dpdx"}
+# more of them, for the IR printer (wgsl/printer.py; the translator keeps to the above): WGSL's
+# round() is GLSL's roundEven(), and findMSB() of a negative int is firstLeadingBit()'s highest 0
+IR_RENAMED = {**RENAMED, "bitCount": "countOneBits", "findLSB": "firstTrailingBit", "findMSB": "firstLeadingBit",
+              "roundEven": "round"}
+BITCASTS = {"floatBitsToInt": "int", "floatBitsToUint": "uint", "intBitsToFloat": "float", "uintBitsToFloat": "float"}
 
 # GLSL built-ins WGSL lacks, as WGSL functions every stage may call (the dead-code pass drops
 # those it does not). inverse(): the adjugate over the determinant. For a 3x3 matrix of columns
@@ -90,6 +95,13 @@ HELPER_FUNCTIONS.update((f"mx_runtime_{t}", f"fn mx_runtime_{t}(value: {t}) -> {
                         for t in RUNTIME_TYPES)
 # all of them as one text (the IR printer, wgsl/printer.py, writes only those a stage calls)
 HELPERS = "\n".join(HELPER_FUNCTIONS.values())
+
+# `?:` between matrices: WGSL's select() takes scalars and vectors only (the IR printer's; the
+# text translator chooses column by column between names)
+SELECT_HELPERS = {"mat2": "mx_select_mat2x2f", "mat3": "mx_select_mat3x3f", "mat4": "mx_select_mat4x4f"}
+HELPER_FUNCTIONS.update(
+    (name, f"fn {name}(f: {t}, t: {t}, condition: bool) -> {t} {{\n    if (condition) {{ return t; }}\n    return f;\n}}\n")
+    for name, t in ((n, n.removeprefix("mx_select_")) for n in SELECT_HELPERS.values()))
 
 WGSL_RESERVED = set("""
 alias break case const const_assert continue continuing default diagnostic discard else enable false fn for if let

@@ -12,12 +12,15 @@ functions (`helpers()`), which the assembler writes once. Sections of macros sti
 the side WGSL stands on: GL_ES defined (a web target, as ESSL), every other macro undefined.
 What has no WGSL form raises ShaderGenError("unsupported_node", ...).
 """
+from functools import lru_cache
+
 from ...code import ir
+from ...code.types import array_element, array_size, is_array, is_matrix, is_vector, scalar_of, size_of, vector_of
 from ...errors import ShaderGenError
-from ..glsl.printer import literal_text
-from ..printing import (INDENT, WIDTH, arguments, array_parts, comment_lines, end_column, is_matrix, scalar_of,
-                        size_of, vector_of, with_trailing)
-from .builtins import COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, RENAMED, TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES
+from ..glsl.printer import literal_text as glsl_literal
+from ..printing import INDENT, WIDTH, arguments, binary_text, comment_lines, end_column, with_trailing
+from .builtins import (BITCASTS, COMPONENTWISE, HELPER_FUNCTIONS, INVERSE_HELPERS, IR_RENAMED, SELECT_HELPERS,
+                       TEXTURE_CALLS, WGSL_RESERVED, WGSL_TYPES)
 
 DEFINED = frozenset({"GL_ES"})
 
@@ -26,7 +29,8 @@ DEFINED = frozenset({"GL_ES"})
 FRAGMENT_BUILTINS = {"gl_FrontFacing": "front_facing"}
 
 # Precedence classes (WGSL section 8.19): which kinds of operand each operator takes unparenthesised.
-PRIMARY, UNARY, MUL, ADD, SHIFT, REL, AND, OR, BITS = "primary", "unary", "mul", "add", "shift", "rel", "and", "or", "bits"
+PRIMARY, UNARY, MUL, ADD, SHIFT, REL, AND, OR, BITS = ("primary", "unary", "mul", "add", "shift", "rel", "and", "or",
+                                                        "bits")
 CLASS = {"*": MUL, "/": MUL, "%": MUL, "+": ADD, "-": ADD, "<<": SHIFT, ">>": SHIFT, "<": REL, ">": REL, "<=": REL,
          ">=": REL, "==": REL, "!=": REL, "&&": AND, "||": OR, "&": BITS, "|": BITS, "^": BITS}
 _TIGHT = {PRIMARY, UNARY}
@@ -37,6 +41,17 @@ OPERANDS = {  # class -> (left operands, right operands) taken without parenthes
 }
 COMPARISONS = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "greaterThanEqual": ">=", "equal": "==",
                "notEqual": "!="}
+
+
+def literal_text(node: ir.Literal) -> str:
+    """A literal as GLSL spells it, whose suffixes WGSL takes in lower case only (`1.0F`, `2U`)."""
+    text = node.text
+    if text is None:
+        return glsl_literal(node)
+    if text[-1] not in "FU":
+        return text
+    hexadecimal = text.startswith(("0x", "0X"))  # where F is a digit
+    return text[:-1] + text[-1].lower() if text[-1] == "U" or (text[-1] == "F" and not hexadecimal) else text
 
 
 def unsupported(what: str, node) -> ShaderGenError:
@@ -51,12 +66,12 @@ def safe_name(name: str) -> str:
     return f"{name}_" if name in WGSL_RESERVED else name
 
 
+@lru_cache(maxsize=None)
 def wgsl_type(ir_type: str) -> str:
-    array = array_parts(ir_type)
-    if array is not None:
-        if not array[1]:
+    if is_array(ir_type):
+        if array_size(ir_type) is None:
             raise ShaderGenError("unsupported_node", f"no WGSL form for an array of unknown size ({ir_type})")
-        return f"array<{wgsl_type(array[0])}, {array[1]}>"
+        return f"array<{wgsl_type(array_element(ir_type))}, {array_size(ir_type)}>"
     if ir_type == "sampler2D":
         return "texture_2d<f32>"
     return WGSL_TYPES.get(ir_type, ir_type)
@@ -88,23 +103,27 @@ def helpers(items) -> list[str]:
     wanted = set()
     for item in items:
         for node in ir.walk(item):
-            if type(node) is ir.Call and node.builtin and node.name == "inverse" and node.args[0].type in INVERSE_HELPERS:
-                wanted.add(INVERSE_HELPERS[node.args[0].type])
+            if type(node) is ir.Call and node.builtin and node.name == "inverse":
+                if node.args[0].type in INVERSE_HELPERS:
+                    wanted.add(INVERSE_HELPERS[node.args[0].type])
+            elif type(node) is ir.Select and node.type in SELECT_HELPERS:
+                wanted.add(SELECT_HELPERS[node.type])
     return [line for name, text in HELPER_FUNCTIONS.items() if name in wanted for line in [*text.splitlines(), ""]]
 
 
-def resolve_sections(stmts) -> list:
-    """Statements (or items) with their macro sections replaced by the side WGSL takes."""
+def resolve_sections(stmts, defined) -> list:
+    """Statements (or items) with their macro sections replaced by the side WGSL takes (`defined`:
+    the macros taken as defined)."""
     out = []
     for s in stmts:
         if type(s) is ir.Section:
-            out.extend(resolve_sections(s.body if (s.macro in DEFINED) == s.defined else (s.other or [])))
+            out.extend(resolve_sections(s.body if (s.macro in defined) == s.defined else (s.other or []), defined))
         else:
             out.append(s)
     return out
 
 
-def else_chain(parts):
+def else_chain(parts, defined):
     """What follows an `else` as one statement: sections resolved, an `#ifdef X else ... #endif`
     after an `else if` attached to that `if` as the preprocessor would."""
     if not parts:
@@ -114,14 +133,16 @@ def else_chain(parts):
         return head
     if type(head) is not ir.If:
         raise unsupported("several else branches of one if", head)
-    after = [] if head.other is None else else_parts(head.other)
-    return ir.replace(head, other=ir.Block([else_chain(after + rest)], False))
+    after = [] if head.other is None else else_parts(head.other, defined)
+    return ir.replace(head, other=ir.Block([else_chain(after + rest, defined)], False))
 
 
-def else_parts(other) -> list:
-    if type(other) is ir.Block and not other.scoped:
-        return resolve_sections(other.body)
-    return [other]
+def else_parts(other, defined) -> list:
+    """The else clauses `other` stands for, its sections resolved (none where all of them drop
+    theirs)."""
+    if type(other) is not ir.Block or other.scoped or not any(type(s) is ir.Section for s in other.body):
+        return [other]
+    return [part for s in resolve_sections(other.body, defined) for part in else_parts(s, defined)]
 
 
 class Native(ir.Expr):
@@ -132,29 +153,48 @@ class Native(ir.Expr):
 
 def assigned_roots(body) -> set[str]:
     """Names a body assigns or passes as an out argument (WGSL parameters are immutable)."""
-    names = set()
-    for node in ir.walk(body):
-        targets = []
-        if type(node) is ir.Assign:
-            targets.append(node.target)
-        elif type(node) is ir.Call and node.callee is not None:
-            targets.extend(a for p, a in zip(node.callee.params, node.args) if p.qualifier != "in")
-        for t in targets:
-            while type(t) in (ir.Field, ir.Index):
-                t = t.base
-            if type(t) is ir.Name:
-                names.add(t.name)
+    names: set[str] = set()
+    _assigned(body, names)
     return names
+
+
+def _assigned(node, names: set) -> None:
+    cls = type(node)
+    if cls is ir.Assign:
+        _add_root(node.target, names)
+    elif cls is ir.Call and node.callee is not None:
+        for p, a in zip(node.callee.params, node.args):
+            if p.qualifier != "in":
+                _add_root(a, names)
+    elif cls is ir.Name or cls is ir.Literal:
+        return
+    for field in cls.FIELDS:  # (ir.walk, but without a list per node: this runs per function printed)
+        value = getattr(node, field)
+        if isinstance(value, ir.Node):
+            _assigned(value, names)
+        elif type(value) is list or type(value) is tuple:
+            for v in value:
+                if isinstance(v, ir.Node):
+                    _assigned(v, names)
+
+
+def _add_root(target, names: set) -> None:
+    while type(target) is ir.Field or type(target) is ir.Index:
+        target = target.base
+    if type(target) is ir.Name:
+        names.add(target.name)
 
 
 class WgslPrinter:
     """`item`, `statements` and `expression` of typed IR as WGSL. `function_names`: Function.key ->
-    WGSL name (function_names() makes one); `spell(name_node)`: how a Name is written."""
-    __slots__ = ("function_names", "spell")
+    WGSL name (function_names() makes one); `spell(name_node)`: how a Name is written; `defined`:
+    the macros whose sections count as defined where a section is still in the IR."""
+    __slots__ = ("function_names", "spell", "defined")
 
-    def __init__(self, function_names: dict[str, str] | None = None, spell=None):
+    def __init__(self, function_names: dict[str, str] | None = None, spell=None, defined=DEFINED):
         self.function_names = function_names or {}
         self.spell = spell
+        self.defined = frozenset(defined)
 
     def expression(self, expr) -> str:
         writer = _Writer(self, frozenset())
@@ -171,7 +211,7 @@ class WgslPrinter:
     def item(self, item) -> list[str]:
         cls = type(item)
         if cls is ir.Section:
-            return [line for x in resolve_sections([item]) for line in self.item(x)]
+            return [line for x in resolve_sections([item], self.defined) for line in self.item(x)]
         lines = comment_lines(item.comment) if getattr(item, "comment", None) and cls is not ir.Comment else []
         writer = _Writer(self, frozenset())
         if cls is ir.Function:
@@ -185,13 +225,15 @@ class WgslPrinter:
             # A constant array indexed at run time is a value naga copies into a local at every
             # index (SPIR-V cannot index a value), which makes drivers compile for minutes; a
             # private variable is indexed in place.
-            keyword = "var<private>" if array_parts(ir_type) else "const"
+            keyword = "var<private>" if is_array(ir_type) else "const"
             head = f"{keyword} {safe_name(item.name)}: {wgsl_type(ir_type)} = "
             value = writer.converted(item.value, ir_type)
             lines.extend((head + writer.render(value, len(head), 0) + ";").split("\n"))
         elif cls is ir.Global:
+            # a module-scope variable; uniforms and stage inputs and outputs are the assembler's
+            # (bound buffers, entry point parameters), which declares them itself
             if item.kind != "builtin":  # the target's own variable: nothing to declare
-                head = f"var<private> {self.name_of(item.name)}: {wgsl_type(self.sized(item.type, item.init))}"
+                head = f"var<private> {safe_name(item.name)}: {wgsl_type(self.sized(item.type, item.init))}"
                 if item.init is not None:
                     head += " = " + writer.render(writer.converted(item.init, item.type), len(head) + 3, 0)
                 lines.extend((head + ";").split("\n"))
@@ -204,21 +246,18 @@ class WgslPrinter:
     @staticmethod
     def sized(ir_type: str, value) -> str:
         """`T[]` sized by its constructor's arguments."""
-        array = array_parts(ir_type)
-        if array is not None and not array[1] and type(value) is ir.Construct:
-            return f"{array[0]}[{len(value.args)}]"
+        if is_array(ir_type) and array_size(ir_type) is None and type(value) is ir.Construct:
+            return f"{array_element(ir_type)}[{len(value.args)}]"
         return ir_type
-
-    def name_of(self, name: str) -> str:
-        return safe_name(name)
 
     def function(self, f: ir.Function) -> list[str]:
         body = f.body.body if type(f.body) is ir.Block else f.body
         assigned = assigned_roots(f.body)
         pointers = frozenset(p.name for p in f.params if p.qualifier != "in")
         parts, copies = [], []
+        writer = _Writer(self, pointers, f.returns, assigned)
         for p in f.params:
-            name = safe_name(p.name)
+            name = writer.spelled(ir.Name(p.name, "param"))
             if p.type == "sampler2D":
                 parts.append(f"{name}: texture_2d<f32>")
                 parts.append(f"{name}_sampler: sampler")
@@ -234,7 +273,7 @@ class WgslPrinter:
         arrow = "" if f.returns == "void" else f" -> {wgsl_type(f.returns)}"
         signature = head + arguments(lambda text, column, indent: text, parts, len(head), 0) + ")" + arrow + " {"
         lines = [*signature.split("\n"), *copies]
-        _Writer(self, pointers, f.returns).statements(body, 1, lines)
+        writer.statements(body, 1, lines)
         lines.append("}")
         return lines
 
@@ -243,12 +282,13 @@ class _Writer:
     """Prints one function's statements: knows its pointer parameters, and gathers the lines a
     statement needs before and after it (copies through which a member is passed as an out
     argument: naga's SPIR-V writer in wgpu 0.32 panics on a pointer into a composite)."""
-    __slots__ = ("printer", "pointers", "returns", "before", "after", "temporaries")
+    __slots__ = ("printer", "pointers", "returns", "assigned", "before", "after", "temporaries")
 
-    def __init__(self, printer: WgslPrinter, pointers, returns=None):
+    def __init__(self, printer: WgslPrinter, pointers, returns=None, assigned=None):
         self.printer = printer
         self.pointers = pointers
         self.returns = returns
+        self.assigned = assigned  # names the body assigns (None: unknown, every local a var)
         self.before: list[str] = []
         self.after: list[str] = []
         self.temporaries = 0
@@ -294,7 +334,7 @@ class _Writer:
             return self.render(self.construct(e), column, indent)
         if cls is ir.Field:
             base = self.operand(e.base, column, indent, self.klass(e.base) != PRIMARY)
-            return base + "." + (e.name if e.swizzle or is_vector(e.base.type) else safe_name(e.name))
+            return base + "." + (e.name if e.swizzle else safe_name(e.name))
         if cls is ir.Index:
             base = self.operand(e.base, column, indent, self.klass(e.base) != PRIMARY)
             at = None if column is None else end_column(column, base) + 1
@@ -326,21 +366,26 @@ class _Writer:
             left_ok, right_ok = _TIGHT | ({BITS} if type(e.left) is ir.Binary and e.left.op == e.op else set()), _TIGHT
         else:
             left_ok, right_ok = OPERANDS[kind]
-        left = self.operand(e.left, column, indent, self.klass(e.left) not in left_ok)
-        op = f" {e.op} "
-        at = None if column is None else end_column(column, left) + len(op)
-        return left + op + self.operand(e.right, at, indent, self.klass(e.right) not in right_ok)
+        left, right = self.klass(e.left) not in left_ok, self.klass(e.right) not in right_ok
+        if column is None:  # (the common case, without the wrapping's closures)
+            return f"{self.operand(e.left, None, indent, left)} {e.op} {self.operand(e.right, None, indent, right)}"
+        return binary_text(lambda at, indent: self.operand(e.left, at, indent, left), e.op,
+                           lambda at, indent: self.operand(e.right, at, indent, right), column, indent)
 
     def binary_operands(self, e: ir.Binary):
         """GLSL's binary operators as WGSL takes them: scalar kinds made equal, a scalar added to
         a matrix spread over it, a matrix divided by a scalar multiplied by its inverse, `==` of
-        vectors reduced to one bool."""
+        vectors reduced to one bool, a shift by a signed amount by an unsigned one."""
         ta, tb = e.left.type, e.right.type
-        if ta is None or tb is None or e.op in ("&&", "||", "<<", ">>"):
+        if ta is None or tb is None or e.op in ("&&", "||"):
             return e
+        if e.op in ("<<", ">>"):  # WGSL shifts by u32 only (a literal amount is abstract)
+            if scalar_of(tb) != "int" or type(e.right) is ir.Literal:
+                return e
+            return ir.replace(e, right=ir.Convert(vector_of("uint", size_of(tb)), e.right, implicit=True))
         left, right = e.left, e.right
         sa, sb = scalar_of(ta), scalar_of(tb)
-        if sa and sb and sa != sb and "bool" not in (sa, sb):
+        if sa and sb and sa != sb and "bool" not in (sa, sb) and not (is_matrix(ta) or is_matrix(tb)):
             wider = "float" if "float" in (sa, sb) else "uint"
             if sa != wider:
                 left = ir.Convert(vector_of(wider, size_of(ta)), left, implicit=True)
@@ -357,7 +402,7 @@ class _Writer:
             column = ir.Construct(f"vec{n}", [scalar])
             spread = ir.Construct(matrix, [column] * n)
             return ir.replace(e, left=spread if left is scalar else left, right=spread if right is scalar else right)
-        if e.op in ("==", "!=") and e.type == "bool" and size_of(ta) > 1:
+        if e.op in ("==", "!=") and e.type == "bool" and is_vector(ta):
             reduce = "all" if e.op == "==" else "any"
             return Native(reduce, [ir.replace(e, left=left, right=right, type=vector_of("bool", size_of(ta)))],
                           type="bool")
@@ -392,10 +437,9 @@ class _Writer:
         """A GLSL constructor as WGSL's: arguments converted to the component type, a matrix's
         diagonal or the top-left of a larger matrix, an array's element type and size."""
         t, args = e.type, e.args
-        array = array_parts(t)
-        if array is not None:
-            element = array[0]
-            size = array[1] or str(len(args))
+        if is_array(t):
+            element = array_element(t)
+            size = array_size(t) or len(args)
             return Native(f"array<{wgsl_type(element)}, {size}>", [self.converted(a, element) for a in args], type=t)
         scalar = scalar_of(t)
         if scalar is None:  # a struct: members in order
@@ -408,14 +452,10 @@ class _Writer:
                 zero = ir.Literal(0.0, "0.0", type="float")
                 return Native(wgsl_type(t), [diagonal if i % (n + 1) == 0 else zero for i in range(n * n)], type=t)
             if len(args) == 1 and is_matrix(types[0]) and types[0] != t:
-                if int(types[0][3]) < n:
-                    raise unsupported(f"{t} of a smaller matrix", e)
-                columns = [ir.Field(ir.Index(args[0], ir.Literal(i, None, type="int"), type=f"vec{types[0][3]}"),
-                                    "xyzw"[:n], type=f"vec{n}", swizzle=True) for i in range(n)]
-                return Native(wgsl_type(t), columns, type=t)
-            return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == "float" else
-                                         self.conversion(a, vector_of("float", size_of(ta))) for a, ta in zip(args, types)],
-                          type=t)
+                return Native(wgsl_type(t), self.resized_columns(args[0], int(types[0][3]), n), type=t)
+            floats = [a if ta is None or scalar_of(ta) == "float" else
+                      self.conversion(a, vector_of("float", size_of(ta))) for a, ta in zip(args, types)]
+            return Native(wgsl_type(t), floats, type=t)
         if size_of(t) == 1:  # float(x), int(x): a vector's first component
             (arg,) = args
             if arg.type is not None and size_of(arg.type) > 1:
@@ -423,24 +463,38 @@ class _Writer:
             if arg.type == t:
                 return arg
             return self.conversion(arg, t, e) if arg.type is not None else Native(wgsl_type(t), [arg], type=t)
-        if len(args) == 1 and types[0] is not None and size_of(types[0]) > size_of(t):  # vec3(v4): its first components
-            return self.converted(ir.Field(args[0], "xyzw"[:size_of(t)], type=vector_of(scalar_of(types[0]), size_of(t)),
-                                           swizzle=True), t)
+        if len(args) == 1 and types[0] is not None and is_vector(types[0]):
+            arg = args[0]
+            if size_of(types[0]) > size_of(t):  # vec3(v4): its first components
+                arg = ir.Field(arg, "xyzw"[:size_of(t)], type=vector_of(scalar_of(types[0]), size_of(t)), swizzle=True)
+            return self.converted(arg, t)  # vec2(ivec2): the conversion itself
         return Native(wgsl_type(t), [a if ta is None or scalar_of(ta) == scalar else
                                      self.conversion(a, vector_of(scalar, size_of(ta))) for a, ta in zip(args, types)],
                       type=t)
 
+    @staticmethod
+    def resized_columns(matrix, k: int, n: int) -> list:
+        """The columns of `mat<n>(mat<k>)` as GLSL fills it: the top-left of a larger matrix; a
+        smaller one in the top-left of the identity."""
+        columns = []
+        for i in range(n):
+            if i >= k:  # the identity's column
+                columns.append(Native(f"vec{n}f", [ir.Literal(float(j == i), None, type="float") for j in range(n)],
+                                      type=f"vec{n}"))
+                continue
+            column = ir.Index(matrix, ir.Literal(i, None, type="int"), type=f"vec{k}")
+            if k >= n:
+                columns.append(ir.Field(column, "xyzw"[:n], type=f"vec{n}", swizzle=True) if k > n else column)
+            else:
+                zeros = [ir.Literal(0.0, None, type="float")] * (n - k)
+                columns.append(Native(f"vec{n}f", [column, *zeros], type=f"vec{n}"))
+        return columns
+
     def select(self, e: ir.Select):
         t = e.type
         if_true, if_false = self.converted(e.if_true, t), self.converted(e.if_false, t)
-        if is_matrix(t):  # select() takes scalars and vectors: a matrix column by column
-            if not all(type(x) is ir.Name for x in (e.if_true, e.if_false)):
-                raise unsupported("a choice between matrix expressions", e)
-            n = int(t[3])
-            index = [ir.Literal(i, None, type="int") for i in range(n)]
-            return Native(wgsl_type(t), [Native("select", [ir.Index(if_false, index[i], type=f"vec{n}"),
-                                                           ir.Index(if_true, index[i], type=f"vec{n}"), e.condition],
-                                                type=f"vec{n}") for i in range(n)], type=t)
+        if is_matrix(t):  # select() takes scalars and vectors: a helper function (helpers())
+            return Native(SELECT_HELPERS[t], [if_false, if_true, e.condition], type=t)
         return Native("select", [if_false, if_true, e.condition], type=t)
 
     def lower_call(self, e: ir.Call):
@@ -470,11 +524,24 @@ class _Writer:
             return ir.Unary("-", Native("dpdy", list(args), type=e.type), type=e.type)
         if name == "not":
             return ir.Unary("!", args[0], type=e.type)
+        if name in BITCASTS:  # the bits of one scalar kind as another's
+            t = vector_of(BITCASTS[name], size_of(types[0]))
+            return Native(f"bitcast<{wgsl_type(t)}>", list(args), type=t)
+        if name == "matrixCompMult":  # column by column
+            n = int(e.type[3])
+            index = [ir.Literal(i, None, type="int") for i in range(n)]
+            columns = [ir.Binary("*", ir.Index(args[0], index[i], type=f"vec{n}"), ir.Index(args[1], index[i], type=f"vec{n}"),
+                                 type=f"vec{n}") for i in range(n)]
+            return Native(wgsl_type(e.type), columns, type=e.type)
+        if name == "textureQueryLevels":
+            if type(args[0]) is not ir.Name:
+                raise unsupported("textureQueryLevels of a texture that is not a name", e)
+            return Native("i32", [Native("textureNumLevels", [args[0]], type="uint")], type="int")
         if name in TEXTURE_CALLS:
             return self.texture_call(e)
         if name == "textureQueryLod":
             raise unsupported("textureQueryLod (WGSL has no query of the level of detail)", e)
-        wgsl = RENAMED.get((name, len(args)), RENAMED.get(name, name))
+        wgsl = IR_RENAMED.get((name, len(args)), IR_RENAMED.get(name, name))
         if name in COMPONENTWISE:
             if name == "mix" and types[2] is not None and scalar_of(types[2]) == "bool":
                 return Native("select", list(args), type=e.type)
@@ -533,7 +600,7 @@ class _Writer:
 
     # -- statements --------------------------------------------------------------------------------
     def statements(self, stmts, depth: int, lines: list[str]) -> None:
-        for s in resolve_sections(stmts):
+        for s in resolve_sections(stmts, self.printer.defined):
             self.statement(s, depth, lines)
 
     def statement(self, s, depth: int, lines: list[str]) -> None:
@@ -555,14 +622,14 @@ class _Writer:
             condition = self.render(s.condition, None, 0) if s.condition is not None else ""
             update = self.simple(s.update, None, 0) if s.update is not None else ""
             self.header_done(s)
-            self.braced(with_trailing(f"{pad}for ({init}; {condition}; {update})", s.comment), s.body, depth, lines)
+            self.braced(f"{pad}for ({init}; {condition}; {update})", s.body, depth, lines, s.comment)
         elif cls is ir.While:
             condition = self.render(s.condition, None, 0)
             self.header_done(s)
-            self.braced(with_trailing(f"{pad}while ({condition})", s.comment), s.body, depth, lines)
+            self.braced(f"{pad}while ({condition})", s.body, depth, lines, s.comment)
         elif cls is ir.Assign and s.op != "=" and s.value is None:
             self.flush(with_trailing(pad + self.step(s) + ";", s.comment), depth, lines)
-        elif cls is ir.Assign and type(s.target) is ir.Field and len(s.target.name) > 1 and is_vector(s.target.base.type):
+        elif cls is ir.Assign and type(s.target) is ir.Field and s.target.swizzle and len(s.target.name) > 1:
             self.swizzle_assign(s, depth, lines)
         elif cls is ir.Return and s.value is not None:
             value = self.render(self.converted(s.value, self.returns), len(pad) + 7, len(pad))
@@ -601,7 +668,10 @@ class _Writer:
         cls = type(s)
         if cls is ir.Declare:
             ir_type = self.printer.sized(s.type, s.init)
-            keyword = "let" if s.const and s.init is not None and not array_parts(ir_type) else "var"
+            # a local nothing assigns is a `let` (an array stays a variable: indexed at run time,
+            # a value would be copied)
+            constant = s.const or (self.assigned is not None and s.name not in self.assigned)
+            keyword = "let" if constant and s.init is not None and not is_array(ir_type) else "var"
             head = f"{keyword} {self.spelled(ir.Name(s.name, 'local'))}: {wgsl_type(ir_type)}"
             if s.init is None:
                 return head
@@ -614,6 +684,8 @@ class _Writer:
             value = s.value
             if s.op == "=":
                 value = self.converted(value, s.target.type)
+            elif s.op in ("<<=", ">>=") and value.type and scalar_of(value.type) == "int" and type(value) is not ir.Literal:
+                value = self.conversion(value, vector_of("uint", size_of(value.type)))  # shifts by u32 only
             at = None if column is None else end_column(column, target) + len(s.op) + 2
             return f"{target} {s.op} {self.render(value, at, indent)}"
         if cls is ir.ExprStatement:
@@ -653,16 +725,16 @@ class _Writer:
         if s.comment:
             lines[-1] = with_trailing(lines[-1], s.comment)
 
-    def braced(self, opener: str, body, depth: int, lines: list[str]) -> None:
-        """`opener {`, the body, `}`; a brace-less body of one line in the source stays one line."""
+    def braced(self, opener: str, body, depth: int, lines: list[str], comment=None) -> None:
+        """`opener {`, the body, `}`; a brace-less body of one line in the source stays one line.
+        `comment`: the opener's own, after the source's `)` or `else`."""
         inner: list[str] = []
         self.statements(body.body if type(body) is ir.Block else [body], depth + 1, inner)
         if type(body) is ir.Block and not body.scoped and len(inner) == 1 and "//" not in inner[0] \
                 and len(opener) + len(inner[0].strip()) + 6 <= WIDTH:
-            lines.append(f"{opener} {{ {inner[0].strip()} }}")
+            lines.append(with_trailing(f"{opener} {{ {inner[0].strip()} }}", comment))
             return
-        comment = body.comment if type(body) is ir.Block else None
-        lines.append(with_trailing(opener + " {", comment))
+        lines.append(with_trailing(opener + " {", comment or (body.comment if type(body) is ir.Block else None)))
         lines.extend(inner)
         lines.append(INDENT * depth + "}")
 
@@ -673,17 +745,14 @@ class _Writer:
             raise unsupported("an out argument of a member or element in an if's condition", s)
         lines.extend(pad + line for line in self.before)
         self.before.clear()
-        self.braced(with_trailing(f"{pad}{prefix}if ({condition})", s.comment), s.then, depth, lines)
+        self.braced(f"{pad}{prefix}if ({condition})", s.then, depth, lines, s.comment)
         if s.other is None:
             return
-        other = else_chain(else_parts(s.other))
+        defined = self.printer.defined
+        other = else_chain(else_parts(s.other, defined), defined)
         if other is None:
             return
         if type(other) is ir.If:
             self.if_chain(other, depth, lines, "else ")
         else:
             self.braced(f"{pad}else", other, depth, lines)
-
-
-def is_vector(ir_type) -> bool:
-    return ir_type is not None and scalar_of(ir_type) is not None and size_of(ir_type) > 1
