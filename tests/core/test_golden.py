@@ -1,32 +1,38 @@
 """Golden shaders (tests/golden/): generated code is reviewed as code. A failure here after an
-intended change: regenerate with `python -m tests.golden.cases` and review the diff."""
+intended change: regenerate with `python -m tests.golden.cases` and review the diff. Every golden
+shader compiles with its target's own checker (glslangValidator for GLSL and ESSL, wgpu's naga
+for WGSL)."""
 import difflib
 
 import pytest
 
-from tests.golden.cases import DOCUMENTS, VARIANTS, generate, golden_path
-
-from .conftest import glslang, needs_glslang
-
-CASES = [(name, variant) for name in DOCUMENTS for variant in VARIANTS]
+from name_cases import ShaderChecker
+from tests.golden.cases import CASES, DOCUMENTS, VARIANTS, generate, golden_path
 
 
-@pytest.mark.parametrize("name,variant", CASES)
-def test_generated_source_equals_the_golden_file(gen, name, variant):
-    expected = golden_path(name, variant).read_text()
-    actual = generate(gen, name, variant)
+@pytest.fixture(scope="module")
+def checker():
+    from required_tools import require_wgpu, tool_path
+    return ShaderChecker(tool_path("glslangValidator"), require_wgpu())
+
+
+@pytest.mark.parametrize("name,variant,target,stage", CASES)
+def test_generated_source_equals_the_golden_file(gen, name, variant, target, stage):
+    expected = golden_path(name, variant, target, stage).read_text()
+    actual = generate(gen, name, variant, target, stage)
     diff = "".join(difflib.unified_diff(expected.splitlines(True), actual.splitlines(True), "golden", "generated", n=1))
     assert actual == expected, "regenerate with `python -m tests.golden.cases` if intended:\n" + diff[:4000]
 
 
-@needs_glslang
-@pytest.mark.parametrize("name,variant", CASES)
-def test_golden_source_compiles(name, variant):
-    ok, log = glslang(golden_path(name, variant).read_text(), "pixel")
-    assert ok, log
+def test_every_golden_source_compiles_with_its_checker(checker):
+    records = [(f"{name}.{variant}", {"target": target, "interface": variant, "element": name,
+                                     "stages": {stage: golden_path(name, variant, target, stage).read_text()}})
+               for name, variant, target, stage in CASES]
+    assert not checker.problems(records)
 
 
-def test_specialized_golden_is_smaller_than_complete():
+@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl"])
+def test_specialized_golden_is_smaller_than_complete(target):
     for name in DOCUMENTS:
-        complete, specialized, thumbnail = (len(golden_path(name, v).read_text().splitlines()) for v in VARIANTS)
+        complete, specialized, thumbnail = (len(golden_path(name, v, target).read_text().splitlines()) for v in VARIANTS)
         assert thumbnail <= specialized <= complete, name

@@ -1,7 +1,7 @@
-"""The golden shaders: the complete and specialized fragment source of a few materials, and the
+"""The golden shaders: the complete and specialized source of a few materials, and the
 thumbnail's (specialized for environment lighting by importance sampling and no lights, as
-`shadergen render` and the service's thumbnails generate it), committed so that any change to
-generated code shows up in review.
+`shadergen render` and the service's thumbnails generate it), both stages in every target (GLSL,
+ESSL, WGSL), committed so that any change to generated code shows up in review.
 
     python -m tests.golden.cases      # rewrite them after an intended change, and review the diff
 """
@@ -19,21 +19,28 @@ VARIANTS = {"complete": {"interface": "complete"}, "specialized": {"interface": 
             "thumbnail": {"interface": "specialized", "environment": "fis", "lights": False}}
 
 
-def golden_path(name: str, variant: str) -> Path:
-    return HERE / f"{name}.{variant}.frag"
+TARGETS = ("glsl", "essl", "wgsl")
+STAGES = ("vertex", "pixel")
+SUFFIXES = {("glsl", "vertex"): "vert", ("glsl", "pixel"): "frag", ("essl", "vertex"): "essl.vert",
+            ("essl", "pixel"): "essl.frag", ("wgsl", "vertex"): "vert.wgsl", ("wgsl", "pixel"): "frag.wgsl"}
+CASES = [(name, variant, target, stage) for name in DOCUMENTS for variant in VARIANTS for target in TARGETS
+         for stage in STAGES]
 
 
-def generate(generator, name: str, variant: str) -> str:
-    return generator.prepare(DOCUMENTS[name], **VARIANTS[variant]).emit()["stages"]["pixel"]
+def golden_path(name: str, variant: str, target: str = "glsl", stage: str = "pixel") -> Path:
+    return HERE / f"{name}.{variant}.{SUFFIXES[(target, stage)]}"
+
+
+def generate(generator, name: str, variant: str, target: str = "glsl", stage: str = "pixel") -> str:
+    return generator.prepare(DOCUMENTS[name], target=target, **VARIANTS[variant]).emit()["stages"][stage]
 
 
 def main() -> None:
     from shadergen.api import Generator
     generator = Generator()
-    for name in DOCUMENTS:
-        for variant in VARIANTS:
-            golden_path(name, variant).write_text(generate(generator, name, variant))
-            print(golden_path(name, variant).relative_to(ROOT))
+    for case in CASES:
+        golden_path(*case).write_text(generate(generator, *case))
+        print(golden_path(*case).relative_to(ROOT))
 
 
 if __name__ == "__main__":

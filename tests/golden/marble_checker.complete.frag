@@ -40,48 +40,10 @@ uint mx_hn_final(uint a, uint b, uint c)
     return c;
 }
 
-// lookup3 mix(): consumes one full block of three words (used for keys longer than three).
-void mx_hn_mix(inout uint a, inout uint b, inout uint c)
-{
-    a -= c; a ^= mx_hn_rotl(c, 4u);  c += b;
-    b -= a; b ^= mx_hn_rotl(a, 6u);  a += c;
-    c -= b; c ^= mx_hn_rotl(b, 8u);  b += a;
-    a -= c; a ^= mx_hn_rotl(c, 16u); c += b;
-    b -= a; b ^= mx_hn_rotl(a, 19u); a += c;
-    c -= b; c ^= mx_hn_rotl(b, 4u);  b += a;
-}
-
-// Hashes of 2, 3, 4 and 5 integer words; the seed is 0xdeadbeef + 4 * length + 13.
-uint mx_hn_hash(int x, int y)
-{
-    uint s = 0xdeadbeefu + 21u;
-    return mx_hn_final(s + uint(x), s + uint(y), s);
-}
-
 uint mx_hn_hash(int x, int y, int z)
 {
     uint s = 0xdeadbeefu + 25u;
     return mx_hn_final(s + uint(x), s + uint(y), s + uint(z));
-}
-
-uint mx_hn_hash(int x, int y, int z, int w)
-{
-    uint s = 0xdeadbeefu + 29u;
-    uint a = s + uint(x);
-    uint b = s + uint(y);
-    uint c = s + uint(z);
-    mx_hn_mix(a, b, c);
-    return mx_hn_final(a + uint(w), b, c);
-}
-
-uint mx_hn_hash(int x, int y, int z, int w, int v)
-{
-    uint s = 0xdeadbeefu + 33u;
-    uint a = s + uint(x);
-    uint b = s + uint(y);
-    uint c = s + uint(z);
-    mx_hn_mix(a, b, c);
-    return mx_hn_final(a + uint(w), b + uint(v), c);
 }
 
 float mx_pn_fade(float t)
@@ -89,16 +51,9 @@ float mx_pn_fade(float t)
     return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
 }
 
-vec2 mx_pn_fade(vec2 t) { return vec2(mx_pn_fade(t.x), mx_pn_fade(t.y)); }
-vec3 mx_pn_fade(vec3 t) { return vec3(mx_pn_fade(t.x), mx_pn_fade(t.y), mx_pn_fade(t.z)); }
-
-// 2D: the low 3 hash bits choose one of the 8 gradients (+-1, +-2) and (+-2, +-1).
-float mx_pn_grad(uint h, vec2 f)
+vec3 mx_pn_fade(vec3 t)
 {
-    h &= 7u;
-    vec2 uv = (h < 4u) ? f : f.yx;
-    uv.y *= 2.0;
-    return ((h & 1u) != 0u ? -uv.x : uv.x) + ((h & 2u) != 0u ? -uv.y : uv.y);
+    return vec3(mx_pn_fade(t.x), mx_pn_fade(t.y), mx_pn_fade(t.z));
 }
 
 // 3D: the low 4 hash bits choose one of the 12 cube-edge gradients (4 of them repeated).
@@ -106,21 +61,8 @@ float mx_pn_grad(uint h, vec3 f)
 {
     h &= 15u;
     float u = (h < 8u) ? f.x : f.y;
-    float v = (h < 4u) ? f.y : ((h == 12u || h == 14u) ? f.x : f.z);
-    return ((h & 1u) != 0u ? -u : u) + ((h & 2u) != 0u ? -v : v);
-}
-
-float mx_pn_perlin(vec2 p)
-{
-    vec2 fl = floor(p);
-    ivec2 i = ivec2(fl);
-    vec2 f = p - fl;
-    vec2 w = mx_pn_fade(f);
-    float n00 = mx_pn_grad(mx_hn_hash(i.x,     i.y),     f);
-    float n10 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y),     f - vec2(1.0, 0.0));
-    float n01 = mx_pn_grad(mx_hn_hash(i.x,     i.y + 1), f - vec2(0.0, 1.0));
-    float n11 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1), f - vec2(1.0, 1.0));
-    return 0.6616 * mix(mix(n00, n10, w.x), mix(n01, n11, w.x), w.y);
+    float v = (h < 4u) ? f.y : (h == 12u || h == 14u) ? f.x : f.z;
+    return (((h & 1u) != 0u) ? -u : u) + (((h & 2u) != 0u) ? -v : v);
 }
 
 float mx_pn_perlin(vec3 p)
@@ -129,38 +71,24 @@ float mx_pn_perlin(vec3 p)
     ivec3 i = ivec3(fl);
     vec3 f = p - fl;
     vec3 w = mx_pn_fade(f);
-    float n000 = mx_pn_grad(mx_hn_hash(i.x,     i.y,     i.z),     f);
-    float n100 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y,     i.z),     f - vec3(1.0, 0.0, 0.0));
-    float n010 = mx_pn_grad(mx_hn_hash(i.x,     i.y + 1, i.z),     f - vec3(0.0, 1.0, 0.0));
-    float n110 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z),     f - vec3(1.0, 1.0, 0.0));
-    float n001 = mx_pn_grad(mx_hn_hash(i.x,     i.y,     i.z + 1), f - vec3(0.0, 0.0, 1.0));
-    float n101 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y,     i.z + 1), f - vec3(1.0, 0.0, 1.0));
-    float n011 = mx_pn_grad(mx_hn_hash(i.x,     i.y + 1, i.z + 1), f - vec3(0.0, 1.0, 1.0));
+    float n000 = mx_pn_grad(mx_hn_hash(i.x, i.y, i.z), f);
+    float n100 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y, i.z), f - vec3(1.0, 0.0, 0.0));
+    float n010 = mx_pn_grad(mx_hn_hash(i.x, i.y + 1, i.z), f - vec3(0.0, 1.0, 0.0));
+    float n110 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z), f - vec3(1.0, 1.0, 0.0));
+    float n001 = mx_pn_grad(mx_hn_hash(i.x, i.y, i.z + 1), f - vec3(0.0, 0.0, 1.0));
+    float n101 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y, i.z + 1), f - vec3(1.0, 0.0, 1.0));
+    float n011 = mx_pn_grad(mx_hn_hash(i.x, i.y + 1, i.z + 1), f - vec3(0.0, 1.0, 1.0));
     float n111 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z + 1), f - vec3(1.0, 1.0, 1.0));
     float z0 = mix(mix(n000, n100, w.x), mix(n010, n110, w.x), w.y);
     float z1 = mix(mix(n001, n101, w.x), mix(n011, n111, w.x), w.y);
     return 0.9820 * mix(z0, z1, w.z);
 }
 
-// Fractal sum: octave k adds diminish^k * noise(p * lacunarity^k).
-float mx_pn_fractal(vec2 p, int octaves, float lacunarity, float diminish)
-{
-    float sum = 0.0;
-    float weight = 1.0;
-    for (int k = 0; k < octaves; ++k)
-    {
-        sum += weight * mx_pn_perlin(p);
-        weight *= diminish;
-        p *= lacunarity;
-    }
-    return sum;
-}
-
 float mx_pn_fractal(vec3 p, int octaves, float lacunarity, float diminish)
 {
     float sum = 0.0;
     float weight = 1.0;
-    for (int k = 0; k < octaves; ++k)
+    for (int k = 0; k < octaves; k++)
     {
         sum += weight * mx_pn_perlin(p);
         weight *= diminish;
@@ -169,18 +97,22 @@ float mx_pn_fractal(vec3 p, int octaves, float lacunarity, float diminish)
     return sum;
 }
 
-void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float diminish, vec3 position, out float result)
+void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float diminish, vec3 position,
+                        out float result)
 {
     result = mx_pn_fractal(position, octaves, lacunarity, diminish) * amplitude;
 }
 
 void main()
 {
-    vec3 marble_bg_cm_out = mix(marble_bg_cm_in / 12.92, pow(max(marble_bg_cm_in + 0.055, vec3(0.0)) / 1.055, vec3(2.4)), greaterThan(marble_bg_cm_in, vec3(0.04045)));
+    vec3 marble_bg_cm_out = mix(marble_bg_cm_in / 12.92,
+                                pow(max(marble_bg_cm_in + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
+                                greaterThan(marble_bg_cm_in, vec3(0.04045)));
     vec3 pos_out = vd.positionObject;
     vec3 scaled_out = pos_out * scaled_in2;
     float veins_out;
-    mx_fractal3d_float(veins_amplitude, veins_octaves, veins_lacunarity, veins_diminish, scaled_out, veins_out);
+    mx_fractal3d_float(veins_amplitude, veins_octaves, veins_lacunarity, veins_diminish, scaled_out,
+                       veins_out);
     vec3 marble_out = mix(marble_bg_cm_out, marble_fg, veins_out);
     vec2 geomprop_UV0_out = vd.texcoord_0;
     vec2 checker_tiled_out = geomprop_UV0_out * checker_uvtiling;

@@ -1,8 +1,72 @@
 #version 400
 
-struct surfaceshader { vec3 color; vec3 transparency; };
-struct BSDF { vec3 response; vec3 throughput; };
-#define material surfaceshader
+struct surfaceshader
+{
+    vec3 color;
+    vec3 transparency;
+};
+struct BSDF
+{
+    vec3 response;
+    vec3 throughput;
+};
+// The shading point as a closure sees it: the context, the light direction (REFLECTION only), the
+// direction to the viewer, the interpolated normal, the world position and the light's visibility.
+struct ClosureData
+{
+    int closureType;
+    vec3 L;
+    vec3 V;
+    vec3 N;
+    vec3 P;
+    float occlusion;
+};
+// How a specular closure reflects: which model with its parameters, an optional thin film on top,
+// and whether the environment is to be sampled through the surface (refraction) instead of off it.
+struct FresnelData
+{
+    int model;
+    vec3 ior;
+    vec3 extinction;
+    vec3 F0;
+    vec3 F82;
+    vec3 F90;
+    float exponent;
+    float tf_thickness;
+    float tf_ior;
+    bool refraction;
+};
+struct SpecularLobe
+{
+    float weight;
+    vec3 tint;
+    vec3 surfaceN;
+    vec3 N;
+    vec3 V;
+    vec2 alpha;
+    int scatterMode;
+    vec3 environment;
+    vec3 environmentAlbedo;
+};
+// Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
+// function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
+// seen through the surface along the view direction), INDIRECT (the environment, sampled by the
+// closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
+const int CLOSURE_TYPE_DEFAULT = 0;
+const int CLOSURE_TYPE_REFLECTION = 1;
+const int CLOSURE_TYPE_TRANSMISSION = 2;
+const int CLOSURE_TYPE_INDIRECT = 3;
+const float MX_PI = 3.1415926535897932;
+const float MX_INV_PI = 1.0 / MX_PI;
+const float MX_EPS = 1.0e-8;
+// Largest index of refraction (real or imaginary part) a lobe takes: far above any material's
+// (metals' extinction stays below ~10), low enough that its fourth power is a finite float.
+const float MX_MAX_IOR = 1000.0;
+const int FRESNEL_MODEL_DIELECTRIC = 0;
+// Thickest film taken (nanometres): interference has washed out long before.
+const float MX_MAX_FILM_NM = 1.0e5;
+// Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
+const float MX_GGX_MIN_ALPHA = 1.0e-4;
 
 // Uniform block: PrivateUniforms
 uniform mat4 u_envMatrix;
@@ -22,38 +86,10 @@ in VertexData
 
 out vec4 out1;
 
-// Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
-// function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
-// seen through the surface along the view direction), INDIRECT (the environment, sampled by the
-// closure itself) and EMISSION (EDF graphs). The numbers are the generator's context ids.
-#define CLOSURE_TYPE_DEFAULT 0
-#define CLOSURE_TYPE_REFLECTION 1
-#define CLOSURE_TYPE_TRANSMISSION 2
-#define CLOSURE_TYPE_INDIRECT 3
-
-// The shading point as a closure sees it: the context, the light direction (REFLECTION only), the
-// direction to the viewer, the interpolated normal, the world position and the light's visibility.
-struct ClosureData
+vec2 mx_sqr(vec2 x)
 {
-    int closureType;
-    vec3 L;
-    vec3 V;
-    vec3 N;
-    vec3 P;
-    float occlusion;
-};
-
-const float MX_PI = 3.1415926535897932;
-const float MX_INV_PI = 1.0 / MX_PI;
-const float MX_EPS = 1.0e-8;  // floor for cosines and weights, as in MaterialX's hardware shading
-
-float mx_sqr(float x) { return x * x; }
-vec2 mx_sqr(vec2 x) { return x * x; }
-vec3 mx_sqr(vec3 x) { return x * x; }
-
-// Largest index of refraction (real or imaginary part) a lobe takes: far above any material's
-// (metals' extinction stays below ~10), low enough that its fourth power is a finite float.
-const float MX_MAX_IOR = 1000.0;
+    return x * x;
+}
 
 // x clamped to [lo, hi], NaN taken as lo. A lobe's parameters may be computed by the graph (a
 // division by zero, the log of a negative): each lobe passes them through this once, so they
@@ -85,9 +121,7 @@ mat3 mx_frame_from_normal(vec3 N)
     float s = (N.z < 0.0) ? -1.0 : 1.0;
     float a = -1.0 / (s + N.z);
     float b = N.x * N.y * a;
-    return mat3(vec3(1.0 + s * N.x * N.x * a, s * b, -s * N.x),
-                vec3(b, s + N.y * N.y * a, -N.y),
-                N);
+    return mat3(vec3(1.0 + s * N.x * N.x * a, s * b, -s * N.x), vec3(b, s + N.y * N.y * a, -N.y), N);
 }
 
 // A lobe's weight that scatters nothing: zero, negative, or NaN (a NaN computed in the graph, which
@@ -132,33 +166,13 @@ vec2 mx_fibonacci_point(int i, int count)
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
 
-#define FRESNEL_MODEL_DIELECTRIC 0
-
-// Thickest film taken (nanometres): interference has washed out long before.
-const float MX_MAX_FILM_NM = 1.0e5;
-
-// How a specular closure reflects: which model with its parameters, an optional thin film on top,
-// and whether the environment is to be sampled through the surface (refraction) instead of off it.
-struct FresnelData
-{
-    int model;           // FRESNEL_MODEL_*
-    vec3 ior;            // dielectric: ior in every channel; conductor: n
-    vec3 extinction;     // conductor: k
-    vec3 F0;             // Schlick: reflectance at 0, 82 and 90 degrees, and the exponent
-    vec3 F82;
-    vec3 F90;
-    float exponent;
-    float tf_thickness;  // thin film in nanometres; none when <= 0
-    float tf_ior;
-    bool refraction;
-};
-
 FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
                             float tf_thickness, float tf_ior)
 {
     // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
-    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR), mx_clamp_finite(extinction, 0.0, MX_MAX_IOR),
-                       F0, F82, F90, exponent, mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
+    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR),
+                       mx_clamp_finite(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
+                       mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
                        mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
@@ -187,9 +201,6 @@ vec3 mx_fresnel_eval_film(float cosTheta, FresnelData fd, bool withFilm)
         return vec3(mx_fresnel_dielectric(cosTheta, fd.ior.x));
     return vec3(0.0);  // no closure of this shader uses another model
 }
-
-// Smallest alpha the lobe uses: a mirror to 1e-4, without the overflow of D at alpha -> 0.
-const float MX_GGX_MIN_ALPHA = 1.0e-4;
 
 vec2 mx_ggx_clamp_alpha(vec2 alpha)
 {
@@ -255,13 +266,14 @@ float mx_ggx_reflection_pdf(vec3 H, vec3 V, vec2 alpha)
 // The texel coordinates of map direction `mapDir`, a unit vector up to rounding.
 vec2 mx_envmap_uv(vec3 mapDir)
 {
-    return vec2(atan(mapDir.x, -mapDir.z) * MX_INV_PI * 0.5 + 0.5, 0.5 - asin(clamp(mapDir.y, -1.0, 1.0)) * MX_INV_PI);
+    return vec2(atan(mapDir.x, -mapDir.z) * MX_INV_PI * 0.5 + 0.5,
+                0.5 - asin(clamp(mapDir.y, -1.0, 1.0)) * MX_INV_PI);
 }
 
 // The map `envMap` seen along map direction `mapDir`, at mip level `lod`.
 vec3 mx_envmap_lookup(sampler2D envMap, vec3 mapDir, float lod)
 {
-    return textureLod(envMap, mx_envmap_uv(mapDir), lod).rgb;
+    return textureLod(envMap, mx_envmap_uv(mapDir), lod).xyz;
 }
 
 // The map `envMap` seen along world direction `dir`, at mip level `lod`.
@@ -287,12 +299,12 @@ float mx_envmap_lod(vec3 mapDir, float pdf, int sampleCount)
 
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
-//   Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
-//   that single scattering misses is returned with Turquin's factor 1 + F (1 - E) / E, where E, the
-//   lobe's albedo with F = 1, is estimated from the same samples: a white lobe in a white
-//   environment then gives exactly 1 at any sample count or anisotropy.
-//   Refraction: each visible normal lets through 1 - F(V.H); masked light counts as transmitted,
-//   so reflection plus refraction of a clear dielectric stays within 1.
+// Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
+// that single scattering misses is returned with Turquin's factor 1 + F (1 - E) / E, where E, the
+// lobe's albedo with F = 1, is estimated from the same samples: a white lobe in a white
+// environment then gives exactly 1 at any sample count or anisotropy.
+// Refraction: each visible normal lets through 1 - F(V.H); masked light counts as transmitted,
+// so reflection plus refraction of a clear dielectric stays within 1.
 // `albedo` returns what the same samples give in a white environment: the fraction of the light
 // the lobe reflects (or lets through), consistent with the radiance to the last sample, which is
 // what a layer below must not receive again. Without `fetch` only `albedo` is computed (no
@@ -306,12 +318,10 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     int sampleCount = u_envRadianceSamples;
     if (sampleCount <= 0)
         return vec3(0.0);
-
     mat3 frame = mx_tangent_frame(N, X);
     vec3 Vt = V * frame;  // (V.X, V.Y, V.N)
     Vt.z = max(Vt.z, MX_EPS);
     mat3 toMap = mat3(u_envMatrix) * frame;  // a sample's direction straight to the map's (a rotation)
-
     vec3 carried = vec3(0.0);
     float whiteAlbedo = 0.0;
     for (int i = 0; i < sampleCount; i++)
@@ -322,7 +332,8 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
         if (fetch)
         {
             vec3 Lm = toMap * Lt;
-            Li = mx_envmap_lookup(u_envRadiance, Lm, mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
+            Li = mx_envmap_lookup(u_envRadiance, Lm,
+                                  mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
         }
         vec3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
@@ -335,26 +346,14 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
     if (!fd.refraction)
     {
         float E = whiteAlbedo * scale;
-        vec3 compensation = vec3(1.0) + mx_fresnel_eval_film(Vt.z, fd, withFilm) * ((1.0 - E) / max(E, MX_EPS));
+        vec3 compensation = vec3(1.0) +
+                            mx_fresnel_eval_film(Vt.z, fd, withFilm) * ((1.0 - E) / max(E, MX_EPS));
         carried *= compensation;
         albedo *= compensation;
     }
     albedo *= scale;
     return carried * (scale * u_envLightIntensity);
 }
-
-struct SpecularLobe
-{
-    float weight;            // 0 where the lobe scatters nothing
-    vec3 tint;
-    vec3 surfaceN;           // the usable shading normal, on either side
-    vec3 N;                  // the normal facing V
-    vec3 V;                  // towards the viewer, mirrored about the normal for retro-reflection
-    vec2 alpha;              // clamped roughness pair
-    int scatterMode;         // 0 R, 1 T, 2 RT
-    vec3 environment;        // the environment the lobe reflects towards V
-    vec3 environmentAlbedo;  // the fraction of the environment it reflects, from the same samples
-};
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
@@ -373,7 +372,8 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
     if (lobe.weight > 0.0)
-        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1, false, lobe.environmentAlbedo);
+        lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1, false,
+                                                  lobe.environmentAlbedo);
     return lobe;
 }
 
@@ -392,13 +392,13 @@ bool mx_is_scattering_context(int closureType)
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
 void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
-                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X,
-                                int distribution, int scatter_mode, out SpecularLobe lobe)
+                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N,
+                                vec3 X, int distribution, int scatter_mode, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0),
-                                     0.0, thinfilm_thickness, thinfilm_ior);
-    lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution,
-                                    scatter_mode);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
+                                    distribution, scatter_mode);
 }
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
@@ -409,7 +409,6 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
     bool transmission = context == CLOSURE_TYPE_TRANSMISSION;
     if (lobe.weight == 0.0 || (lobe.scatterMode == 1 && !transmission) || !mx_is_scattering_context(context))
         return;
-
     if (context == CLOSURE_TYPE_INDIRECT)
     {
         bsdf.throughput = mx_specular_throughput(lobe.environmentAlbedo, lobe.weight);
@@ -423,7 +422,6 @@ void mx_oren_nayar_diffuse_bsdf(ClosureData closureData, float weight, vec3 colo
     bsdf.throughput = vec3(0.0);
     if (mx_weight_is_zero(weight))
         return;
-
     vec3 V = closureData.V;
     N = mx_shading_normal(N, closureData.N, V);
     float NdotV = clamp(dot(N, V), MX_EPS, 1.0);
@@ -457,9 +455,13 @@ void main()
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe SR_coated_coat_brdf_lobe;
-        mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.0025, 0.0025), false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_coat_brdf_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.0025, 0.0025), false, 0.0,
+                                   1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
+                                   SR_coated_coat_brdf_lobe);
         SpecularLobe SR_coated_specular_brdf_lobe;
-        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.1225, 0.1225), false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, SR_coated_specular_brdf_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.1225, 0.1225), false, 0.0,
+                                   1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
+                                   SR_coated_specular_brdf_lobe);
         // environment
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
@@ -468,16 +470,19 @@ void main()
             BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
             BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out,
+                                       false, SR_coated_diffuse_brdf_out);
             BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out, SR_coated_dielectric_out);
+            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out,
+                          SR_coated_dielectric_out);
             BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out, SR_coated_coat_layer_out);
+            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out,
+                          SR_coated_coat_layer_out);
             SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
         }
         SR_coated_shader_out.color *= surfaceOpacity;
         SR_coated_shader_out.transparency = mix(vec3(1.0), SR_coated_shader_out.transparency, surfaceOpacity);
     }
-    material Coated_out = SR_coated_shader_out;
+    surfaceshader Coated_out = SR_coated_shader_out;
     out1 = vec4(Coated_out.color, 1.0 - dot(Coated_out.transparency, vec3(1.0 / 3.0)));
 }

@@ -159,7 +159,9 @@ class GlslPrinter:
             at = None if column is None else end_column(column, base) + 1
             return f"{base}[{self.render(e.index, at, indent)}]"
         if cls is ir.Select:
-            condition = self.operand(e.condition, column, indent, self.precedence(e.condition) <= SELECT)
+            # a comparison as the condition in parentheses, as the sources write it
+            condition = self.operand(e.condition, column, indent, self.precedence(e.condition) <= SELECT or
+                                     type(e.condition) is ir.Binary)
             at = None if column is None else end_column(column, condition) + 3
             if_true = self.operand(e.if_true, at, indent, type(e.if_true) is ir.Select)
             at = None if column is None else end_column(at, if_true) + 3

@@ -75,7 +75,7 @@ class GlslTarget:
         w = self._start()
         self._uniforms(ctx.vertex, w)
         for v in ctx.vertex.blocks["AppData"]:
-            w.line(f"in {self.printer.type_name(_type(v))} {v.name};")
+            w.line(f"in {_type(v)} {v.name};")
         w.line()
         self._vertex_data(ctx.vertex, w, "out")
         self._main(ctx.pixel.code.vertex_main, w)
@@ -112,11 +112,11 @@ class GlslTarget:
             w.line(f"{direction} VertexData")
             w.line("{")
             for v in members:
-                w.line(f"    {self.printer.type_name(_type(v))} {v.name};")
+                w.line(f"    {_type(v)} {v.name};")
             w.line("} vd;")
         else:
             for v in members:
-                w.line(f"{direction} {self.printer.type_name(_type(v))} vd_{v.name};")
+                w.line(f"{direction} {_type(v)} vd_{v.name};")
         w.line()
 
 
@@ -126,7 +126,8 @@ def printed(target_class, item) -> tuple[str, ...]:
 
 
 def _type(v) -> str:
-    """A listed variable's IR type (the light array's length is the prelude's MAX_LIGHT_SOURCES)."""
+    """A listed variable's IR type, which GLSL spells as it is (the light array's length is the
+    prelude's MAX_LIGHT_SOURCES)."""
     return "LightData[MAX_LIGHT_SOURCES]" if v.type == "LightData" else ir_type(v.type)
 
 

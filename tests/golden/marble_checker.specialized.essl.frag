@@ -1,0 +1,112 @@
+#version 300 es
+precision highp float;
+precision highp int;
+
+// Uniform block: PublicUniforms
+uniform float scaled_in2;
+
+in vec3 vd_positionObject;
+in vec2 vd_texcoord_0;
+
+out vec4 out1;
+
+uint mx_hn_rotl(uint x, uint k)
+{
+    return (x << k) | (x >> (32u - k));
+}
+
+// lookup3 final(): avalanche a, b, c into c.
+uint mx_hn_final(uint a, uint b, uint c)
+{
+    c = (c ^ b) - mx_hn_rotl(b, 14u);
+    a = (a ^ c) - mx_hn_rotl(c, 11u);
+    b = (b ^ a) - mx_hn_rotl(a, 25u);
+    c = (c ^ b) - mx_hn_rotl(b, 16u);
+    a = (a ^ c) - mx_hn_rotl(c, 4u);
+    b = (b ^ a) - mx_hn_rotl(a, 14u);
+    c = (c ^ b) - mx_hn_rotl(b, 24u);
+    return c;
+}
+
+uint mx_hn_hash(int x, int y, int z)
+{
+    uint s = 0xdeadbeefu + 25u;
+    return mx_hn_final(s + uint(x), s + uint(y), s + uint(z));
+}
+
+float mx_pn_fade(float t)
+{
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+vec3 mx_pn_fade(vec3 t)
+{
+    return vec3(mx_pn_fade(t.x), mx_pn_fade(t.y), mx_pn_fade(t.z));
+}
+
+// 3D: the low 4 hash bits choose one of the 12 cube-edge gradients (4 of them repeated).
+float mx_pn_grad(uint h, vec3 f)
+{
+    h &= 15u;
+    float u = (h < 8u) ? f.x : f.y;
+    float v = (h < 4u) ? f.y : (h == 12u || h == 14u) ? f.x : f.z;
+    return (((h & 1u) != 0u) ? -u : u) + (((h & 2u) != 0u) ? -v : v);
+}
+
+float mx_pn_perlin(vec3 p)
+{
+    vec3 fl = floor(p);
+    ivec3 i = ivec3(fl);
+    vec3 f = p - fl;
+    vec3 w = mx_pn_fade(f);
+    float n000 = mx_pn_grad(mx_hn_hash(i.x, i.y, i.z), f);
+    float n100 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y, i.z), f - vec3(1.0, 0.0, 0.0));
+    float n010 = mx_pn_grad(mx_hn_hash(i.x, i.y + 1, i.z), f - vec3(0.0, 1.0, 0.0));
+    float n110 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z), f - vec3(1.0, 1.0, 0.0));
+    float n001 = mx_pn_grad(mx_hn_hash(i.x, i.y, i.z + 1), f - vec3(0.0, 0.0, 1.0));
+    float n101 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y, i.z + 1), f - vec3(1.0, 0.0, 1.0));
+    float n011 = mx_pn_grad(mx_hn_hash(i.x, i.y + 1, i.z + 1), f - vec3(0.0, 1.0, 1.0));
+    float n111 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z + 1), f - vec3(1.0, 1.0, 1.0));
+    float z0 = mix(mix(n000, n100, w.x), mix(n010, n110, w.x), w.y);
+    float z1 = mix(mix(n001, n101, w.x), mix(n011, n111, w.x), w.y);
+    return 0.9820 * mix(z0, z1, w.z);
+}
+
+float mx_pn_fractal(vec3 p, int octaves, float lacunarity, float diminish)
+{
+    float sum = 0.0;
+    float weight = 1.0;
+    for (int k = 0; k < octaves; k++)
+    {
+        sum += weight * mx_pn_perlin(p);
+        weight *= diminish;
+        p *= lacunarity;
+    }
+    return sum;
+}
+
+void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float diminish, vec3 position,
+                        out float result)
+{
+    result = mx_pn_fractal(position, octaves, lacunarity, diminish) * amplitude;
+}
+
+void main()
+{
+    vec3 marble_bg_cm_out = mix(vec3(0.9, 0.88, 0.85) / 12.92,
+                                pow(max(vec3(0.9, 0.88, 0.85) + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
+                                greaterThan(vec3(0.9, 0.88, 0.85), vec3(0.04045)));
+    vec3 pos_out = vd_positionObject;
+    vec3 scaled_out = pos_out * scaled_in2;
+    float veins_out;
+    mx_fractal3d_float(1.0, 4, 2.0, 0.5, scaled_out, veins_out);
+    vec3 marble_out = mix(marble_bg_cm_out, vec3(0.25, 0.22, 0.2), veins_out);
+    vec2 geomprop_UV0_out = vd_texcoord_0;
+    vec2 checker_tiled_out = geomprop_UV0_out * vec2(8.0, 8.0);
+    vec2 checker_cell_out = floor(checker_tiled_out);
+    float checker_cell_sum_out = dot(checker_cell_out, vec2(1.0, 1.0));
+    float checker_parity_out = mod(checker_cell_sum_out, 2.0);
+    vec3 checker_pick_out = mix(vec3(0.0, 0.0, 0.0), vec3(1.0, 1.0, 1.0), checker_parity_out);
+    vec3 combined_out = marble_out * checker_pick_out;
+    out1 = vec4(combined_out, 1.0);
+}
