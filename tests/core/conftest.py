@@ -5,7 +5,12 @@ import os
 import pytest
 
 from shadergen.api import Generator
-from shadergen.targets.deadcode import used_functions
+from shadergen.code import ir
+from shadergen.code.check import check_modules
+from shadergen.code.facts import collect
+from shadergen.code.parse import parse_module
+from shadergen.code.passes import fields, forward, reach, sections
+from shadergen.targets.glsl.printer import GlslPrinter
 
 
 @pytest.fixture(scope="session")
@@ -31,7 +36,24 @@ def glslang(source: str, stage: str) -> tuple[bool, str]:
 needs_glslang = pytest.mark.usefixtures("glslang_validator")  # skipped without it, failed under CI=true
 
 
-def kept_code(library: str, roots: str) -> str:
-    """What a stage keeps of the library's function lines when `roots` (its main) use them."""
-    lines, _ = used_functions(library.split("\n"), roots)
-    return "\n".join(lines)
+def checked_code(library: str, roots: str) -> tuple[list, ir.Block]:
+    """`library` (GLSL-subset source) parsed and checked as the library's files are, with `roots`
+    the statements of a main after it: (the library's items, main's body)."""
+    path = "library.glsl"
+    module = parse_module(path, library + "\nvoid main()\n{\n" + roots + "\n}\n")
+    check_modules({path: module}, {})
+    *items, main = module.items
+    return items, main.body
+
+
+def kept_code(library: str, roots: str, features: frozenset | None = None) -> str:
+    """What a pixel stage keeps of `library` when `roots` (the statements of its main) use it: the
+    code passes in the order shadergen/code/stage.py runs them, the kept items printed as GLSL."""
+    items, main = checked_code(library, roots)
+    used = collect([main])  # main is read, never edited
+    items, _ = sections.run(items, features)
+    items, _ = forward.run(items, used)
+    reached, _ = reach.run(items, used)
+    items, _ = fields.run(reached.items, used)
+    printer = GlslPrinter()
+    return "\n".join(line for item in items for line in printer.item(item))
