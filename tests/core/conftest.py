@@ -48,12 +48,17 @@ def checked_code(library: str, roots: str) -> tuple[list, ir.Block]:
 
 def kept_code(library: str, roots: str, features: frozenset | None = None) -> str:
     """What a pixel stage keeps of `library` when `roots` (the statements of its main) use it: the
-    code passes in the order shadergen/code/stage.py runs them, the kept items printed as GLSL."""
+    code passes in the order shadergen/code/passes/__init__.py gives them (sections, reach, then
+    fields and forward with reach after them until nothing changes), the kept items printed as GLSL."""
     items, main = checked_code(library, roots)
     used = collect([main])  # main is read, never edited
     items, _ = sections.run(items, features)
-    items, _ = forward.run(items, used)
     reached, _ = reach.run(items, used)
-    items, _ = fields.run(reached.items, used)
+    while True:
+        items, trimmed = fields.run(reached.items, used)
+        items, redirected = forward.run(items, used)
+        if not trimmed + redirected:
+            break
+        reached, _ = reach.run(items, used)
     printer = GlslPrinter()
-    return "\n".join(line for item in items for line in printer.item(item))
+    return "\n".join(line for item in reached.items for line in printer.item(item))
