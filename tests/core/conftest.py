@@ -23,6 +23,13 @@ def doc(body: str, version: str = "1.39", colorspace: str | None = None) -> str:
     return f'<?xml version="1.0"?>\n<materialx version="{version}"{cs}>\n{body}\n</materialx>\n'
 
 
+def material(bsdf: str) -> str:
+    """A document of one material whose surface takes the BSDF node named "b" that `bsdf` declares."""
+    return doc(f'{bsdf}<surface name="surf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="b"/></surface>'
+               '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" '
+               'nodename="surf"/></surfacematerial>')
+
+
 def glslang(source: str, stage: str) -> tuple[bool, str]:
     """Compile with the real reference compiler; stage is 'vertex' or 'pixel'."""
     with tempfile.TemporaryDirectory() as d:

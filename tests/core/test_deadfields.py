@@ -2,7 +2,7 @@
 shadergen/code/passes/fields.py), in every target."""
 import re
 
-from .conftest import doc, kept_code
+from .conftest import kept_code, material
 
 LOBE = """struct Lobe
 {
@@ -67,9 +67,7 @@ def test_a_struct_built_by_its_constructor_keeps_every_member():
     assert "    float b;" in code
 
 
-CONDUCTOR = doc('<conductor_bsdf name="b" type="BSDF"/><surface name="surf" type="surfaceshader">'
-                '<input name="bsdf" type="BSDF" nodename="b"/></surface><surfacematerial name="mat" type="material">'
-                '<input name="surfaceshader" type="surfaceshader" nodename="surf"/></surfacematerial>')
+CONDUCTOR = material('<conductor_bsdf name="b" type="BSDF"/>')
 
 
 def struct_members(source: str, name: str) -> list[str]:
