@@ -10,6 +10,8 @@ from shadergen.code.check import check_modules
 from shadergen.code.facts import collect
 from shadergen.code.parse import parse_module
 from shadergen.code.passes import fields, forward, reach, sections
+from shadergen.library import default_library
+from shadergen.nodes.base import implementation_for
 from shadergen.targets.glsl.printer import GlslPrinter
 
 
@@ -41,6 +43,13 @@ def glslang(source: str, stage: str) -> tuple[bool, str]:
 
 
 needs_glslang = pytest.mark.usefixtures("glslang_validator")  # skipped without it, failed under CI=true
+
+
+def library_implementation(nodedef: str):
+    """The implementation (nodes.base) the default library gives a nodedef for GLSL."""
+    library = default_library()
+    element = next(e for e in library.implementations[nodedef] if e.category == "implementation")
+    return implementation_for(element, library)
 
 
 def checked_code(library: str, roots: str) -> tuple[list, ir.Block]:

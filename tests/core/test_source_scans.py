@@ -8,10 +8,8 @@ from shadergen.code import ir
 from shadergen.code.check import flat_items
 from shadergen.code.facts import facts, prepared_state, uses_derivatives
 from shadergen.code.parse import parse_expression
-from shadergen.library import default_library
-from shadergen.nodes.base import SourceFunctionImpl, implementation_for
 
-from .conftest import checked_code
+from .conftest import checked_code, library_implementation as implementation
 
 HELPERS = """vec4 mx_texture(sampler2D tex, vec2 uv)
 {
@@ -44,12 +42,6 @@ def function_of(source: str, name: str) -> ir.Function:
 def test_derivative_calls_are_found_as_calls_of_the_builtins(body, expected):
     source = HELPERS + f"void f(sampler2D tex, vec2 uv, float x, vec3 p)\n{{\n    {body}\n}}\n"
     assert uses_derivatives(function_of(source, "f")) is expected
-
-
-def implementation(nodedef: str) -> SourceFunctionImpl:
-    library = default_library()
-    element = next(e for e in library.implementations[nodedef] if e.category == "implementation")
-    return implementation_for(element, library)
 
 
 def test_a_library_implementation_knows_whether_it_takes_derivatives():
