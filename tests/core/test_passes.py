@@ -229,6 +229,9 @@ def test_transmission_context_only_with_a_transmitting_lobe(gen):
     assert "CLOSURE_TYPE_TRANSMISSION" not in main("R")
     assert "CLOSURE_TYPE_TRANSMISSION" in main("RT")
     assert "CLOSURE_TYPE_TRANSMISSION" not in main_of(record(gen, surface(lobe("top", "oren_nayar_diffuse_bsdf", "1"))))
+    # what a lobe answers, read from its IR: whether it (or what it calls) reads the context's constant
+    assert library_implementation("ND_dielectric_bsdf").handles_transmission
+    assert not library_implementation("ND_oren_nayar_diffuse_bsdf").handles_transmission
 
 
 def test_no_emission_code_without_an_emitter(gen):
