@@ -5,7 +5,14 @@ import os
 import pytest
 
 from shadergen.api import Generator
-from shadergen.targets.deadcode import used_functions
+from shadergen.code import ir
+from shadergen.code.check import check_modules
+from shadergen.code.facts import collect
+from shadergen.code.parse import parse_module
+from shadergen.code.passes import fields, forward, reach, sections
+from shadergen.library import default_library
+from shadergen.nodes.base import implementation_for
+from shadergen.targets.glsl.printer import GlslPrinter
 
 
 @pytest.fixture(scope="session")
@@ -16,6 +23,13 @@ def gen() -> Generator:
 def doc(body: str, version: str = "1.39", colorspace: str | None = None) -> str:
     cs = f' colorspace="{colorspace}"' if colorspace else ""
     return f'<?xml version="1.0"?>\n<materialx version="{version}"{cs}>\n{body}\n</materialx>\n'
+
+
+def material(bsdf: str) -> str:
+    """A document of one material whose surface takes the BSDF node named "b" that `bsdf` declares."""
+    return doc(f'{bsdf}<surface name="surf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="b"/></surface>'
+               '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" '
+               'nodename="surf"/></surfacematerial>')
 
 
 def glslang(source: str, stage: str) -> tuple[bool, str]:
@@ -31,7 +45,36 @@ def glslang(source: str, stage: str) -> tuple[bool, str]:
 needs_glslang = pytest.mark.usefixtures("glslang_validator")  # skipped without it, failed under CI=true
 
 
-def kept_code(library: str, roots: str) -> str:
-    """What a stage keeps of the library's function lines when `roots` (its main) use them."""
-    lines, _ = used_functions(library.split("\n"), roots)
-    return "\n".join(lines)
+def library_implementation(nodedef: str):
+    """The implementation (nodes.base) the default library gives a nodedef for GLSL."""
+    library = default_library()
+    element = next(e for e in library.implementations[nodedef] if e.category == "implementation")
+    return implementation_for(element, library)
+
+
+def checked_code(library: str, roots: str) -> tuple[list, ir.Block]:
+    """`library` (GLSL-subset source) parsed and checked as the library's files are, with `roots`
+    the statements of a main after it: (the library's items, main's body)."""
+    path = "library.glsl"
+    module = parse_module(path, library + "\nvoid main()\n{\n" + roots + "\n}\n")
+    check_modules({path: module}, {})
+    *items, main = module.items
+    return items, main.body
+
+
+def kept_code(library: str, roots: str, features: frozenset | None = None) -> str:
+    """What a pixel stage keeps of `library` when `roots` (the statements of its main) use it: the
+    code passes in the order shadergen/code/passes/__init__.py gives them (sections, reach, then
+    fields and forward with reach after them until nothing changes), the kept items printed as GLSL."""
+    items, main = checked_code(library, roots)
+    used = collect([main])  # main is read, never edited
+    items, _ = sections.run(items, features)
+    reached, _ = reach.run(items, used)
+    while True:
+        items, trimmed = fields.run(reached.items, used)
+        items, redirected = forward.run(items, used)
+        if not trimmed + redirected:
+            break
+        reached, _ = reach.run(items, used)
+    printer = GlslPrinter()
+    return "\n".join(line for item in reached.items for line in printer.item(item))

@@ -1,7 +1,9 @@
-"""The dead-code step of C-like stages: which library items a stage keeps, with which comments."""
-from shadergen.targets.deadcode import used_functions
+"""The reach pass of a stage (shadergen/code/passes/reach.py): which library items a stage keeps,
+with which comments."""
+from shadergen.code.facts import collect
+from shadergen.code.passes import reach
 
-from .conftest import kept_code
+from .conftest import checked_code, kept_code
 
 LIBRARY = """// Helpers shared by the whole file: a header, separated from what follows by a blank line.
 
@@ -51,10 +53,15 @@ def test_a_name_in_a_comment_keeps_nothing_alive():
 def test_a_default_definition_is_kept_whole_only_where_its_name_is_used():
     assert "ITERATIONS" not in kept("float a = twice(1.0);")
     code = kept("float a = repeated(1.0);")
-    assert "#ifndef ITERATIONS\n#define ITERATIONS 2\n#endif" in code
+    lines = code.split("\n")
+    guard = lines.index("#ifndef ITERATIONS")
+    assert lines[guard + 1].endswith("ITERATIONS = 2;") and lines[guard + 2] == "#endif"  # its guard kept with it
+    assert guard < lines.index("float repeated(float x)")  # a definition before its use
     assert "float twice" in code  # reached through repeated()
 
 
 def test_used_identifiers_come_from_code_not_comments():
-    _, used = used_functions(LIBRARY.split("\n"), "float a = twice(1.0); // u_unread")
-    assert "twice" in used and "u_unread" not in used and "square" not in used
+    items, main = checked_code(LIBRARY, "float a = twice(1.0); // u_unread")
+    reached, left_out = reach.run(items, collect([main]))
+    assert reached.functions == ("twice(float)",) and "u_unread" not in reached.names
+    assert left_out == 3  # square, repeated and ITERATIONS

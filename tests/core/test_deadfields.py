@@ -1,5 +1,8 @@
-"""Struct members nothing reads, and their stores, leave a stage (targets/deadfields.py)."""
-from .conftest import kept_code
+"""Struct members nothing reads, and their stores, leave a stage (the fields pass,
+shadergen/code/passes/fields.py), in every target."""
+import re
+
+from .conftest import kept_code, material
 
 LOBE = """struct Lobe
 {
@@ -40,8 +43,8 @@ def test_members_only_stored_go_with_their_stores_and_what_only_they_called():
     for gone in ("frame", "tilted", "spare", "tilt("):
         assert gone not in code
     assert "    float weight;" in code and "    lobe.weight = w;" in code
-    # a store that a brace-less if governs stays, and so does its member
-    assert "    bool flag;" in code and "        lobe.flag = true;" in code
+    # a store a brace-less if governs goes too, and the if with it: its condition calls nothing
+    assert "flag" not in code and "if (w > 0.5)" not in code
 
 
 def test_a_member_the_roots_read_stays():
@@ -64,10 +67,34 @@ def test_a_struct_built_by_its_constructor_keeps_every_member():
     assert "    float b;" in code
 
 
-def test_wgsl_structs_on_one_line_lose_their_dead_members():
-    library = ("struct Lobe { weight: f32, frame: mat3x3f, taps: array<f32, 3> }\n\n"
-               "fn prepare(w: f32) -> Lobe {\n    var lobe: Lobe;\n    lobe.weight = w;\n"
-               "    lobe.frame = mat3x3f();\n    return lobe;\n}\n")
-    code = kept_code(library, "var l: Lobe = prepare(1.0); let x = l.weight + l.taps[0];")
-    assert "struct Lobe { weight: f32, taps: array<f32, 3> }" in code
-    assert "frame" not in code
+CONDUCTOR = material('<conductor_bsdf name="b" type="BSDF"/>')
+
+
+def struct_members(source: str, name: str) -> list[str]:
+    """The members of struct `name` as GLSL (`vec3 N;`) or WGSL (`N: vec3f,`) declares them."""
+    body = re.search(r"struct %s\s*\{(.*?)\}" % name, source, re.S).group(1)
+    lines = [line.strip() for line in body.split("\n") if line.strip() and not line.strip().startswith("//")]
+    return [line.split(":")[0] if ":" in line else line.split()[1].rstrip(";") for line in lines]
+
+
+def test_a_specular_lobe_lit_by_the_environment_alone_loses_its_light_loop_members_in_every_target(gen):
+    """Its tangent frame and Fresnel set-up are for the light loop: a shader without lights only
+    stores them. WGSL, printed from the same IR, gets every member GLSL loses."""
+    records = {t: gen.prepare(CONDUCTOR, interface="specialized", lights=False, environment="fis", target=t).emit()
+               for t in ("glsl", "essl", "wgsl")}
+    members = {t: struct_members(r["stages"]["pixel"], "SpecularLobe") for t, r in records.items()}
+    assert "frame" not in members["glsl"] and "fd" not in members["glsl"] and "weight" in members["glsl"]
+    assert members["essl"] == members["glsl"] == members["wgsl"]
+    lit = struct_members(gen.prepare(CONDUCTOR, interface="specialized", environment="fis").emit()["stages"]["pixel"],
+                         "SpecularLobe")
+    assert "frame" in lit and "fd" in lit  # read by the light loop
+    assert records["glsl"]["passes"]["fields"] == records["wgsl"]["passes"]["fields"] > 0
+    assert "lobe.frame =" not in records["wgsl"]["stages"]["pixel"]
+
+
+def test_a_function_only_a_dead_members_store_called_leaves_the_record(gen):
+    """The prefiltered environment never reads the lobe's tangent frame: its store goes, and with
+    it the call of mx_tangent_frame, its only one in the stage."""
+    pixel = gen.prepare(CONDUCTOR, interface="specialized", lights=False, environment="prefilter").emit()["stages"]["pixel"]
+    assert "lobe.frame" not in pixel
+    assert "mx_tangent_frame" not in pixel and "mx_frame_from_normal" not in pixel

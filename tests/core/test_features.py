@@ -1,13 +1,19 @@
 """Generation-time features of the libraries (shadergen/features.py): sections a shader keeps only
-when one of its nodes can take them, resolved before any target sees the library text."""
+when one of its nodes can take them, resolved on the IR before any target prints the library's
+code (shadergen/code/passes/sections.py)."""
 import pytest
 
+from shadergen.code import ir
+from shadergen.code.parse import parse_module
+from shadergen.code.passes import sections
 from shadergen.errors import ShaderGenError
-from shadergen.features import resolve
+from shadergen.targets.glsl.printer import GlslPrinter
 
-from .conftest import doc, glslang, needs_glslang
+from .conftest import checked_code, doc, glslang, material, needs_glslang
 
-SECTIONS = """float f()
+CALLED = "".join(f"void {name}() {{}}\n" for name in ("a", "prefiltered", "sampled", "notA", "notB"))
+SECTIONS = CALLED + """#pragma shadergen feature A unless x == 0
+float f()
 {
 #ifdef MX_FEATURE_A
     a();
@@ -22,9 +28,16 @@ SECTIONS = """float f()
 #ifndef MX_FEATURE_B
     notB();
 #endif
-#pragma shadergen feature A unless x == 0
     return 0.0;
 }"""
+
+
+def resolve(source: str, features: frozenset | None, macros: frozenset = frozenset()) -> str:
+    """The last function of `source` with its sections resolved, printed as GLSL."""
+    items, _ = checked_code(source, "")
+    resolved, _ = sections.run(items, features, macros)
+    function = [i for i in resolved if isinstance(i, ir.Function)][-1]
+    return "\n".join(GlslPrinter().item(function))
 
 
 def test_a_needed_section_stays_without_its_directives_and_the_compilers_own_conditionals_stay():
@@ -45,15 +58,17 @@ def test_an_unasked_stage_keeps_every_section():
     assert "a();" in out and "prefiltered();" in out and "notB();" not in out
 
 
+def test_the_sections_resolved_are_counted():
+    items, _ = checked_code(SECTIONS, "")
+    assert sections.run(items, frozenset({"A", "B"}))[1] == 2  # MX_FEATURE_A, MX_FEATURE_B; MX_ENV_PREFILTER stays
+    assert sections.run(items, frozenset(), frozenset({("MX_ENV_PREFILTER", True)}))[1] == 2  # A's holds the other
+    assert sections.run(items, frozenset({"A"}), frozenset({("MX_ENV_PREFILTER", True)}))[1] == 3
+
+
 def test_elif_in_a_feature_section_is_refused():
-    with pytest.raises(ShaderGenError):
-        resolve("#ifdef MX_FEATURE_A\n#elif X\n#endif", frozenset())
-
-
-def material(bsdf: str) -> str:
-    return doc(f'{bsdf}<surface name="surf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="b"/></surface>'
-               '<surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" '
-               'nodename="surf"/></surfacematerial>')
+    with pytest.raises(ShaderGenError) as error:
+        parse_module("library.glsl", "#ifdef MX_FEATURE_A\n#elif X\n#endif")
+    assert error.value.code == "invalid_source" and "library.glsl:2:" in error.value.message
 
 
 def pixel(gen, document: str, **kw) -> str:
@@ -74,6 +89,18 @@ def test_a_film_of_thickness_0_leaves_the_thin_film_out_of_specialized_code_and_
     assert glslang(plain, "pixel")[0]
     film = pixel(gen, material(DIELECTRIC.format(t=500, ior=1.5, mode="R")), interface="specialized")
     assert "mx_fresnel_airy(" in film and glslang(film, "pixel")[0]
+
+
+def test_every_target_resolves_the_same_sections(gen):
+    """The sections are resolved on the IR that every target prints: ESSL and WGSL lose the thin
+    film as GLSL does, with the same count."""
+    for thickness in (0, 500):
+        records = {t: gen.prepare(material(DIELECTRIC.format(t=thickness, ior=1.5, mode="R")), target=t,
+                                  interface="specialized").emit() for t in ("glsl", "essl", "wgsl")}
+        assert len({r["passes"]["sections"] for r in records.values()}) == 1
+        for r in records.values():
+            assert ("mx_fresnel_airy(" in r["stages"]["pixel"]) is (thickness > 0)
+            assert "MX_FEATURE" not in r["stages"]["pixel"]
 
 
 def test_each_setting_brings_back_its_section(gen):
@@ -122,9 +149,9 @@ def test_an_environment_method_resolves_the_compilers_own_conditional(gen):
 
 
 def test_decided_macros_resolve_like_features():
-    text = "#ifdef MX_ENV_PREFILTER\nprefiltered();\n#else\nsampled();\n#endif"
-    assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", False)})) == "sampled();"
-    assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", True)})) == "prefiltered();"
+    text = CALLED + "void g()\n{\n#ifdef MX_ENV_PREFILTER\n    prefiltered();\n#else\n    sampled();\n#endif\n}"
+    assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", False)})) == "void g()\n{\n    sampled();\n}"
+    assert resolve(text, frozenset(), frozenset({("MX_ENV_PREFILTER", True)})) == "void g()\n{\n    prefiltered();\n}"
 
 
 def test_a_shader_for_a_scene_without_lights_has_no_light_loop(gen):

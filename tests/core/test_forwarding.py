@@ -1,5 +1,12 @@
-"""Calls of forwarding functions go straight to their targets (targets/forwarding.py)."""
-from .conftest import kept_code
+"""Calls of forwarding functions go straight to their targets (the forward pass,
+shadergen/code/passes/forward.py), in every target."""
+import re
+
+import pytest
+
+from .conftest import kept_code, material
+
+CONDUCTOR = material('<conductor_bsdf name="b" type="BSDF"/>')
 
 LIBRARY = """float samples(vec3 N, bool film, out vec3 albedo)
 {
@@ -51,3 +58,17 @@ def test_a_forward_main_calls_stays():
 def test_a_forward_with_another_type_or_qualifier_stays():
     library = LIBRARY.replace("float reflected(vec3 N, out vec3 albedo)", "float reflected(vec3 N, inout vec3 albedo)")
     assert "float r = reflected(" in kept_code(library, "float x = lobe(vec3(1.0));")
+
+
+@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl"])
+def test_the_librarys_forwarders_are_called_straight_in_every_target(gen, target):
+    """Without a thin film the environment a lobe reflects is its samples: the specialized shader
+    calls mx_environment_samples and mx_fresnel_eval_film straight; where the film is a uniform
+    (complete), mx_environment_reflected dispatches at run time and stays."""
+    specialized = gen.prepare(CONDUCTOR, interface="specialized", environment="fis", target=target).emit()
+    pixel = specialized["stages"]["pixel"]
+    assert "mx_environment_samples(" in pixel and "mx_environment_reflected(" not in pixel
+    assert "mx_fresnel_eval_film(" in pixel and not re.search(r"\bmx_fresnel_eval\(", pixel)
+    complete = gen.prepare(CONDUCTOR, environment="fis", target=target).emit()
+    assert "mx_environment_reflected(" in complete["stages"]["pixel"]
+    assert specialized["passes"]["forward"] > complete["passes"]["forward"] > 0

@@ -6,10 +6,11 @@ import sys
 
 import pytest
 
+from shadergen.code import ir
+from shadergen.code.facts import early_exit_at_zero_weight
 from shadergen.evaluate import NotFoldable, evaluate_outputs, f32
-from shadergen.targets.glsl import ClosureConvention
 
-from .conftest import doc
+from .conftest import checked_code, doc, library_implementation
 
 
 def record(gen, body, **kw):
@@ -228,6 +229,9 @@ def test_transmission_context_only_with_a_transmitting_lobe(gen):
     assert "CLOSURE_TYPE_TRANSMISSION" not in main("R")
     assert "CLOSURE_TYPE_TRANSMISSION" in main("RT")
     assert "CLOSURE_TYPE_TRANSMISSION" not in main_of(record(gen, surface(lobe("top", "oren_nayar_diffuse_bsdf", "1"))))
+    # what a lobe answers, read from its IR: whether it (or what it calls) reads the context's constant
+    assert library_implementation("ND_dielectric_bsdf").handles_transmission
+    assert not library_implementation("ND_oren_nayar_diffuse_bsdf").handles_transmission
 
 
 def test_no_emission_code_without_an_emitter(gen):
@@ -240,27 +244,32 @@ def test_no_emission_code_without_an_emitter(gen):
                                                      interface="specialized"))
 
 
-def test_the_closure_convention_reads_what_a_lobe_gives_at_zero_weight():
-    convention = ClosureConvention()
+LOBE_TYPES = "struct ClosureData { int closureType; };\nstruct BSDF { vec3 response; vec3 throughput; };\n" \
+             "const float MX_EPS = 1.0e-8;\n"
+
+
+def test_the_closure_facts_read_what_a_lobe_gives_at_zero_weight():
+    """Read from the lobe's IR (code/facts.py): a return under its weight before any throughput is
+    written leaves the closure's zero; a lobe that marks itself opaque first does not."""
     empty = "void f(ClosureData c, float weight, inout BSDF bsdf)\n{\n    if (weight < MX_EPS)\n        return;\n" \
             "    bsdf.throughput = vec3(0.5);\n}\n"
     opaque = "void f(ClosureData c, float weight, inout BSDF bsdf)\n{\n    bsdf.throughput = vec3(0.0);\n" \
              "    if (weight < MX_EPS)\n        return;\n}\n"
-    assert convention.empty_at_zero_weight(empty, "f") and not convention.empty_at_zero_weight(opaque, "f")
+
+    def lobe_function(source):
+        items, _ = checked_code(LOBE_TYPES + source, "")
+        return next(i for i in items if isinstance(i, ir.Function) and i.name == "f")
+
+    assert early_exit_at_zero_weight(lobe_function(empty)) and not early_exit_at_zero_weight(lobe_function(opaque))
+    assert library_implementation("ND_sheen_bsdf").empty_at_zero_weight
+    assert not library_implementation("ND_burley_diffuse_bsdf").empty_at_zero_weight
 
 
 def test_an_opaque_lobe_at_zero_weight_is_kept_where_its_throughput_is_seen(gen):
     opaque = lobe("coat", "burley_diffuse_bsdf", "0")
     body = surface(opaque + lobe("diffuse", "sheen_bsdf", "1") + LAYER)
-    if ClosureConvention().empty_at_zero_weight(open(_source("mx_burley_diffuse_bsdf.glsl")).read(),
-                                                "mx_burley_diffuse_bsdf"):
-        pytest.skip("the library's burley lobe is empty at zero weight")
+    assert not library_implementation("ND_burley_diffuse_bsdf").empty_at_zero_weight  # marks itself opaque first
     assert "mx_burley_diffuse_bsdf(" in main_of(record(gen, body, interface="specialized"))
-
-
-def _source(name: str) -> str:
-    from pathlib import Path
-    return str(Path(__file__).resolve().parents[2] / "libraries" / "pbrlib" / "genglsl" / name)
 
 
 # -- thin_film -------------------------------------------------------------------------------------

@@ -1,12 +1,15 @@
-"""The WGSL target: the libraries' GLSL translated (translate.py), uniform buffers laid out by WGSL's
-rules, and every generated module accepted by the validator: wgpu creating the shader module (naga
-inside wgpu-native, on Mesa's Vulkan driver), as a WebGPU implementation does."""
+"""The WGSL target: the libraries' typed IR printed as WGSL (targets/wgsl/printer.py), uniform
+buffers laid out by WGSL's rules, and every generated module accepted by the validator: wgpu
+creating the shader module (naga inside wgpu-native, on Mesa's Vulkan driver), as a WebGPU
+implementation does."""
 import pytest
 
-from shadergen.targets.glsl import STRUCTS
-from shadergen.targets.wgsl.translate import Translator, Untranslatable
+from shadergen.code import ir
+from shadergen.code.check import flat_items
+from shadergen.errors import ShaderGenError
+from shadergen.targets.wgsl.printer import WgslPrinter, function_names, helpers
 
-from .conftest import doc
+from .conftest import checked_code, doc
 from .test_stdlib_compiles import stdlib_nodedefs
 
 
@@ -67,7 +70,11 @@ def test_uniform_offsets_follow_wgsl_alignment(gen):
 
 
 def translate(text: str) -> str:
-    return Translator(STRUCTS).file("test", text)
+    """GLSL-subset library source parsed and checked, its items printed as WGSL as the target
+    prints a stage's (overloads named apart over all of them, the helpers they call after)."""
+    items, _ = checked_code(text, "")
+    printer = WgslPrinter(function_names([i for i in flat_items(items) if isinstance(i, ir.Function)]))
+    return "\n".join([line for item in items for line in printer.item(item)] + helpers(items))
 
 
 def test_out_parameters_become_pointers_and_overloads_get_suffixes():
@@ -86,9 +93,16 @@ def test_glsl_implicit_conversions_are_spelled_out():
     assert "floor(" in out  # GLSL's mod floors; WGSL's % truncates
 
 
+def test_a_store_to_several_components_goes_through_a_copy():
+    """WGSL assigns one component at a time (no `v.xy =`); through a pointer, `(*v).x`."""
+    out = translate("void f(out vec3 v) { v.xy = vec2(1.0); }")
+    assert "    let swizzled_0 = vec2f(1.0);\n    (*v).x = swizzled_0.x;\n    (*v).y = swizzled_0.y;" in out
+
+
 def test_what_it_cannot_take_is_reported():
-    with pytest.raises(Untranslatable, match="several components"):
-        translate("void f(out vec3 v) { v.xy = vec2(1.0); }")
+    with pytest.raises(ShaderGenError) as error:
+        translate("void f(float a[]) { }")
+    assert error.value.code == "unsupported_node" and "no WGSL form" in error.value.message
 
 
 def test_a_lit_standard_surface_validates(gen, validator):
@@ -133,7 +147,7 @@ def test_comments_that_explain_are_kept_where_they_were():
     lines = out.splitlines()
     assert lines[0] == "// Why f exists" and lines[1].startswith("fn f(")
     assert "    // square it" in lines and "    var y: f32 = x * x;  // and why" in lines
-    assert "    if (y > 1.0) { y = 1.0; }  // clamped" in lines
+    assert "    if (y > 1.0) {" in lines and "        y = 1.0;  // clamped" in lines  # braces around every body
 
 
 def test_a_files_detached_comment_blocks_are_left_out_as_in_glsl():
