@@ -104,7 +104,8 @@ class ClosureConvention:
                              build.name("MAX_LIGHT_SOURCES", "global", "int")))
         ctx.add_function(build.function("int", "numActiveLightSources", [], count.block()))
         sample = build.Builder()
-        light, position, result = local("light", "LightData"), local("position", "vec3"), local("result", "lightshader")
+        light, position, result = (build.name(n, "param", t) for n, t in
+                                   (("light", "LightData"), ("position", "vec3"), ("result", "lightshader")))
         zero = build.construct("vec3", build.number(0.0))
         sample.assign(build.field(result, "intensity"), zero)
         sample.assign(build.field(result, "direction"), zero)

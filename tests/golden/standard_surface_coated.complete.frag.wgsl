@@ -2029,18 +2029,18 @@ fn numActiveLightSources() -> i32 {
 }
 
 fn sampleLightSource(light: LightData, position: vec3f, result: ptr<function, lightshader>) {
-    result.intensity = vec3f(0.0);
-    result.direction = vec3f(0.0);
+    (*result).intensity = vec3f(0.0);
+    (*result).direction = vec3f(0.0);
     if (light.type_ == 1) {
-        mx_point_light(light, position, &result);
+        mx_point_light(light, position, result);
     }
     else {
         if (light.type_ == 2) {
-            mx_directional_light(light, position, &result);
+            mx_directional_light(light, position, result);
         }
         else {
             if (light.type_ == 3) {
-                mx_spot_light(light, position, &result);
+                mx_spot_light(light, position, result);
             }
         }
     }
