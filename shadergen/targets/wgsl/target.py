@@ -19,6 +19,7 @@ from ..closures import ClosureConvention
 from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
 from .layout import uniform_layout
 from .printer import FRAGMENT_BUILTINS, WgslPrinter, function_names, helpers, safe_name, wgsl_type
+from .runtime import Runtime
 
 
 class WgslTarget:
@@ -38,7 +39,11 @@ class WgslTarget:
         if len(outputs) != 1:
             raise ShaderGenError("unsupported_output", "wgsl shaders have exactly one output", "wgsl")
         booleans = self._booleans(ctx.pixel)
-        functions = [f for item in code.functions for f in items_in(item) if isinstance(f, ir.Function)]
+        runtime = Runtime()  # generated constant operations made run-time (runtime.py)
+        main = runtime.statement(code.main)
+        items = [runtime.statement(i) if isinstance(i, ir.Function) and i.where is None else i for i in code.functions]
+        items = list(runtime.functions.values()) + items
+        functions = [f for item in items for f in items_in(item) if isinstance(f, ir.Function)]
         printer = WgslPrinter(function_names(functions), lambda n: self._pixel_name(n, booleans))
         w = Writer()
         for item in code.structs:
@@ -61,9 +66,8 @@ class WgslTarget:
             w.line(f"var<private> {name}: {t};")
         if builtins:
             w.line()
-        helper_lines = helpers(code.functions + [code.main])
-        w.extend(helper_lines)
-        for function in code.functions:
+        w.extend(helpers(items + [main]))
+        for function in items:
             w.extend(printer.item(function))
             w.line()
         w.line("@fragment")
@@ -77,7 +81,7 @@ class WgslTarget:
             w.line(f"{name} = {name}_in;")
         w.line(f"var {outputs[0].name}: vec4f;")
         w.depth -= 1
-        w.extend(printer.statements(code.main.body, 1))
+        w.extend(printer.statements(main.body, 1))
         w.line(f"    return {outputs[0].name};")
         w.line("}")
         return w.text()
