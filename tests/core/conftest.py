@@ -7,9 +7,8 @@ import pytest
 from shadergen.api import Generator
 from shadergen.code import ir
 from shadergen.code.check import check_modules
-from shadergen.code.facts import collect
 from shadergen.code.parse import parse_module
-from shadergen.code.passes import fields, forward, reach, sections
+from shadergen.code.passes import stage
 from shadergen.library import default_library
 from shadergen.nodes.base import implementation_for
 from shadergen.targets.glsl.printer import GlslPrinter
@@ -63,18 +62,9 @@ def checked_code(library: str, roots: str) -> tuple[list, ir.Block]:
 
 
 def kept_code(library: str, roots: str, features: frozenset | None = None) -> str:
-    """What a pixel stage keeps of `library` when `roots` (the statements of its main) use it: the
-    code passes in the order shadergen/code/passes/__init__.py gives them (sections, reach, then
-    fields and forward with reach after them until nothing changes), the kept items printed as GLSL."""
+    """What a pixel stage keeps of `library` when `roots` (the statements of its main) use it:
+    the stage's code passes (shadergen/code/passes/stage.py), the kept items printed as GLSL."""
     items, main = checked_code(library, roots)
-    used = collect([main])  # main is read, never edited
-    items, _ = sections.run(items, features)
-    reached, _ = reach.run(items, used)
-    while True:
-        items, trimmed = fields.run(reached.items, used)
-        items, redirected = forward.run(items, used)
-        if not trimmed + redirected:
-            break
-        reached, _ = reach.run(items, used)
+    reached, _ = stage.run(items, features, frozenset(), [main])
     printer = GlslPrinter()
     return "\n".join(line for item in reached.items for line in printer.item(item))

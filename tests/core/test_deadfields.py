@@ -95,6 +95,7 @@ def test_a_specular_lobe_lit_by_the_environment_alone_loses_its_light_loop_membe
 def test_a_function_only_a_dead_members_store_called_leaves_the_record(gen):
     """The prefiltered environment never reads the lobe's tangent frame: its store goes, and with
     it the call of mx_tangent_frame, its only one in the stage."""
-    pixel = gen.prepare(CONDUCTOR, interface="specialized", lights=False, environment="prefilter").emit()["stages"]["pixel"]
+    record = gen.prepare(CONDUCTOR, interface="specialized", lights=False, environment="prefilter").emit()
+    pixel = record["stages"]["pixel"]
     assert "lobe.frame" not in pixel
     assert "mx_tangent_frame" not in pixel and "mx_frame_from_normal" not in pixel
