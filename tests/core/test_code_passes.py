@@ -444,12 +444,10 @@ import pytest  # noqa: E402
 from shadergen.code.check import flat_items  # noqa: E402
 from shadergen.code.library import CodeLibrary  # noqa: E402
 from shadergen.code.types import ir_type  # noqa: E402
-from shadergen.features import environment_macros, resolve  # noqa: E402
+from shadergen.features import environment_macros  # noqa: E402
 from shadergen.library import default_library  # noqa: E402
 from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
 from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS  # noqa: E402
-from shadergen.targets.deadcode import split_items, used_functions  # noqa: E402
-from shadergen.targets.glsl import ClosureConvention  # noqa: E402
 
 CLOSURE_TYPES = {"BSDF", "EDF", "VDF"}
 EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
@@ -472,7 +470,7 @@ def function_of(code, impl):
 
 def items_of(code, impl) -> list:
     """The items of an implementation's files, its includes first (the generator's order)."""
-    return [item for path, _ in impl.files for item in code.module(path).items]
+    return [item for path in impl.files for item in code.module(path).items]
 
 
 def source_implementations():
@@ -495,55 +493,53 @@ def lobes():
             if {o.get("type") for o in nodedef.children_of("output")} & CLOSURE_TYPES]
 
 
-def test_every_lobes_zero_weight_exit_and_prepared_state_agree_with_the_text_scans(code):
-    convention, checked = ClosureConvention(), 0
+# What the IR says of the library's lobes and functions; when these passes replaced the text scans
+# (targets/glsl.py ClosureConvention, nodes/base.py takes_derivatives), both agreed on every lobe
+# and implementation but one (the text scan credited mx_layer_vdf with its file's mx_layer_bsdf).
+PREPARED = {"mx_conductor_bsdf": "SpecularLobe", "mx_dielectric_bsdf": "SpecularLobe",
+            "mx_generalized_schlick_bsdf": "SpecularLobe"}
+TRANSMITTING = {"mx_absorption_vdf", "mx_anisotropic_vdf", "mx_dielectric_bsdf", "mx_generalized_schlick_bsdf"}
+DERIVATIVE_FAMILIES = ("mx_heighttonormal", "mx_hextiled", "mx_image_", "mx_latlongimage", "mx_split",
+                       "mx_subsurface_bsdf", "mx_triplanarprojection")
+
+
+def test_the_lobes_zero_weight_exits_and_prepared_states(code):
+    checked = 0
     for _, impl in lobes():
         function = function_of(code, impl)
-        assert early_exit_at_zero_weight(function) == convention.empty_at_zero_weight(impl.source, impl.function), \
-            impl.function
-        assert prepared_state(function, code) == convention.prepared_state(impl.source, impl.function), impl.function
+        assert prepared_state(function, code) == PREPARED.get(impl.function), impl.function
+        assert impl.prepared_state == PREPARED.get(impl.function) and impl.empty_at_zero_weight == \
+            early_exit_at_zero_weight(function), impl.function
         checked += 1
     assert checked >= 25
     early = {impl.function for _, impl in lobes() if early_exit_at_zero_weight(function_of(code, impl))}
     assert early == {"mx_dielectric_bsdf", "mx_generalized_schlick_bsdf", "mx_sheen_bsdf"}
 
 
-def test_the_lobes_answering_the_transmission_context_agree_with_the_text_scan(code):
-    """The closure pass asks it of lobes only (an operator passes on what its lobes answer). The
-    text scan reads the whole file: mx_closure_layer.glsl names the constant for the layer of
-    BSDFs, which the text scan credits to mx_layer_vdf too."""
-    convention = ClosureConvention()
+def test_the_lobes_answering_the_transmission_context(code):
+    """The closure pass asks it of lobes only (an operator passes on what its lobes answer)."""
     for nodedef, impl in lobes():
         if any(i.get("type") in CLOSURE_TYPES for i in nodedef.children_of("input")):
             continue
-        function = function_of(code, impl)
-        assert reads_constant(function, "CLOSURE_TYPE_TRANSMISSION") == convention.handles_transmission(impl.source), \
-            impl.function
+        answers = reads_constant(function_of(code, impl), "CLOSURE_TYPE_TRANSMISSION")
+        assert answers == (impl.function in TRANSMITTING) == impl.handles_transmission, impl.function
 
 
-def test_derivative_use_agrees_with_the_text_scan_for_every_function_implementation(code):
+def test_derivative_use_of_every_function_implementation(code):
     implementations = source_implementations()
     for _, impl in implementations:
-        assert uses_derivatives(function_of(code, impl)) == impl.uses_derivatives, impl.function
+        expected = impl.function.startswith(DERIVATIVE_FAMILIES)
+        assert uses_derivatives(function_of(code, impl)) == expected == impl.uses_derivatives, impl.function
     assert len(implementations) > 100
 
 
 def stage(code, impl, features, environment):
     """What a stage of the implementation alone keeps: calls of it (and its _prepare) its roots."""
     called = {impl.function, impl.function + "_prepare"}
-    roots = [do(ir.Call(i.name, [], callee=i)) for i in flat_items(code.module(impl.files[-1][0]).items)
+    roots = [do(ir.Call(i.name, [], callee=i)) for i in flat_items(code.module(impl.files[-1]).items)
              if isinstance(i, ir.Function) and i.name in called]
     reached, _ = stage_passes.run(items_of(code, impl), features, environment_macros(environment), roots)
     return [i for unit in reached.items for i in flat_items([unit])]
-
-
-def text_stage(impl, features, environment):
-    """The same by today's text passes: the kept lines."""
-    lines = []
-    for _, text in impl.files:
-        lines += resolve(text, features, environment_macros(environment)).split("\n") + [""]
-    called = [impl.function] + ([impl.function + "_prepare"] if f"{impl.function}_prepare(" in impl.source else [])
-    return used_functions(lines, "; ".join(f"{name}(x)" for name in called))[0]
 
 
 def names(items) -> set[str]:
@@ -555,39 +551,14 @@ SETTINGS = [(frozenset(), "fis"), (frozenset({"LIGHTS", "THIN_FILM", "TRANSMISSI
 
 
 @pytest.mark.parametrize("features, environment", SETTINGS)
-def test_the_ir_passes_keep_no_more_than_the_text_passes_of_every_implementation(code, features, environment):
-    """No more: the text pass keeps every overload of a name it sees called (mx_hn_mix, mx_sqr's),
-    the IR only those called."""
-    fewer = 0
+def test_every_implementations_stage_keeps_its_function_and_only_the_overloads_called(code, features, environment):
+    """Reach keeps what is called, by key: of an overloaded name only the overloads called."""
     for _, impl in source_implementations():
-        kept = text_stage(impl, features, environment)
-        text_names = {name for name, _ in split_items(kept) if name}
-        ir_names = names(stage(code, impl, features, environment))
-        assert ir_names <= text_names, (impl.function, ir_names - text_names)
-        assert impl.function in ir_names
-        fewer += ir_names != text_names
-    assert fewer < 50
-
-
-@pytest.mark.parametrize("features, environment", SETTINGS + [(frozenset({"LIGHTS"}), "hybrid")])
-def test_structs_lose_the_members_the_text_pass_takes_out(code, features, environment):
-    """Every implementation's stage alone: the same members as the text pass keeps, except where
-    every member is dead (nothing builds the struct in such a stage: a generator's main builds
-    ClosureData): the text pass keeps the alphabetically first, the IR the first declared."""
-    compared = all_dead = 0
-    for _, impl in source_implementations():
-        text = "\n".join(text_stage(impl, features, environment))
-        for struct in [i for i in stage(code, impl, features, environment) if isinstance(i, ir.Struct)]:
-            declared = re.search(r"struct %s\n\{\n(.*?)\n\};" % struct.name, text, re.S).group(1)
-            members = [line.split()[1].rstrip(";") for line in declared.split("\n") if line.strip()
-                       and not line.strip().startswith("//")]
-            kept = [m for _, m in struct.members]
-            if members != kept:
-                assert len(members) == len(kept) == 1 and kept == [code.struct(struct.name).members[0][1]] \
-                    and members == [min(m for _, m in code.struct(struct.name).members)], (impl.function, struct.name)
-                all_dead += 1
-            compared += 1
-    assert compared > 30 and all_dead < compared
+        kept = stage(code, impl, features, environment)
+        assert impl.function in names(kept), impl.function
+        called = {key for f in kept if isinstance(f, ir.Function) for key in facts(f).calls}
+        roots = {f.key for f in kept if isinstance(f, ir.Function) and f.name in (impl.function, impl.function + "_prepare")}
+        assert {f.key for f in kept if isinstance(f, ir.Function)} <= called | roots, impl.function
 
 
 def lobe_stage(code, function, features, environment=None):
