@@ -72,6 +72,9 @@ class Writer:
 
     def extend(self, lines) -> None:
         """Lines already indented for the top level, indented to this depth."""
+        if not self.depth:  # library items, at the top level: as they are
+            self.lines.extend(lines)
+            return
         indent = self.unit * self.depth
         self.lines.extend(indent + ln if ln else "" for ln in lines)
 

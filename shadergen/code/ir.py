@@ -340,15 +340,25 @@ def walk(node):
         stack.extend(reversed(children(n)))
 
 
+_SLOTS: dict[type, tuple[str, ...]] = {}
+
+
+def slots_of(cls: type) -> tuple[str, ...]:
+    """Every slot of a node class, its bases' included (an item's `facts` left out: a copy's are
+    read again, Item's doc)."""
+    found = _SLOTS.get(cls)
+    if found is None:
+        found = _SLOTS[cls] = tuple(name for c in cls.__mro__ for name in getattr(c, "__slots__", ())
+                                    if name != "facts")
+    return found
+
+
 def replace(node, **changes):
     """A copy of `node` with some fields changed (passes build new nodes; shared ones stay)."""
-    new = object.__new__(type(node))
-    for cls in type(node).__mro__:
-        for name in getattr(cls, "__slots__", ()):
-            if name in changes:
-                setattr(new, name, changes[name])
-            elif name != "facts":  # an item's facts are read again for the copy (Item's doc)
-                setattr(new, name, getattr(node, name))
-    if isinstance(new, Item) and "facts" not in changes:
-        new.facts = None
+    cls = type(node)
+    new = object.__new__(cls)
+    for name in slots_of(cls):
+        setattr(new, name, changes[name] if name in changes else getattr(node, name))
+    if isinstance(new, Item):
+        new.facts = changes.get("facts")
     return new

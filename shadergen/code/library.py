@@ -22,6 +22,7 @@ from ..library import Library, cache_dir, collection_paused, read_source, write_
 from . import ir
 from .check import check_expression, check_modules, flat_items, library_symbols
 from .generated import check_generated
+from .instantiate import maker
 from .parse import parse_expression, parse_module
 
 __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
@@ -34,13 +35,14 @@ MAX_MEMO = 65536  # documents' own templates kept per library (their texts come 
 
 class CodeLibrary:
     """The typed IR of a library's code, with its symbol table (see the module's doc)."""
-    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "typed", "parsed")
+    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "typed", "parsed", "makers")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
         self.key, self.modules, self.symbols, self.templates, self.externals = state
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
+        self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
 
     @classmethod
     def load(cls, library: Library, externals: dict[str, str]) -> "CodeLibrary":
@@ -118,6 +120,18 @@ class CodeLibrary:
         """The template instantiated for its inputs' IR types, typed (shared: build new nodes
         rather than change it)."""
         return check_expression(self.template(expression_text, where), placeholder_types, self)
+
+    def instance(self, expression_text: str, values: dict[str, ir.Expr], where: str = "inline expression") -> ir.Expr:
+        """An inline expression with typed `values` in its placeholders: typed and compiled once
+        per (template, input types) (code/instantiate.py), made per call."""
+        template = self.template(expression_text, where)
+        types = tuple(sorted((n, v.type) for n, v in values.items()))
+        found = self.makers.get((template, types))
+        if found is None:
+            found = maker(check_expression(template, dict(types), self))
+            if len(self.makers) < MAX_MEMO:
+                self.makers[(template, types)] = found
+        return found(values)
 
 
 def cache_key(library: Library, externals: dict[str, str]) -> str:

@@ -7,6 +7,7 @@ no response, everything let through. A float a 32-bit target cannot hold is clam
 it can (infinity), and NaN is 0 (types.py refuses them in documents; folded values may still be).
 """
 import math
+from functools import lru_cache
 
 from ..types import TYPES, default_value
 from . import ir
@@ -53,7 +54,19 @@ def scalar(type: str, value) -> ir.Literal:
 
 
 def value_expr(materialx_type: str, value, meta: dict | None = None) -> ir.Expr:
-    """The IR of a value of a MaterialX type (None: the type's default)."""
+    """The IR of a value of a MaterialX type (None: the type's default). The nodes are shared by
+    every use of an equal value (nothing changes a typed node: passes build new ones)."""
+    if materialx_type in ("string", "geomname") or isinstance(value, list):
+        return _value_expr(materialx_type, value, meta)
+    return _shared_value(materialx_type, value)
+
+
+@lru_cache(maxsize=4096)
+def _shared_value(materialx_type: str, value) -> ir.Expr:
+    return _value_expr(materialx_type, value, None)
+
+
+def _value_expr(materialx_type: str, value, meta: dict | None) -> ir.Expr:
     t = ir_type(materialx_type)
     if t in STRUCT_ZERO:
         return ir.Construct(t, [ir.Construct(mt, [scalar("float", v)]) if mt != "float" else scalar("float", v)

@@ -11,7 +11,6 @@ import os
 import re
 
 from ..code import facts
-from ..code.instantiate import placeholders, substitute
 from ..element import Element
 from ..errors import ShaderGenError
 from ..features import node_features
@@ -69,14 +68,12 @@ class InlineImpl(NodeImpl):
         return cls(read_source(_source_path(elem, elem.get("file"))), elem.name)
 
     def emit_function_call(self, node, ctx) -> None:
-        for name in placeholders(ctx.code.template(self.expression, self.where)):
-            if name not in node.inputs:
-                raise ShaderGenError("invalid_implementation", f"inline expression names unknown input '{name}'",
-                                     node.path)
         inputs = {name: ctx.value(i) for name, i in node.inputs.items()}
-        # typed once per library for these input types (the checker's conversions in place)
-        template = ctx.code.expression(self.expression, {n: v.type for n, v in inputs.items()}, self.where)
-        ctx.assign(next(iter(node.outputs.values())), substitute(template, inputs))
+        try:
+            expression = ctx.code.instance(self.expression, inputs, self.where)
+        except ShaderGenError as e:  # a placeholder naming no input of the node, among others
+            raise ShaderGenError("invalid_implementation", e.message, node.path) from None
+        ctx.assign(next(iter(node.outputs.values())), expression)
 
 
 class SourceFunctionImpl(NodeImpl):
