@@ -10,7 +10,8 @@ sources align them.
 WIDTH = 110
 # An argument list opening past this column is not aligned after its `(`, where each line would
 # hold a few arguments only: a long one (an array's values) starts on a line of its own, one indent
-# deeper than its statement; a short one stays on its line, which runs past WIDTH.
+# deeper than its statement; a short one stays on its line, which runs past WIDTH. A list of more
+# than LONG arguments that would wrap does so whenever its `(` is not near its statement's start.
 HANGING = 70
 LONG = 8
 INDENT = "    "
@@ -54,7 +55,8 @@ def arguments(render, args, column: int, indent: int) -> str:
     columns: on the line while they fit, else on the next, aligned after the `(`."""
     if column > HANGING and len(args) <= LONG:
         return ", ".join([render(arg, None, indent) for arg in args])
-    if column > HANGING:
+    if column > HANGING or (len(args) > LONG and column > indent + 2 * len(INDENT)):
+        # a long list (an array's values) on lines of their own, as full as they go
         column = indent + len(INDENT)
         out = "\n" + " " * column
     else:

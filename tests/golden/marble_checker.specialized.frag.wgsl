@@ -11,6 +11,10 @@ struct VertexData {
 
 var<private> vd: VertexData;
 
+fn mx_runtime_vec3f(value: vec3f) -> vec3f {
+    return value;
+}
+
 fn mx_hn_rotl(x: u32, k: u32) -> u32 {
     return (x << k) | (x >> (32u - k));
 }
@@ -91,7 +95,7 @@ fn mx_fractal3d_float(amplitude: f32, octaves: i32, lacunarity: f32, diminish: f
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var marble_bg_cm_out: vec3f = select(vec3f(0.9, 0.88, 0.85) / 12.92,
+    var marble_bg_cm_out: vec3f = select(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) / 12.92,
                                          pow(max(vec3f(0.9, 0.88, 0.85) + 0.055, vec3f(0.0)) / 1.055,
                                              vec3f(2.4)), vec3f(0.9, 0.88, 0.85) > vec3f(0.04045));
     var pos_out: vec3f = vd.positionObject;
