@@ -358,6 +358,20 @@ def test_wgsl_matrix_of_another_size_as_glsl_fills_it():
     assert WgslPrinter().expression(ir.Construct("mat3", [m4])) == "mat3x3f(q[0].xyz, q[1].xyz, q[2].xyz)"
 
 
+def test_globals():
+    """A uniform's initialiser in GLSL 4.00, none in ESSL 3.00 (which has none); a target's own
+    variable is not declared; a WGSL module-scope variable is private."""
+    uniform = ir.Global("float", "u_x", "uniform", init=ir.Literal(0.5, "0.5", type="float"))
+    assert GlslPrinter("glsl").item(uniform) == ["uniform float u_x = 0.5;"]
+    assert GlslPrinter("essl").item(uniform) == ["uniform float u_x;"]
+    lights = ir.Global("LightData[3]", "u_lightData", "uniform")
+    assert GlslPrinter("glsl").item(lights) == ["uniform LightData u_lightData[3];"]
+    facing = ir.Global("bool", "gl_FrontFacing", "builtin")
+    assert GlslPrinter("glsl").item(facing) == [] == WgslPrinter().item(facing)
+    table = ir.Global("float", "t", "global", init=ir.Literal(1, "1", type="int"))
+    assert WgslPrinter().item(table) == ["var<private> t: f32 = 1.0;"]
+
+
 def test_names_are_spelled_by_the_caller():
     """`spell` decides how a Name prints (the stage assembler's vertex data): in expressions,
     declarations and parameters alike."""
