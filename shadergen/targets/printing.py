@@ -7,11 +7,14 @@ argument list that would run past WIDTH wraps, its arguments aligned after the `
 sources align them.
 """
 
+from ..code import ir
+
 WIDTH = 110
 # An argument list opening past this column is not aligned after its `(`, where each line would
 # hold a few arguments only: a long one (an array's values) starts on a line of its own, one indent
 # deeper than its statement; a short one stays on its line, which runs past WIDTH. A list of more
-# than LONG arguments that would wrap does so whenever its `(` is not near its statement's start.
+# than LONG literals (a table) that would wrap does so whenever its `(` is not near its statement's
+# start.
 HANGING = 70
 LONG = 8
 INDENT = "    "
@@ -55,7 +58,8 @@ def arguments(render, args, column: int, indent: int) -> str:
     columns: on the line while they fit, else on the next, aligned after the `(`."""
     if column > HANGING and len(args) <= LONG:
         return ", ".join([render(arg, None, indent) for arg in args])
-    if column > HANGING or (len(args) > LONG and column > indent + 2 * len(INDENT)):
+    if column > HANGING or (len(args) > LONG and column > indent + 2 * len(INDENT)
+                            and all(type(a) is ir.Literal for a in args)):
         # a long list (an array's values) on lines of their own, as full as they go
         column = indent + len(INDENT)
         out = "\n" + " " * column

@@ -577,15 +577,14 @@ vec2 mx_fibonacci_point(int i, int count)
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
 
-FresnelData mx_fresnel_data(
-    int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent, float tf_thickness,
-    float tf_ior)
+FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
+                            float tf_thickness, float tf_ior)
 {
     // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
-    return FresnelData(
-        model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR), mx_clamp_finite(extinction, 0.0, MX_MAX_IOR), F0, F82,
-        F90, exponent, mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
-        mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
+    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR),
+                       mx_clamp_finite(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
+                       mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 bool mx_fresnel_has_thinfilm(FresnelData fd)
@@ -698,8 +697,8 @@ vec3 mx_thinfilm_polarisation(float R12, vec3 R23, vec3 phase, float opd)
 vec3 mx_fresnel_airy(float cosTheta, FresnelData fd)
 {
     // CIE XYZ to linear RGB with an equal-energy white (columns).
-    const mat3 XYZ_TO_RGB = mat3(
-        2.3706743, -0.5138850, 0.0052982, -0.9000405, 1.4253036, -0.0146949, -0.4706338, 0.0885814, 1.0093968);
+    const mat3 XYZ_TO_RGB = mat3(2.3706743, -0.5138850, 0.0052982, -0.9000405, 1.4253036, -0.0146949,
+                                 -0.4706338, 0.0885814, 1.0093968);
     bool schlick = fd.model == FRESNEL_MODEL_SCHLICK;
     float n2 = max(fd.tf_ior, 1.0);
     vec3 n3 = schlick ? mx_f0_to_ior(fd.F0) : max(fd.ior, vec3(MX_EPS));
@@ -1015,9 +1014,8 @@ float mx_prefiltered_sample_lod(float pdf, int count, float elongation)
 // through the isotropic lobe of its mean roughness estimate the difference (correlated samples of
 // two close integrals; no texture reads), returned in `anisotropy`: (with F, with F = 1).
 // Without `fetch` only that, and no texture reads at all.
-vec3 mx_environment_corrected_radiance(
-    vec3 N, vec3 V, vec3 X, vec2 alpha, float avgAlpha, FresnelData fd, LobeFresnel lf, bool fetch,
-    out vec4 anisotropy)
+vec3 mx_environment_corrected_radiance(vec3 N, vec3 V, vec3 X, vec2 alpha, float avgAlpha, FresnelData fd,
+                                       LobeFresnel lf, bool fetch, out vec4 anisotropy)
 {
     anisotropy = vec4(0.0);
     mat3 frame = mx_tangent_frame(N, X);
@@ -1218,9 +1216,9 @@ vec3 mx_specular_albedo(float cosine, vec2 alpha, FresnelData fd, vec3 singleSca
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
-SpecularLobe mx_specular_lobe_prepare(
-    ClosureData closureData, float weight, vec3 tint, vec2 roughness, bool retroreflective, FresnelData fd,
-    vec3 N, vec3 X, int distribution, int scatterMode)
+SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec3 tint, vec2 roughness,
+                                      bool retroreflective, FresnelData fd, vec3 N, vec3 X, int distribution,
+                                      int scatterMode)
 {
     SpecularLobe lobe;
     lobe.weight = mx_weight_is_zero(weight) ? 0.0 : weight;
@@ -1326,16 +1324,14 @@ float mx_dielectric_albedo(float mu, float alpha, float eta)
 }
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
-void mx_dielectric_bsdf_prepare(
-    ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness, bool retroreflective,
-    float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X, int distribution, int scatter_mode,
-    out SpecularLobe lobe)
+void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
+                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N,
+                                vec3 X, int distribution, int scatter_mode, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(
-        FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
-        thinfilm_thickness, thinfilm_ior);
-    lobe = mx_specular_lobe_prepare(
-        closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution, scatter_mode);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
+                                    distribution, scatter_mode);
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
     float tableAlbedo = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.ior.x);
     lobe.albedo = mx_specular_albedo(NdotV, lobe.alpha, fd, vec3(tableAlbedo));
@@ -1445,11 +1441,11 @@ void main()
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe glass_lobe_lobe;
-        mx_dielectric_bsdf_prepare(
-            pointData, glass_lobe_weight, glass_lobe_tint, glass_lobe_ior, glass_lobe_roughness,
-            glass_lobe_retroreflective, glass_lobe_thinfilm_thickness, glass_lobe_thinfilm_ior,
-            geomprop_Nworld_out, geomprop_Tworld_out, glass_lobe_distribution, glass_lobe_scatter_mode,
-            glass_lobe_lobe);
+        mx_dielectric_bsdf_prepare(pointData, glass_lobe_weight, glass_lobe_tint, glass_lobe_ior,
+                                   glass_lobe_roughness, glass_lobe_retroreflective,
+                                   glass_lobe_thinfilm_thickness, glass_lobe_thinfilm_ior,
+                                   geomprop_Nworld_out, geomprop_Tworld_out, glass_lobe_distribution,
+                                   glass_lobe_scatter_mode, glass_lobe_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++)
         {
             lightshader lightShader;

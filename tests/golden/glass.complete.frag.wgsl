@@ -567,15 +567,13 @@ fn mx_fibonacci_point(i: i32, count: i32) -> vec2f {
     return vec2f((f32(i) + 0.5) / f32(count), fract((f32(i) + 1.0) * GOLDEN_RATIO));
 }
 
-fn mx_fresnel_data(
-    model: i32, ior: vec3f, extinction: vec3f, F0: vec3f, F82: vec3f, F90: vec3f, exponent: f32,
-    tf_thickness: f32, tf_ior: f32) -> FresnelData {
+fn mx_fresnel_data(model: i32, ior: vec3f, extinction: vec3f, F0: vec3f, F82: vec3f, F90: vec3f,
+                   exponent: f32, tf_thickness: f32, tf_ior: f32) -> FresnelData {
     // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
-    return FresnelData(
-        model, mx_clamp_finite_vec3_float_float(ior, 0.0, MX_MAX_IOR),
-        mx_clamp_finite_vec3_float_float(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
-        mx_clamp_finite_float_float_float(tf_thickness, 0.0, MX_MAX_FILM_NM),
-        mx_clamp_finite_float_float_float(tf_ior, 0.0, MX_MAX_IOR), false);
+    return FresnelData(model, mx_clamp_finite_vec3_float_float(ior, 0.0, MX_MAX_IOR),
+                       mx_clamp_finite_vec3_float_float(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
+                       mx_clamp_finite_float_float_float(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite_float_float_float(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 fn mx_fresnel_has_thinfilm(fd: FresnelData) -> bool {
@@ -679,8 +677,8 @@ fn mx_thinfilm_polarisation(R12: f32, R23: vec3f, phase: vec3f, opd: f32) -> vec
 // a dielectric, a conductor, or generalised Schlick read as the dielectric of the same F0.
 fn mx_fresnel_airy(cosTheta: f32, fd: FresnelData) -> vec3f {
     // CIE XYZ to linear RGB with an equal-energy white (columns).
-    let XYZ_TO_RGB: mat3x3f = mat3x3f(
-        2.3706743, -0.5138850, 0.0052982, -0.9000405, 1.4253036, -0.0146949, -0.4706338, 0.0885814, 1.0093968);
+    let XYZ_TO_RGB: mat3x3f = mat3x3f(2.3706743, -0.5138850, 0.0052982, -0.9000405, 1.4253036, -0.0146949,
+                                      -0.4706338, 0.0885814, 1.0093968);
     let schlick: bool = fd.model == FRESNEL_MODEL_SCHLICK;
     let n2: f32 = max(fd.tf_ior, 1.0);
     let n3: vec3f = select(max(fd.ior, vec3f(MX_EPS)), mx_f0_to_ior(fd.F0), schlick);
@@ -1039,9 +1037,9 @@ fn mx_specular_albedo(cosine: f32, alpha: vec2f, fd: FresnelData, singleScatteri
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
-fn mx_specular_lobe_prepare(
-    closureData: ClosureData, weight: f32, tint: vec3f, roughness: vec2f, retroreflective: bool,
-    fd: FresnelData, N: vec3f, X: vec3f, distribution: i32, scatterMode: i32) -> SpecularLobe {
+fn mx_specular_lobe_prepare(closureData: ClosureData, weight: f32, tint: vec3f, roughness: vec2f,
+                            retroreflective: bool, fd: FresnelData, N: vec3f, X: vec3f, distribution: i32,
+                            scatterMode: i32) -> SpecularLobe {
     var lobe: SpecularLobe;
     lobe.weight = select(weight, 0.0, mx_weight_is_zero(weight));
     lobe.tint = max(tint, vec3f(0.0));
@@ -1143,15 +1141,14 @@ fn mx_dielectric_albedo(mu: f32, alpha: f32, eta: f32) -> f32 {
 }
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
-fn mx_dielectric_bsdf_prepare(
-    closureData: ClosureData, weight: f32, tint: vec3f, ior: f32, roughness: vec2f, retroreflective: bool,
-    thinfilm_thickness: f32, thinfilm_ior: f32, N: vec3f, X: vec3f, distribution: i32, scatter_mode: i32,
-    lobe: ptr<function, SpecularLobe>) {
-    let fd: FresnelData = mx_fresnel_data(
-        FRESNEL_MODEL_DIELECTRIC, vec3f(ior), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), 0.0,
-        thinfilm_thickness, thinfilm_ior);
-    *lobe = mx_specular_lobe_prepare(
-        closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution, scatter_mode);
+fn mx_dielectric_bsdf_prepare(closureData: ClosureData, weight: f32, tint: vec3f, ior: f32, roughness: vec2f,
+                              retroreflective: bool, thinfilm_thickness: f32, thinfilm_ior: f32, N: vec3f,
+                              X: vec3f, distribution: i32, scatter_mode: i32,
+                              lobe: ptr<function, SpecularLobe>) {
+    let fd: FresnelData = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3f(ior), vec3f(0.0), vec3f(0.0),
+                                          vec3f(0.0), vec3f(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    *lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
+                                     distribution, scatter_mode);
     let NdotV: f32 = clamp(dot((*lobe).N, (*lobe).V), MX_EPS, 1.0);
     let tableAlbedo: f32 = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha((*lobe).alpha), fd.ior.x);
     (*lobe).albedo = mx_specular_albedo(NdotV, (*lobe).alpha, fd, vec3f(tableAlbedo));
@@ -1260,11 +1257,11 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         var glass_lobe_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(
-            pointData, pu.glass_lobe_weight, pu.glass_lobe_tint, pu.glass_lobe_ior, pu.glass_lobe_roughness,
-            (pu.glass_lobe_retroreflective != 0), pu.glass_lobe_thinfilm_thickness,
-            pu.glass_lobe_thinfilm_ior, geomprop_Nworld_out, geomprop_Tworld_out, pu.glass_lobe_distribution,
-            pu.glass_lobe_scatter_mode, &glass_lobe_lobe);
+        mx_dielectric_bsdf_prepare(pointData, pu.glass_lobe_weight, pu.glass_lobe_tint, pu.glass_lobe_ior,
+                                       pu.glass_lobe_roughness, (pu.glass_lobe_retroreflective != 0),
+                                       pu.glass_lobe_thinfilm_thickness, pu.glass_lobe_thinfilm_ior,
+                                       geomprop_Nworld_out, geomprop_Tworld_out, pu.glass_lobe_distribution,
+                                       pu.glass_lobe_scatter_mode, &glass_lobe_lobe);
         for (var activeLightIndex: i32 = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++) {
             var lightShader: lightshader;
             sampleLightSource(pu.u_lightData[activeLightIndex], vd.positionWorld, &lightShader);

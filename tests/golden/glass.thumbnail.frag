@@ -163,15 +163,14 @@ vec2 mx_fibonacci_point(int i, int count)
     return vec2((float(i) + 0.5) / float(count), fract((float(i) + 1.0) * GOLDEN_RATIO));
 }
 
-FresnelData mx_fresnel_data(
-    int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent, float tf_thickness,
-    float tf_ior)
+FresnelData mx_fresnel_data(int model, vec3 ior, vec3 extinction, vec3 F0, vec3 F82, vec3 F90, float exponent,
+                            float tf_thickness, float tf_ior)
 {
     // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
-    return FresnelData(
-        model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR), mx_clamp_finite(extinction, 0.0, MX_MAX_IOR), F0, F82,
-        F90, exponent, mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
-        mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
+    return FresnelData(model, mx_clamp_finite(ior, 0.0, MX_MAX_IOR),
+                       mx_clamp_finite(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
+                       mx_clamp_finite(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 // Unpolarised reflectance of a dielectric interface with relative index `eta` (transmitted over
@@ -373,9 +372,9 @@ vec3 mx_surface_transmission(vec3 N, vec3 V, vec3 X, vec2 alpha, int distributio
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
-SpecularLobe mx_specular_lobe_prepare(
-    ClosureData closureData, float weight, vec3 tint, vec2 roughness, bool retroreflective, FresnelData fd,
-    vec3 N, vec3 X, int distribution, int scatterMode)
+SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec3 tint, vec2 roughness,
+                                      bool retroreflective, FresnelData fd, vec3 N, vec3 X, int distribution,
+                                      int scatterMode)
 {
     SpecularLobe lobe;
     lobe.weight = mx_weight_is_zero(weight) ? 0.0 : weight;
@@ -417,16 +416,14 @@ bool mx_is_scattering_context(int closureType)
 }
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
-void mx_dielectric_bsdf_prepare(
-    ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness, bool retroreflective,
-    float thinfilm_thickness, float thinfilm_ior, vec3 N, vec3 X, int distribution, int scatter_mode,
-    out SpecularLobe lobe)
+void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint, float ior, vec2 roughness,
+                                bool retroreflective, float thinfilm_thickness, float thinfilm_ior, vec3 N,
+                                vec3 X, int distribution, int scatter_mode, out SpecularLobe lobe)
 {
-    FresnelData fd = mx_fresnel_data(
-        FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), 0.0,
-        thinfilm_thickness, thinfilm_ior);
-    lobe = mx_specular_lobe_prepare(
-        closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution, scatter_mode);
+    FresnelData fd = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3(ior), vec3(0.0), vec3(0.0), vec3(0.0),
+                                     vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
+                                    distribution, scatter_mode);
 }
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
@@ -468,9 +465,8 @@ void main()
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe glass_lobe_lobe;
-        mx_dielectric_bsdf_prepare(
-            pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.45, vec2(0.05, 0.05), false, 0.0, 1.5, geomprop_Nworld_out,
-            geomprop_Tworld_out, 0, 2, glass_lobe_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.45, vec2(0.05, 0.05), false, 0.0,
+                                   1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 2, glass_lobe_lobe);
         // environment
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);

@@ -96,8 +96,9 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
     var marble_bg_cm_out: vec3f = select(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) / 12.92,
-                                         pow(max(vec3f(0.9, 0.88, 0.85) + 0.055, vec3f(0.0)) / 1.055,
-                                             vec3f(2.4)), vec3f(0.9, 0.88, 0.85) > vec3f(0.04045));
+                                         pow(max(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) + 0.055, vec3f(0.0)) / 1.055,
+                                             vec3f(2.4)),
+                                         mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) > vec3f(0.04045));
     var pos_out: vec3f = vd.positionObject;
     var scaled_out: vec3f = pos_out * pu.scaled_in2;
     var veins_out: f32;

@@ -164,15 +164,13 @@ fn mx_fibonacci_point(i: i32, count: i32) -> vec2f {
     return vec2f((f32(i) + 0.5) / f32(count), fract((f32(i) + 1.0) * GOLDEN_RATIO));
 }
 
-fn mx_fresnel_data(
-    model: i32, ior: vec3f, extinction: vec3f, F0: vec3f, F82: vec3f, F90: vec3f, exponent: f32,
-    tf_thickness: f32, tf_ior: f32) -> FresnelData {
+fn mx_fresnel_data(model: i32, ior: vec3f, extinction: vec3f, F0: vec3f, F82: vec3f, F90: vec3f,
+                   exponent: f32, tf_thickness: f32, tf_ior: f32) -> FresnelData {
     // every specular lobe builds its Fresnel data once: the indices and the film are made finite here
-    return FresnelData(
-        model, mx_clamp_finite_vec3_float_float(ior, 0.0, MX_MAX_IOR),
-        mx_clamp_finite_vec3_float_float(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
-        mx_clamp_finite_float_float_float(tf_thickness, 0.0, MX_MAX_FILM_NM),
-        mx_clamp_finite_float_float_float(tf_ior, 0.0, MX_MAX_IOR), false);
+    return FresnelData(model, mx_clamp_finite_vec3_float_float(ior, 0.0, MX_MAX_IOR),
+                       mx_clamp_finite_vec3_float_float(extinction, 0.0, MX_MAX_IOR), F0, F82, F90, exponent,
+                       mx_clamp_finite_float_float_float(tf_thickness, 0.0, MX_MAX_FILM_NM),
+                       mx_clamp_finite_float_float_float(tf_ior, 0.0, MX_MAX_IOR), false);
 }
 
 // Unpolarised reflectance of a dielectric interface with relative index `eta` (transmitted over
@@ -333,9 +331,9 @@ fn mx_environment_samples(N: vec3f, V: vec3f, X: vec3f, alpha: vec2f, fd: Fresne
 
 // What every specular closure prepares alike; the caller sets `albedo` from its own table. The
 // environment is fetched unless the lobe only transmits (its albedo is still needed there).
-fn mx_specular_lobe_prepare(
-    closureData: ClosureData, weight: f32, tint: vec3f, roughness: vec2f, retroreflective: bool,
-    fd: FresnelData, N: vec3f, X: vec3f, distribution: i32, scatterMode: i32) -> SpecularLobe {
+fn mx_specular_lobe_prepare(closureData: ClosureData, weight: f32, tint: vec3f, roughness: vec2f,
+                            retroreflective: bool, fd: FresnelData, N: vec3f, X: vec3f, distribution: i32,
+                            scatterMode: i32) -> SpecularLobe {
     var lobe: SpecularLobe;
     lobe.weight = select(weight, 0.0, mx_weight_is_zero(weight));
     lobe.tint = max(tint, vec3f(0.0));
@@ -369,15 +367,14 @@ fn mx_is_scattering_context(closureType: i32) -> bool {
 }
 
 // Once per shading point (lib/mx_specular.glsl); the albedo towards V is needed under lights only.
-fn mx_dielectric_bsdf_prepare(
-    closureData: ClosureData, weight: f32, tint: vec3f, ior: f32, roughness: vec2f, retroreflective: bool,
-    thinfilm_thickness: f32, thinfilm_ior: f32, N: vec3f, X: vec3f, distribution: i32, scatter_mode: i32,
-    lobe: ptr<function, SpecularLobe>) {
-    let fd: FresnelData = mx_fresnel_data(
-        FRESNEL_MODEL_DIELECTRIC, vec3f(ior), vec3f(0.0), vec3f(0.0), vec3f(0.0), vec3f(0.0), 0.0,
-        thinfilm_thickness, thinfilm_ior);
-    *lobe = mx_specular_lobe_prepare(
-        closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution, scatter_mode);
+fn mx_dielectric_bsdf_prepare(closureData: ClosureData, weight: f32, tint: vec3f, ior: f32, roughness: vec2f,
+                              retroreflective: bool, thinfilm_thickness: f32, thinfilm_ior: f32, N: vec3f,
+                              X: vec3f, distribution: i32, scatter_mode: i32,
+                              lobe: ptr<function, SpecularLobe>) {
+    let fd: FresnelData = mx_fresnel_data(FRESNEL_MODEL_DIELECTRIC, vec3f(ior), vec3f(0.0), vec3f(0.0),
+                                          vec3f(0.0), vec3f(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
+    *lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
+                                     distribution, scatter_mode);
 }
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
@@ -432,13 +429,13 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         var SR_coated_coat_brdf_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(
-            pointData, 0.8, vec3f(1.0, 1.0, 1.0), 1.5, vec2f(0.0025, 0.0025), false, 0.0, 1.5,
-            geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, &SR_coated_coat_brdf_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 0.8, vec3f(1.0, 1.0, 1.0), 1.5, vec2f(0.0025, 0.0025),
+                                       false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
+                                       &SR_coated_coat_brdf_lobe);
         var SR_coated_specular_brdf_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(
-            pointData, 1.0, vec3f(1.0, 1.0, 1.0), 1.5, vec2f(0.1225, 0.1225), false, 0.0, 1.5,
-            geomprop_Nworld_out, geomprop_Tworld_out, 0, 0, &SR_coated_specular_brdf_lobe);
+        mx_dielectric_bsdf_prepare(pointData, 1.0, vec3f(1.0, 1.0, 1.0), 1.5, vec2f(0.1225, 0.1225),
+                                       false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
+                                       &SR_coated_specular_brdf_lobe);
         // environment
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);

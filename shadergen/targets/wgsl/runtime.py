@@ -73,15 +73,29 @@ class Runtime:
         return ir.replace(e, **changes) if changes else e
 
     def _first_operand_runtime(self, e):
-        """The operation with its first operand run-time: an operand that is an operation itself
-        is made run-time the same way (every operation above a run-time value is one)."""
+        """The operation with its first operand run-time (an operand that is an operation itself
+        made run-time the same way: every operation above a run-time value is one), and each of
+        its other operands that is a constant operation too, which WGSL would still evaluate."""
         field, index = FIRST_OPERAND[e.__class__]
-        value = getattr(e, field)
-        operand = value[0] if index is not None and value else value if index is None else None
-        if operand is None or not _runtime_type(operand):
-            return e
-        operand = self._first_operand_runtime(operand) if operation(operand) else self.identity(operand)
-        return ir.replace(e, **{field: [operand, *value[1:]] if index is not None else operand})
+        changes = {}
+        for name in e.FIELDS:
+            value = getattr(e, name)
+            if isinstance(value, list):
+                new = [self._runtime(v, first=name == field and k == index) for k, v in enumerate(value)]
+                if any(a is not b for a, b in zip(new, value)):
+                    changes[name] = new
+            elif isinstance(value, ir.Expr):
+                new = self._runtime(value, first=name == field and index is None)
+                if new is not value:
+                    changes[name] = new
+        return ir.replace(e, **changes) if changes else e
+
+    def _runtime(self, operand, first: bool):
+        if operation(operand) and constant(operand):
+            return self._first_operand_runtime(operand)
+        if first and _runtime_type(operand):
+            return self.identity(operand)
+        return operand
 
     def statement(self, s):
         """A statement (and the statements inside it) with its expressions rewritten."""
