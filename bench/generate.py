@@ -62,7 +62,11 @@ from shadergen.api import Generator
 from shadergen.errors import ShaderGenError
 gen = Generator()
 for line in sys.stdin:
-    doc = gen.load(Path(line.strip()))  # parsed once, untimed, as the reference's document is
+    try:
+        doc = gen.load(Path(line.strip()))  # parsed once, untimed, as the reference's document is
+    except ShaderGenError as exc:  # e.g. an include the corpus does not ship
+        print(json.dumps({"skipped": exc.message}), flush=True)
+        continue
     times = []
     for p in gen.prepare_all(doc):
         if isinstance(p, Exception):
