@@ -68,3 +68,23 @@ def kept_code(library: str, roots: str, features: frozenset | None = None) -> st
     reached, _ = stage.run(items, features, frozenset(), [main])
     printer = GlslPrinter()
     return "\n".join(line for item in reached.items for line in printer.item(item))
+
+
+@pytest.fixture(scope="module")
+def code_library():
+    """The library's code (code/library.py): every source and the prelude parsed and checked, built
+    in a cache folder of its own, as a cold process first builds it."""
+    from shadergen.code.externals import EXTERNALS
+    from shadergen.code.library import CodeLibrary
+    from shadergen.library import Library
+    with tempfile.TemporaryDirectory() as folder:
+        saved = os.environ.get("SHADERGEN_CACHE_DIR")
+        os.environ["SHADERGEN_CACHE_DIR"] = folder
+        try:
+            yield CodeLibrary.load(Library.load(), EXTERNALS)
+        finally:
+            if saved is None:
+                del os.environ["SHADERGEN_CACHE_DIR"]
+            else:
+                os.environ["SHADERGEN_CACHE_DIR"] = saved
+

@@ -7,17 +7,13 @@ import pytest
 
 from shadergen.code import ir
 from shadergen.code.check import check_modules, flat_items
+from shadergen.code.externals import EXTERNALS
 from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary, build, cache_key, inline_sources, source_files
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
 from shadergen.library import Library, Scope, read_source
-from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
 from shadergen.targets.closures import LIGHT_DATA_MEMBERS
-
-EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
-             "u_numActiveLightSources": "int", "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
-
 
 @pytest.fixture(scope="module")
 def library() -> Library:
@@ -25,12 +21,8 @@ def library() -> Library:
 
 
 @pytest.fixture(scope="module")
-def code(library, tmp_path_factory) -> CodeLibrary:
-    os.environ["SHADERGEN_CACHE_DIR"] = str(tmp_path_factory.mktemp("code-cache"))
-    try:
-        return CodeLibrary.load(library, EXTERNALS)
-    finally:
-        del os.environ["SHADERGEN_CACHE_DIR"]
+def code(code_library) -> CodeLibrary:
+    return code_library
 
 
 def checked(sources: dict[str, str], externals=None) -> dict[str, ir.Module]:

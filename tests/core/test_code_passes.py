@@ -447,20 +447,13 @@ from shadergen.code.types import ir_type  # noqa: E402
 from shadergen.features import environment_macros  # noqa: E402
 from shadergen.library import default_library  # noqa: E402
 from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
-from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS  # noqa: E402
 
 CLOSURE_TYPES = {"BSDF", "EDF", "VDF"}
-EXTERNALS = {**{name: ir_type(t) for name, t in ENVIRONMENT_UNIFORMS},
-             "u_numActiveLightSources": "int", "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
 
 
 @pytest.fixture(scope="module")
-def code(tmp_path_factory):
-    os.environ["SHADERGEN_CACHE_DIR"] = str(tmp_path_factory.mktemp("code-cache"))
-    try:
-        return CodeLibrary.load(default_library(), EXTERNALS)
-    finally:
-        del os.environ["SHADERGEN_CACHE_DIR"]
+def code(code_library):
+    return code_library
 
 
 def function_of(code, impl):

@@ -12,12 +12,12 @@ import pytest
 from required_tools import require_wgpu, tool_path
 from shadergen.code import ir
 from shadergen.code.check import check_modules
+from shadergen.code.externals import EXTERNALS
 from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
 from shadergen.library import Library, Scope
-from shadergen.nodes.surface import ENVIRONMENT_UNIFORMS
 from shadergen.targets.glsl.printer import GlslPrinter, same
 from shadergen.targets.wgsl.printer import DEFINED, WgslPrinter, function_names, helpers, wgsl_type
 
@@ -26,8 +26,6 @@ LIBRARIES = os.path.join(ROOT, "libraries")
 SOURCES = sorted(os.path.relpath(p, LIBRARIES)
                  for p in glob.glob(os.path.join(LIBRARIES, "*/genglsl/**/*.glsl"), recursive=True))
 # The globals the libraries read and do not define (the generator declares them).
-EXTERNALS = {**{n: ir_type(t) for n, t in ENVIRONMENT_UNIFORMS}, "u_numActiveLightSources": "int",
-             "u_lightData": "LightData[MAX_LIGHT_SOURCES]"}
 HEADERS = {"glsl": "#version 400", "essl": "#version 300 es\nprecision highp float;\nprecision highp int;"}
 
 
@@ -50,13 +48,9 @@ def library() -> Library:
 
 
 @pytest.fixture(scope="module")
-def code(library, tmp_path_factory) -> CodeLibrary:
+def code(code_library) -> CodeLibrary:
     """Every library file and the prelude parsed and checked (typed), as the generator gets them."""
-    os.environ["SHADERGEN_CACHE_DIR"] = str(tmp_path_factory.mktemp("code-cache"))
-    try:
-        return CodeLibrary.load(library, EXTERNALS)
-    finally:
-        del os.environ["SHADERGEN_CACHE_DIR"]
+    return code_library
 
 
 @pytest.fixture(scope="module")
