@@ -10,6 +10,10 @@ Values = Literal["listing", "source"]
 VALUES_DOC = ("listing: uniforms initialised to the nodedef's values, so materials that differ only in values share "
               "one source (the document's values are in the listing); source: the document's values written into "
               "the initializers too")
+Names = Literal["structural", "document"]
+NAMES_DOC = ("structural: the source names nodes and uniforms by the graph's structure (u_n12_base_color), so materials "
+             "that differ only in their element names share one source and topology hash (bind by the listing's "
+             "paths); document: by the document's element names, for clients that bind uniforms by name")
 Mesh = Literal["sphere", "plane"]
 EnvMethod = Literal["fis", "prefilter", "hybrid"]
 INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
@@ -41,6 +45,7 @@ class GenerateRequest(BaseModel):
                              description="with interface specialized: document inputs (node/input) that stay live "
                                          "uniforms and keep their lobes")
     values: Values = Field("listing", description=VALUES_DOC)
+    names: Names = Field("structural", description=NAMES_DOC)
     source: bool = Field(True, description="false: listings without stage source")
 
 

@@ -59,7 +59,7 @@ def emit_lobes(ctx, inp: Input, point_arguments) -> None:
             if isinstance(impl, SourceFunctionImpl) else None
         if state is not None:
             args = point_arguments() + [ctx.value(i) for i in node.inputs.values()]
-            name = ctx.prepared_lobes[id(node)] = ctx.namer(f"{node.name}_lobe")
+            name = ctx.prepared_lobes[id(node)] = ctx.namer(f"{ctx.names.node(node)}_lobe")
             ctx.body.line(ctx.target.declare(state, name))
             ctx.body.line(ctx.target.call(f"{impl.function}_prepare", args + [name]))
 
@@ -76,14 +76,14 @@ def emit_weights(ctx, nodes: list[Node]) -> None:
         inputs = closure_inputs(node)
         if inputs:
             if condition is not None and not condition.isidentifier():
-                condition = _declare(ctx, lines, "boolean", f"{node.name}_reached", condition)
+                condition = _declare(ctx, lines, "boolean", f"{ctx.names.node(node)}_reached", condition)
             for i in inputs:
                 if i.connection is not None:
                     share = _share_condition(ctx, node, i)
                     reached.setdefault(id(i.connection.node), []).append(_all(condition, share))
         elif condition is not None and "weight" in node.inputs and node.inputs["weight"].type == "float":
             weight = node.inputs["weight"]
-            ctx.lobe_weights[id(weight)] = _declare(ctx, lines, "float", f"{node.name}_active_weight",
+            ctx.lobe_weights[id(weight)] = _declare(ctx, lines, "float", f"{ctx.names.node(node)}_active_weight",
                                                     ctx.target.select(condition, ctx.value(weight), "0.0"))
     if lines:
         ctx.body.line("// lobes under a mix: weight 0 where the mix leaves them out")
