@@ -62,6 +62,24 @@ class ThumbnailRequest(BaseModel):
                                   "lookup corrected by 4 samples of the prefiltered map)")
 
 
+class BatchDocument(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
+    name: Text | None = Field(None, max_length=1024, description="the client's name for it, given back in its result")
+    element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
+
+
+class ThumbnailBatchRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    documents: list[BatchDocument] = Field(min_length=1, description="the library's documents; at most "
+                                           "SHADERGEN_MAX_BATCH_DOCUMENTS (413 too_large beyond it)")
+    interface: Interface = Field("complete", description="complete (default): value-free source, one compiled "
+                                 "program per topology for the whole library; " + INTERFACE_DOC)
+    size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
+    mesh: Mesh = "sphere"
+    env_method: EnvMethod = "fis"
+
+
 # -- responses ---------------------------------------------------------------------------------
 class ErrorDetail(BaseModel):
     code: str
@@ -143,6 +161,24 @@ class JobStatus(BaseModel):
     attempts: int = Field(0, description="2 when a render worker died on the job and it was tried again")
     thumbnail_url: str | None = Field(None, description="where the PNG is, once done")
     timings_ms: dict[str, float] = Field(default_factory=dict)
+
+
+class BatchResult(BaseModel):
+    index: int = Field(description="the document's place in the request")
+    name: str | None = None
+    element: str | None = Field(None, description="the material drawn, once known")
+    state: Literal["queued", "done", "failed"]
+    thumbnail_url: str | None = Field(None, description="where the PNG is, once done")
+    error: ErrorDetail | None = Field(None, description="why it failed: the error record of that document alone")
+
+
+class BatchStatus(BaseModel):
+    id: str
+    state: Literal["running", "done"]
+    total: int
+    done: int = Field(description="results ready so far, thumbnails and errors")
+    failed: int
+    results: list[BatchResult] = Field(description="one per document, in the request's order")
 
 
 class NodeDefPort(BaseModel):
