@@ -4,6 +4,8 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
+from typing import Literal
+
 from pydantic import BaseModel, Field, model_validator
 
 ENV_PREFIX = "SHADERGEN_"
@@ -51,6 +53,10 @@ class Settings(BaseModel):
     # job back end for thumbnails: empty = local render pool; redis://... = Celery
     broker: str = ""
     render_workers: int = 1
+    # how the local pool hands render jobs to its workers: "topology" (each job to the worker that
+    # holds its compiled program, by consistent hashing: service/workers/routing.py) or "shared"
+    # (one queue, the first free worker: each worker compiles every topology it meets)
+    render_routing: Literal["topology", "shared"] = "topology"
     render_queue_size: int = 16
     render_timeout_s: float = 60.0
     # set by `shadergen serve` so every API worker shares one local render pool
