@@ -7,8 +7,8 @@ a worker moves only that worker's share of the topologies. `RoutedPools`: one si
 (and queue) per render worker behind the ProcessPool interface the pool server uses; a job goes to
 its topology's worker unless that worker is down (being replaced: its share goes to the next
 workers on the ring until it is back) or already holds more than its share of the jobs in flight
-(bounded loads: one topology of a whole library must not wait on one worker while the others
-idle). A job that was running when its worker died is run again by the pool that replaced it
+and more than a compile's worth of them (bounded loads: one topology of a whole library must not
+wait on one worker while the others idle). A job that was running when its worker died is run again by the pool that replaced it
 (ProcessPool tries a crashed job twice), and the jobs queued behind it wait for the replacement:
 none is lost.
 """
@@ -19,7 +19,11 @@ import math
 from .pool import ProcessPool
 
 POINTS_PER_WORKER = 64  # a share within a few percent of 1/N for a handful of workers
-LOAD_FACTOR = 1.25  # a worker takes a job while its load is within this of the mean (plus the new job)
+LOAD_FACTOR = 1.25  # a worker takes a job while its load is within this of the mean (plus the new job)...
+# ...or below this many jobs: a compile costs about as much as this many draws (a complete
+# standard_surface: 3.4 s against 0.22 s at 64 px on llvmpipe), so waiting behind a few draws on
+# the worker that holds the program is cheaper than compiling it on an idle one
+SPILL_AT = 8
 
 
 def _point(text: str) -> int:
@@ -97,7 +101,7 @@ class RoutedPools:
         if not up:
             return order[0]
         total = sum(self._load(self.pools[name]) for name in up)
-        bound = math.ceil(LOAD_FACTOR * (total + 1) / len(up))
+        bound = max(SPILL_AT, math.ceil(LOAD_FACTOR * (total + 1) / len(up)))
         return next((name for name in up if self._load(self.pools[name]) < bound), up[0])
 
     def submit(self, message: dict, payload: bytes = b"", job_id: str | None = None, attempts: int = 0):
