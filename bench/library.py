@@ -8,7 +8,7 @@ its base colour from a corpus texture, and measures in one run, each on the same
 - the reference's per-material process (../shared/oracle/mx_refrender.py, one process per
   material, as a pipeline without our service runs it) on --reference-sample of them;
 - our batch command line (`shadergen render --batch`, one process);
-- our service (`shadergen serve`) with 1 and 3 local render workers routed by topology, 3 with
+- our service (`shadergen serve`) with 1, 2 and 3 local render workers routed by topology, 3 with
   the shared queue (routing that ignores topology), and --celery-workers Celery workers on a
   redis-server, each sent the library as one POST /v1/thumbnails/batch.
 
@@ -214,7 +214,7 @@ def main() -> None:
     rows["ours: batch CLI"] = batch_cli(library, args.size, tmp / "cli")
     print("batch CLI:", rows["ours: batch CLI"], flush=True)
     frame_s, compile_s = rows["ours: batch CLI"]["frame_s"], rows["ours: batch CLI"]["compile_s"]
-    for workers, routing in ((1, "topology"), (3, "topology"), (3, "shared")):
+    for workers, routing in ((1, "topology"), (2, "topology"), (3, "topology"), (3, "shared")):
         label = f"ours: service, {workers} local render workers, {routing} routing"
         run_dir = tmp / f"local{workers}{routing}"
         run_dir.mkdir()
