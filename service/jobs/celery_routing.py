@@ -7,8 +7,8 @@ announcing before the job finished is sent again, to the next worker on the ring
 with its machine loses none of its jobs."""
 import json
 import math
-import socket
 import os
+import socket
 import threading
 
 from ..workers.routing import HashRing, route_key
