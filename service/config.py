@@ -4,6 +4,8 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
+from typing import Literal
+
 from pydantic import BaseModel, Field, model_validator
 
 ENV_PREFIX = "SHADERGEN_"
@@ -51,6 +53,10 @@ class Settings(BaseModel):
     # job back end for thumbnails: empty = local render pool; redis://... = Celery
     broker: str = ""
     render_workers: int = 1
+    # how the local pool hands render jobs to its workers: "topology" (each job to the worker that
+    # holds its compiled program, by consistent hashing: service/workers/routing.py) or "shared"
+    # (one queue, the first free worker: each worker compiles every topology it meets)
+    render_routing: Literal["topology", "shared"] = "topology"
     render_queue_size: int = 16
     render_timeout_s: float = 60.0
     # set by `shadergen serve` so every API worker shares one local render pool
@@ -69,6 +75,12 @@ class Settings(BaseModel):
     heartbeat_s: float = Field(1.0, gt=0)
     ready_deadline_s: float = Field(10.0, gt=0)
     max_body_bytes: int = 2 * 1024 * 1024
+    # a thumbnail batch (POST /v1/thumbnails/batch) is a library in one request: its own body limit,
+    # and at most this many documents (413 too_large naming the limit beyond it)
+    max_batch_body_bytes: int = 64 * 1024 * 1024
+    max_batch_documents: int = 1000
+    # a batch's thumbnails in flight at once (each one a generation and a render job)
+    batch_concurrency: int = Field(4, ge=1)
     # a request's body must arrive within this, its line and headers within head_timeout_s and
     # head_max_bytes: a slow or endless upload cannot hold a worker's memory or a connection
     body_timeout_s: float = 30.0

@@ -5,6 +5,7 @@ from typing import Annotated
 
 from fastapi import Depends, Request
 
+from .batches import BatchService
 from .generation import GenerationService
 from .jobs import JobBackend
 from .services import Services
@@ -33,3 +34,10 @@ async def get_thumbnails(services: ServicesDep) -> ThumbnailService:
 GenerationDep = Annotated[GenerationService, Depends(get_generation)]
 JobsDep = Annotated[JobBackend, Depends(get_jobs)]
 ThumbnailsDep = Annotated[ThumbnailService, Depends(get_thumbnails)]
+
+
+async def get_batches(services: ServicesDep) -> BatchService:
+    return services.batches
+
+
+BatchesDep = Annotated[BatchService, Depends(get_batches)]

@@ -34,13 +34,14 @@ class GenerateParams:
     values: str = "listing"  # or "source": the document's values written into the initializers
     environment: str | None = None  # the environment lighting only (fis | prefilter | hybrid), for a thumbnail
     lights: bool = True  # False for a thumbnail, which draws no light rig: no light loop is written
+    names: str = "structural"  # or "document": the document's element names in the source (shadergen/naming.py)
 
 
 def request_digest(output_key: str, params: GenerateParams, document: bytes) -> str:
     """`output_key`: fingerprint.output_key of the generator that answers (its `library_hash`)."""
     h = hashlib.sha256()
     for part in (output_key, params.target, params.element or "", params.interface, params.document_format,
-                 params.values, params.environment or "", "lights" if params.lights else "unlit",
+                 params.values, params.environment or "", "lights" if params.lights else "unlit", params.names,
                  *sorted(set(params.keep))):
         h.update(part.encode() + b"\0")
     h.update(document)
@@ -107,6 +108,7 @@ class GenerationService:
         request = {"op": "generate", "format": params.document_format, "target": params.target,
                    "element": params.element, "interface": params.interface, "keep": list(params.keep),
                    "values": params.values, "environment": params.environment, "lights": params.lights,
+                   "names": params.names,
                    "digest": digest}
         context = {"element": params.element, "target": params.target}
         try:

@@ -47,10 +47,13 @@ async def _read_body(receive, max_bytes: int) -> bytes:
 
 
 class BodyLimitMiddleware:
-    def __init__(self, app, max_bytes: int, read_timeout_s: float):
+    """`path_limits`: paths with a limit of their own (a thumbnail batch carries a library)."""
+
+    def __init__(self, app, max_bytes: int, read_timeout_s: float, path_limits: dict[str, int] | None = None):
         self.app = app
         self.max_bytes = max_bytes
         self.read_timeout_s = read_timeout_s
+        self.path_limits = path_limits or {}
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
@@ -58,12 +61,13 @@ class BodyLimitMiddleware:
         has_body, length = declares_body(scope["headers"])
         if not has_body:
             return await self.app(scope, receive, send)
+        max_bytes = self.path_limits.get(scope["path"], self.max_bytes)
         try:
-            if length is not None and (not length.isdigit() or int(length) > self.max_bytes):
-                raise ServiceError("too_large", f"request body over the limit of {self.max_bytes} bytes",
+            if length is not None and (not length.isdigit() or int(length) > max_bytes):
+                raise ServiceError("too_large", f"request body over the limit of {max_bytes} bytes",
                                    headers={"Connection": "close"})
             async with asyncio.timeout(self.read_timeout_s):
-                body = await _read_body(receive, self.max_bytes)
+                body = await _read_body(receive, max_bytes)
         except ServiceError as exc:
             return await error_response(exc)(scope, receive, send)
         except TimeoutError:

@@ -10,6 +10,10 @@ Values = Literal["listing", "source"]
 VALUES_DOC = ("listing: uniforms initialised to the nodedef's values, so materials that differ only in values share "
               "one source (the document's values are in the listing); source: the document's values written into "
               "the initializers too")
+Names = Literal["structural", "document"]
+NAMES_DOC = ("structural: the source names nodes and uniforms by the graph's structure (u_n12_base_color), so materials "
+             "that differ only in their element names share one source and topology hash (bind by the listing's "
+             "paths); document: by the document's element names, for clients that bind uniforms by name")
 Mesh = Literal["sphere", "plane"]
 EnvMethod = Literal["fis", "prefilter", "hybrid"]
 INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
@@ -41,6 +45,7 @@ class GenerateRequest(BaseModel):
                              description="with interface specialized: document inputs (node/input) that stay live "
                                          "uniforms and keep their lobes")
     values: Values = Field("listing", description=VALUES_DOC)
+    names: Names = Field("structural", description=NAMES_DOC)
     source: bool = Field(True, description="false: listings without stage source")
 
 
@@ -55,6 +60,24 @@ class ThumbnailRequest(BaseModel):
     env_method: EnvMethod = Field("fis", description="environment lighting: fis (16 importance samples per pixel), "
                                   "prefilter (a GGX-prefiltered map and a DFG table: one lookup) or hybrid (that "
                                   "lookup corrected by 4 samples of the prefiltered map)")
+
+
+class BatchDocument(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
+    name: Text | None = Field(None, max_length=1024, description="the client's name for it, given back in its result")
+    element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
+
+
+class ThumbnailBatchRequest(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    documents: list[BatchDocument] = Field(min_length=1, description="the library's documents; at most "
+                                           "SHADERGEN_MAX_BATCH_DOCUMENTS (413 too_large beyond it)")
+    interface: Interface = Field("complete", description="complete (default): value-free source, one compiled "
+                                 "program per topology for the whole library; " + INTERFACE_DOC)
+    size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
+    mesh: Mesh = "sphere"
+    env_method: EnvMethod = "fis"
 
 
 # -- responses ---------------------------------------------------------------------------------
@@ -138,6 +161,24 @@ class JobStatus(BaseModel):
     attempts: int = Field(0, description="2 when a render worker died on the job and it was tried again")
     thumbnail_url: str | None = Field(None, description="where the PNG is, once done")
     timings_ms: dict[str, float] = Field(default_factory=dict)
+
+
+class BatchResult(BaseModel):
+    index: int = Field(description="the document's place in the request")
+    name: str | None = None
+    element: str | None = Field(None, description="the material drawn, once known")
+    state: Literal["queued", "done", "failed"]
+    thumbnail_url: str | None = Field(None, description="where the PNG is, once done")
+    error: ErrorDetail | None = Field(None, description="why it failed: the error record of that document alone")
+
+
+class BatchStatus(BaseModel):
+    id: str
+    state: Literal["running", "done"]
+    total: int
+    done: int = Field(description="results ready so far, thumbnails and errors")
+    failed: int
+    results: list[BatchResult] = Field(description="one per document, in the request's order")
 
 
 class NodeDefPort(BaseModel):

@@ -2,6 +2,7 @@
 back end. Built in the app's lifespan, from settings, never at import time."""
 from dataclasses import dataclass
 
+from .batches import BatchService
 from .cache import GuardedStore, open_store
 from .config import Settings
 from .generation import GenerationService
@@ -17,6 +18,7 @@ class Services:
     generation: GenerationService
     jobs: JobBackend
     thumbnails: ThumbnailService
+    batches: BatchService
 
     @classmethod
     async def start(cls, settings: Settings) -> "Services":
@@ -33,7 +35,8 @@ class Services:
             await pool.close()
             raise
         thumbnails = ThumbnailService(generation, jobs, store, settings.texture_roots, settings.retry_after_s)
-        return cls(settings, store, generation, jobs, thumbnails)
+        batches = BatchService(thumbnails, store, settings.batch_concurrency, settings.retry_after_s)
+        return cls(settings, store, generation, jobs, thumbnails, batches)
 
     async def stop(self) -> None:
         await self.jobs.close()

@@ -52,6 +52,10 @@ class ThumbnailService:
         return "png:" + hashlib.sha256(options.encode()).hexdigest()
 
     async def thumbnail(self, order: ThumbnailOrder) -> bytes:
+        return (await self.stored(order))[2]
+
+    async def stored(self, order: ThumbnailOrder) -> tuple[str, str, bytes]:
+        """(the element drawn, the PNG's key in the store, the PNG), rendered unless the store has it."""
         request = await self._render_request(order)
         key = self._key(request)
         png = await self.store.aget(key)
@@ -64,7 +68,7 @@ class ThumbnailService:
             except JobError as exc:
                 raise ServiceError.from_job(exc, self.retry_after_s) from None
             await self.store.aput(key, png)
-        return png
+        return request["record"]["element"], key, png
 
     async def submit(self, order: ThumbnailOrder) -> str:
         request = await self._render_request(order)

@@ -16,11 +16,12 @@ from .document import Document, parse_document, read_document
 from .element import Element
 from .errors import ShaderGenError
 from .features import ENVIRONMENTS
-from .generator import EmitContext, emit_shader, listing_value
+from .generator import EmitContext, emit_shader, image_fallback, listing_value
 from .graph import GraphBuilder, Output
 from .passes import Options, prepare
 from .hashing import graph_hashes
 from .library import Library, Scope, default_library
+from .naming import NAMES
 from .targets import target_for
 from .types import value_to_json
 from .usd import is_usd_path, parse_usd, read_usd
@@ -84,7 +85,8 @@ class Prepared:
     (A plain class, not a dataclass: see graph.py.)"""
 
     def __init__(self, generator: "Generator", document: Document, element: str, target: str, interface: str,
-                 hash: str, topology_hash: str, graph, scope: Scope, warnings: list[str], prepare_ms: float):
+                 hash: str, topology_hash: str, graph, scope: Scope, warnings: list[str], prepare_ms: float,
+                 names: str = "structural"):
         self.generator = generator
         self.document = document
         self.element = element
@@ -96,10 +98,11 @@ class Prepared:
         self.scope = scope
         self.warnings = warnings
         self.prepare_ms = prepare_ms
+        self.names = names  # what the source calls the document's elements (naming.py)
 
     def emit(self, source: bool = True) -> dict:
         t0 = time.perf_counter()
-        ctx = EmitContext(target_for(self.target), self.scope, self.graph.values_in_source)
+        ctx = EmitContext(target_for(self.target), self.scope, self.graph.values_in_source, self.names)
         stages = emit_shader(ctx, self.graph)
         blocks = {name: st.listing() for name, st in ctx.stages.items()}
         layout = ctx.target.layout(ctx)
@@ -120,8 +123,9 @@ class Prepared:
 
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,
-        without emitting: the source is the same and only the listing's values are this
-        document's. None when the shortcut does not apply (values in the source, labels)."""
+        without emitting: the source is the same and only the listing's values and paths are this
+        document's (structural names: the same topology may be named otherwise). None when the
+        shortcut does not apply (values in the source, labels)."""
         if self.graph.values_in_source or self.document.labels or record.get("topology_hash") != self.topology_hash:
             return None
         t0 = time.perf_counter()
@@ -129,7 +133,16 @@ class Prepared:
         if len(public) != len(self.graph.interface):
             return None
         for variable, port in zip(public, self.graph.interface):  # the listing is in interface order
-            variable["value"] = value_to_json(listing_value(port, port.value))
+            # what the listing says of this document's uniform and its source does not (hashing.py)
+            variable.update(value=value_to_json(listing_value(port, port.value)), path=port.path,
+                            unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"))
+            variable.pop("ui", None)
+            if port.meta.get("ui"):
+                variable["ui"] = dict(port.meta["ui"])
+            if port.type == "filename":
+                variable.pop("fallback", None)
+                if image_fallback(port) is not None:
+                    variable["fallback"] = value_to_json(image_fallback(port))
         ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
         blocks = dict(record["blocks"], pixel=dict(record["blocks"]["pixel"], PublicUniforms=public))
         return dict(record, document=self.document.path, element=self.element, hash=self.hash, cached=False,
@@ -174,7 +187,7 @@ class Generator:
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
                     interface: str = "complete", keep=(), values: str = "listing", environment: str | None = None,
-                    lights: bool = True,
+                    lights: bool = True, names: str = "structural",
                     base_dir: str | None = None, allow_includes: bool = True,
                     document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
@@ -184,7 +197,10 @@ class Generator:
         initializers too). `environment`: "fis", "prefilter" or "hybrid" writes only that way of
         lighting by the environment (a renderer then needs no MX_ENV_* macros of its own); None writes all.
         `lights`: False for a renderer that draws no light rig (thumbnails): no light loop is written,
-        and the record says `"lights": false`."""
+        and the record says `"lights": false`. `names`: "structural" (the source names nodes and
+        uniforms by the graph's structure, `u_n12_base_color`: materials that differ only in their
+        element names share one source and topology hash; bind by the listing's paths) or
+        "document" (by the document's element names, as a client binding by name needs)."""
         target_for(target)  # unknown targets fail before any work
         if values not in VALUES:
             raise ShaderGenError("unsupported_values", f"unknown values '{values}'; supported: " + ", ".join(VALUES),
@@ -192,6 +208,9 @@ class Generator:
         if environment is not None and environment not in ENVIRONMENTS:
             raise ShaderGenError("unsupported_environment", f"unknown environment '{environment}'; supported: "
                                  + ", ".join(ENVIRONMENTS), "environment")
+        if names not in NAMES:
+            raise ShaderGenError("unsupported_names", f"unknown names '{names}'; supported: " + ", ".join(NAMES),
+                                 "names")
         if interface not in INTERFACES:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
                                  + ", ".join(INTERFACES), interface)
@@ -209,7 +228,7 @@ class Generator:
             try:
                 if e.path in doc.failures:
                     raise doc.failures[e.path]
-                out.append(self._prepare(doc, scope, e, target, options))
+                out.append(self._prepare(doc, scope, e, target, options, names))
             except ELEMENT_FAILURES as exc:
                 out.append(element_error(exc, doc.label(e.path), doc))
         return out
@@ -265,7 +284,8 @@ class Generator:
             raise ShaderGenError("unknown_element", f"no element '{element}' in the document", element)
         return [e]
 
-    def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, options: Options) -> Prepared:
+    def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, options: Options,
+                 names: str) -> Prepared:
         t0 = time.perf_counter()
         shading_language = target_for(target)
         builder = GraphBuilder(scope, shading_language.library, doc.root)
@@ -288,13 +308,13 @@ class Generator:
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         key = dict(element=doc.label(elem.path), target=target, interface=options.interface,
-                   library_hash=self.library.content_hash, local_ids=local)
+                   library_hash=self.library.content_hash, local_ids=local, names=names)
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
                            for k in (h, topology))
         return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, topology, graph, scope,
-                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3)
+                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3, names)
 
 
 _default: Generator | None = None

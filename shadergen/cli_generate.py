@@ -31,6 +31,11 @@ def add_arguments(p) -> None:
                    help="listing (default: uniforms initialised to the nodedef's values, so materials that differ "
                         "only in values share one source; the document's values are in the listing) or source "
                         "(the document's values written into the initializers too)")
+    p.add_argument("--names", default="structural", choices=("structural", "document"),
+                   help="structural (default: the source names nodes and uniforms by the graph's structure, "
+                        "u_n12_base_color, so materials that differ only in their node names share one source; "
+                        "bind by the listing's paths) or document (the document's element names, for clients "
+                        "that bind uniforms by name)")
     p.add_argument("--env-method", choices=ENVIRONMENTS, default=None,
                    help="write only this way of lighting by the environment: fis (filtered importance sampling), "
                         "prefilter (a prefiltered map) or hybrid (that map corrected by a few samples); default all, "
@@ -91,7 +96,7 @@ def run(args) -> int:
     for doc in args.documents:
         options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface,
                        keep=keep_list(args.keep), values=args.values, environment=args.env_method,
-                       lights=not args.no_lights)
+                       lights=not args.no_lights, names=args.names)
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:

@@ -16,6 +16,7 @@ from .errors import ShaderGenError
 from .features import LIGHTS_FEATURE, environment_macros, graph_features
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
+from .naming import SourceNames
 from .nodes.lobes import closure_nodes, emit_lobes
 from .shader import PIXEL, VERTEX, Stage, Variable
 from .targets.names import identifier, library_identifiers
@@ -69,8 +70,9 @@ class EmitContext:
     """Shared state of one generation; node implementations write through it, in the IR
     (code/ir.py): values are IR expressions, statements go to `body` (a code.build.Builder)."""
 
-    def __init__(self, target, scope: Scope, values_in_source: bool = False):
+    def __init__(self, target, scope: Scope, values_in_source: bool = False, names: str = "structural"):
         self.values_in_source = values_in_source  # uniform initializers hold the document's values
+        self.names = SourceNames(names)  # what the source calls what the document names (naming.py)
         self.target = target  # the Target: its names, closure convention and stage assembly
         self.scope = scope
         self.code = scope.library.code()  # the library's code in the IR (code/library.py)
@@ -118,7 +120,7 @@ class EmitContext:
         initializer = value if self.values_in_source else listing_value(port, port.default)
         # a uniform is a global every library function could see: none of their names (names.py)
         avoid = library_identifiers(self.scope.library.root)
-        name = self.namer(f"{port.owner.name}_{port.name}", avoid)
+        name = self.namer(self.names.uniform(port), avoid)
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
             ui=port.meta.get("ui"), initializer=initializer,
@@ -128,7 +130,8 @@ class EmitContext:
 
     def output_name(self, out: Output) -> str:
         if id(out) not in self.vars:
-            self.vars[id(out)] = build.name(self.namer(f"{out.node.name}_{out.name}"), "local", ir_type(out.type))
+            self.vars[id(out)] = build.name(self.namer(f"{self.names.node(out.node)}_{out.name}"), "local",
+                                            ir_type(out.type))
             self.used_types.add(out.type)
         return self.vars[id(out)].name
 
@@ -193,7 +196,7 @@ class EmitContext:
         """A nodegraph body shared by several calls, written once."""
         if id(function) in self.function_names:
             return
-        self.function_names[id(function)] = fname = self.namer(function.name)
+        self.function_names[id(function)] = fname = self.namer(self.names.function(function))
         saved_body, saved_vars = self.body, self.vars
         self.body, self.vars = Builder(), dict(saved_vars)
         params = []
@@ -319,7 +322,7 @@ def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
     for name, out in graph.outputs.items():
         if out.type in ("filename", "string"):
             raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn", name)
-        var = ctx.namer(name)
+        var = ctx.namer(ctx.names.output(name))
         ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
         ctx.body.assign(build.name(var, "output", "vec4"), output_color(out.type, ctx.vars[id(out)]))
 
@@ -348,6 +351,8 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.private_uniform("u_worldMatrix", "matrix44", (VERTEX,))
     ctx.private_uniform("u_viewProjectionMatrix", "matrix44", (VERTEX,))
     ctx.app_data("i_position", "vector3")
+    for node in graph.nodes:  # labelled first: a node's structural name is its place in the topological order
+        ctx.names.node(node)
     for port in graph.interface:
         ctx.publish(port)
     ctx.features = frozenset(graph_features(graph) | ({LIGHTS_FEATURE} if graph.lights else set()))

@@ -5,6 +5,9 @@ topological order with their definitions, implementations, bound values and conn
 public uniforms with their listing paths), the target, the interface mode and the library's output key (library files,
 their folder and the generator's code: fingerprint.py). XML formatting, element order and unused nodes never reach the prepared graph, so they
 cannot change the key. Document-local definitions are hashed by content.
+
+With structural names (naming.py) the source holds no element name, so the topology hash leaves
+the names out with the values: materials built alike from differently named nodes share it.
 """
 import hashlib
 import json
@@ -12,19 +15,27 @@ import json
 from .element import Element
 from .graph import Graph
 
+# Nodes whose name the code holds even under structural names: a primvar read without a `geomprop`
+# is the primvar of the node's name (nodes/geometric.py), which a renderer binds the mesh's stream by.
+NAMED_BY_NODE = ("geompropvalue", "geompropvalueuniform")
+LISTING_ONLY = ("colorspace", "unit", "ui")  # a uniform's metadata that only its listing entry carries
+
 
 def _element_digest(e: Element) -> list:
     return [e.category, sorted(e.attrs.items()), [_element_digest(c) for c in e.children]]
 
 
 def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, library_hash: str,
-                 local_ids: set[int]) -> tuple[str, str]:
+                 local_ids: set[int], names: str = "structural") -> tuple[str, str]:
     """(hash, topology hash). `element`: the name path the record reports. `library_hash`: the
     library's output key (fingerprint.py), which covers the generator's code too. `local_ids`: ids
     of the implementation elements the document itself declares. The topology hash leaves out the
     values of the public uniforms (what a value-free source leaves to the listing) and the element's
     name (a record of the same topology is rebound to both); the hash adds them. When the values are
-    written into the source, the two are the same."""
+    written into the source, the two are the same. `names`: "structural" leaves the nodes', outputs'
+    and uniforms' names and paths out of the topology hash too (the source does not hold them);
+    "document" keeps them in it, as the source holds them."""
+    document_names = names == "document"
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
 
@@ -38,7 +49,18 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
             digests[id(e)] = _element_digest(e)
         return digests[id(e)]
 
-    uniforms = [[p.owner.name, p.name, p.type, p.path, p.meta] for p in graph.interface]
+    # what the document calls things, and what the listing alone says of a uniform (its colour space
+    # and unit: their conversions are nodes of the graph by now; its ui hints), and which inputs the
+    # document set (the passes have acted on it, the listing's paths still show it): in the source
+    # only with document names
+    named = [[[p.owner.name, p.path, {k: p.meta.get(k) for k in LISTING_ONLY}] for p in graph.interface],
+             [n.name for n in graph.nodes], list(graph.outputs),
+             [[inp.authored for inp in n.inputs.values()] for n in graph.nodes]]
+
+    def meta(port) -> dict:
+        return port.meta if document_names else {k: v for k, v in port.meta.items() if k not in LISTING_ONLY}
+
+    uniforms = [[p.name, p.type, meta(p)] for p in graph.interface]
     nodes = []
     for n in graph.nodes:
         inputs = []
@@ -47,21 +69,23 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
             uniform = public.get(id(inp.socket if inp.socket is not None else inp))
             # no path: after the passes only a public uniform's path reaches the record (the listing),
             # and `uniforms` has it; the others' (a third of the bytes hashed) are where they came from
-            inputs.append([inp.name, inp.type, value(inp), conn, uniform, inp.authored, inp.meta])
+            inputs.append([inp.name, inp.type, value(inp), conn, uniform, inp.authored if document_names else None,
+                           meta(inp)])
         impl = n.implementation
         impl_key = local_key(impl) if id(impl) in local_ids else impl.name
         nodedef_key = local_key(n.nodedef) if id(impl) in local_ids else n.nodedef.name
         scope = [[index[id(cond)], branch] for cond, branch in n.scope]
-        nodes.append([n.name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
-    outputs = [[name, index[id(o.node)], o.name] for name, o in graph.outputs.items()]
+        name = n.name if document_names or n.category in NAMED_BY_NODE else None
+        nodes.append([name, n.category, nodedef_key, impl_key, scope, inputs, sorted(n.outputs)])
+    outputs = [[index[id(o.node)], o.name] for o in graph.outputs.values()]
     structure = _canonical(
         {"target": target, "interface": interface, "library": library_hash, "values_in_source": graph.values_in_source,
          "environment": graph.environment, "lights": graph.lights,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
-         "nodes": nodes, "outputs": outputs, "uniforms": uniforms})
+         "nodes": nodes, "outputs": outputs, "uniforms": uniforms, "names": named if document_names else names})
     # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
     # in their names, with no public uniform to carry a path) still have records of their own
-    values = _canonical([element, [p.value for p in graph.interface]])
+    values = _canonical([element, [p.value for p in graph.interface], named])
     full = hashlib.sha256(structure + b"\0" + values).hexdigest()
     return full, full if graph.values_in_source else hashlib.sha256(structure).hexdigest()
 

@@ -243,8 +243,9 @@ def generate_records(gen, case: NameCase, targets=TARGETS, interfaces=INTERFACES
     the library API (what the CLI and the service's generator processes call)."""
     for target in targets:
         for interface in interfaces:
+            # document names: the hostile names must reach the source (structural names keep them out)
             for record in gen.records(case.document, target=target, interface=interface, all=True,
-                                      document_format=case.format):
+                                      document_format=case.format, names="document"):
                 yield case.label, record
 
 
@@ -278,7 +279,7 @@ def post_case(client, case: NameCase, timeout_s: float = 120) -> NameAnswer:
     status, problems, records = 200, [], []
     for target in TARGETS:
         for interface in INTERFACES:
-            r = client.post("/v1/generate", params={"target": target, "interface": interface},
+            r = client.post("/v1/generate", params={"target": target, "interface": interface, "names": "document"},
                             content=case.document, headers={"content-type": CONTENT_TYPES[case.format]},
                             timeout=timeout_s)
             if r.status_code != 200:

@@ -11,6 +11,7 @@ class RenderResult:
     png: bytes
     timings_ms: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
+    program_reused: bool | None = None  # the worker drew it with a program it had compiled before (None: not said)
 
 
 @dataclass

@@ -1,8 +1,11 @@
 """The Celery back end, API side: sends render tasks by name over Redis and reads their results.
 Celery's client calls block on Redis, so they run in threads, off the event loop. A broker that
-cannot be reached is a JobError ("unavailable": 503 with Retry-After), never a server error."""
+cannot be reached is a JobError ("unavailable": 503 with Retry-After), never a server error.
+Each job goes to the queue of the worker that holds its program, and again to another when that
+worker is gone before the job is done (celery_routing.py)."""
 import asyncio
 import base64
+import json
 import time
 import uuid
 from contextlib import contextmanager
@@ -11,11 +14,14 @@ import redis.asyncio
 from celery.result import AsyncResult
 from kombu.exceptions import OperationalError
 
+from ..metrics import PROGRAMS
 from . import JobBackend, JobError, JobState, RenderResult
 from .celery_app import QUEUE, TASK, make_celery
 from .celery_child import ALIVE_KEY, PROCESSES_KEY
+from .celery_routing import live_queues, queue_for, route_record
 
-JOB_KEY = "shadergen:job:"
+JOB_KEY = "shadergen:job:"  # + a job id: its route (celery_routing.route_record)
+REQUEST_KEY = "shadergen:job-request:"  # + a job id: its request, to send again if its worker is lost
 JOB_TTL_S = 3600
 POLL_S = (0.01, 0.25)  # first and longest pause between polls of a job being waited for
 
@@ -41,7 +47,8 @@ class CeleryJobs(JobBackend):
 
     async def depth(self) -> int:
         with broker_errors():
-            return await self.redis.llen(QUEUE)
+            queues = [QUEUE, *await live_queues(self.redis)]
+            return sum([await self.redis.llen(queue) for queue in queues])
 
     async def answering_processes(self) -> int:
         """Render processes whose heartbeat has not expired (celery_child.py); the names of the
@@ -72,10 +79,43 @@ class CeleryJobs(JobBackend):
             raise JobError("queue_full", f"render queue full: {self.max_depth} jobs already waiting")
         job_id = uuid.uuid4().hex
         with broker_errors():
+            queue = queue_for(request, await live_queues(self.redis))
             # known ids, so that an unknown one is a 404 and not Celery's eternal PENDING
-            await self.redis.set(JOB_KEY + job_id, "1", ex=JOB_TTL_S)
-            await asyncio.to_thread(self.app.send_task, TASK, args=[request], task_id=job_id, queue=QUEUE)
+            await self.redis.set(REQUEST_KEY + job_id, json.dumps(request), ex=JOB_TTL_S)
+            await self.redis.set(JOB_KEY + job_id, route_record(job_id, queue), ex=JOB_TTL_S)
+            await asyncio.to_thread(self.app.send_task, TASK, args=[request], task_id=job_id, queue=queue)
         return job_id
+
+    async def _rerouted(self, job_id: str, route: dict, attempts: int) -> dict:
+        """The job sent again, under a new task, if the worker whose queue it was sent to stopped
+        announcing it: to the next worker on the ring, or the shared queue. `attempts`: what the
+        lost task made of it (none while it was queued)."""
+        queues = await live_queues(self.redis)
+        if route["queue"] == QUEUE or route["queue"] in queues:
+            return route
+        raw = await self.redis.get(REQUEST_KEY + job_id)
+        if raw is None:
+            return route
+        request = json.loads(raw)
+        task_id, queue = uuid.uuid4().hex, queue_for(request, queues)
+        await asyncio.to_thread(self.app.send_task, TASK, args=[request], task_id=task_id, queue=queue)
+        tries = route.get("tries", 0) + attempts
+        await self.redis.set(JOB_KEY + job_id, route_record(task_id, queue, tries), ex=JOB_TTL_S)
+        return {"task": task_id, "queue": queue, "tries": tries}
+
+    async def _state(self, job_id: str) -> JobState | None:
+        raw = await self.redis.get(JOB_KEY + job_id)
+        if raw is None:
+            return None
+        route = json.loads(raw)
+        state = await asyncio.to_thread(self._read, route["task"])
+        if state.state in ("queued", "running"):
+            rerouted = await self._rerouted(job_id, route, state.attempts)
+            if rerouted is not route:
+                return JobState(job_id, "queued", attempts=rerouted["tries"])
+        state.id = job_id
+        state.attempts += route.get("tries", 0)
+        return state
 
     def _read(self, job_id: str) -> JobState:
         result = AsyncResult(job_id, app=self.app)
@@ -89,16 +129,14 @@ class CeleryJobs(JobBackend):
             if "error" in value:
                 return JobState(job_id, "failed", value["error"])
             result = RenderResult(base64.b64decode(value["png"]), value.get("timings_ms", {}),
-                                  value.get("warnings", []))
+                                  value.get("warnings", []), value.get("program_reused"))
             return JobState(job_id, "done", result=result, attempts=value.get("attempt", 1))
         code = "timeout" if type(value).__name__ == "TimeLimitExceeded" else "worker_crashed"
         return JobState(job_id, "failed", {"code": code, "message": f"render failed: {value!r}", "where": None})
 
     async def status(self, job_id: str) -> JobState | None:
         with broker_errors():
-            if not await self.redis.exists(JOB_KEY + job_id):
-                return None
-            return await asyncio.to_thread(self._read, job_id)
+            return await self._state(job_id)
 
     async def render(self, request: dict) -> RenderResult:
         job_id = await self.submit(request)
@@ -106,8 +144,14 @@ class CeleryJobs(JobBackend):
         pause = POLL_S[0]
         while time.monotonic() < deadline:
             with broker_errors():
-                state = await asyncio.to_thread(self._read, job_id)
+                state = await self._state(job_id)
+            if state is None:  # expired meanwhile
+                raise JobError("unavailable", f"job {job_id} was forgotten by the broker")
             if state.state == "done":
+                # Celery workers are not scraped (they may be on other machines): their program
+                # cache is counted here, where the result arrives
+                if state.result.program_reused is not None:
+                    PROGRAMS.labels("reused" if state.result.program_reused else "compiled").inc()
                 return state.result
             if state.state == "failed":
                 raise JobError(**state.error)

@@ -23,6 +23,7 @@ from ..metrics import PROGRAMS, RENDER_SECONDS
 from ..workers import protocol
 from ..workers.child import HEARTBEAT
 from ..workers.pool import Job, JobTimeout, PoolError, ProcessPool, QueueFull, Unavailable, WorkerCrashed
+from ..workers.routing import RoutedPools
 
 log = logging.getLogger("service.render_pool")
 
@@ -128,10 +129,13 @@ def observe_render(job, seconds: float, reply) -> None:
 
 async def serve(socket_path: str, restarted: bool) -> None:
     settings = get_settings()
-    pool = ProcessPool("service.workers.render_worker", size=settings.render_workers,
-                       queue_size=settings.render_queue_size, timeout_s=settings.render_timeout_s,
-                       on_result=observe_render, limits=settings.child_limits(settings.render_memory_mib),
-                       name="render")
+    # by topology: a worker per queue, each job to the worker holding its program (routing.py);
+    # shared: one queue that the first free worker takes from
+    pool_class = RoutedPools if settings.render_routing == "topology" else ProcessPool
+    pool = pool_class("service.workers.render_worker", size=settings.render_workers,
+                      queue_size=settings.render_queue_size, timeout_s=settings.render_timeout_s,
+                      on_result=observe_render, limits=settings.child_limits(settings.render_memory_mib),
+                      name="render")
     await pool.start(wait=False)
     server = PoolServer(pool, restarted, settings.heartbeat_s)
     unix = await asyncio.start_unix_server(server.serve_connection, path=socket_path)

@@ -1,19 +1,25 @@
 """POST /v1/thumbnails: a PNG now, or with `?async=true` a job to poll at /v1/jobs/{id}. The body
-is a JSON request, or a USD layer or usdz package with the options in the query."""
+is a JSON request, or a USD layer or usdz package with the options in the query.
+POST /v1/thumbnails/batch: a library's documents as one job (service/batches.py), polled at
+/v1/thumbnails/batch/{id}, each PNG at /v1/thumbnails/batch/{id}/{index}."""
 from typing import Annotated
 
-from fastapi import APIRouter, Query, Request, Response
+from fastapi import APIRouter, Path, Query, Request, Response
 from fastapi.responses import JSONResponse
 from pydantic import ValidationError
 
-from ..deps import ThumbnailsDep
+from ..config import get_settings
+from ..deps import BatchesDep, ThumbnailsDep
 from ..errors import ServiceError, from_validation_error
 from ..generation import GenerateParams
-from ..models import EnvMethod, Interface, JobAccepted, Mesh, ThumbnailRequest
+from ..models import (BatchStatus, EnvMethod, ErrorResponse, Interface, JobAccepted, Mesh, ThumbnailBatchRequest,
+                      ThumbnailRequest)
 from ..thumbnails import ThumbnailOrder
 from .common import ERRORS, JSON, PNG, PNG_RESPONSE, USD_TYPES, media_type_of
 
 router = APIRouter(prefix="/v1", tags=["thumbnails"])
+BATCH_PATH = "/v1/thumbnails/batch"  # its body has a limit of its own (SHADERGEN_MAX_BATCH_BODY_BYTES)
+BatchId = Annotated[str, Path(pattern="^[0-9a-f]{32}$")]
 
 RunAsync = Annotated[bool, Query(alias="async", description="queue a job instead of waiting")]
 WITH_USD = "with a USD body"
@@ -60,3 +66,36 @@ async def thumbnail(
         accepted = JobAccepted(id=job_id, state="queued", status_url=f"/v1/jobs/{job_id}")
         return JSONResponse(accepted.model_dump(), status_code=202)
     return Response(await thumbnails.thumbnail(order), media_type=PNG)
+
+
+@router.post("/thumbnails/batch", status_code=202, response_model=JobAccepted, responses=ERRORS,
+             summary="Render the thumbnails of many documents as one job")
+async def thumbnail_batch(req: ThumbnailBatchRequest, batches: BatchesDep) -> JSONResponse:
+    limit = get_settings().max_batch_documents
+    if len(req.documents) > limit:
+        raise ServiceError("too_large", f"{len(req.documents)} documents in the batch, over the limit of {limit} "
+                           "(SHADERGEN_MAX_BATCH_DOCUMENTS)", "documents")
+    orders = [ThumbnailOrder(d.document.encode(), GenerateParams(element=d.element, interface=req.interface),
+                             req.size, req.mesh, req.env_method) for d in req.documents]
+    batch_id = await batches.submit(orders, [d.name for d in req.documents])
+    accepted = JobAccepted(id=batch_id, state="running", status_url=f"{BATCH_PATH}/{batch_id}")
+    return JSONResponse(accepted.model_dump(), status_code=202)
+
+
+@router.get("/thumbnails/batch/{batch_id}", response_model=BatchStatus, responses=ERRORS,
+            summary="Progress of a thumbnail batch, and one result per document")
+async def thumbnail_batch_status(batches: BatchesDep, batch_id: BatchId) -> BatchStatus:
+    state = await batches.status(batch_id)
+    for result in state["results"]:
+        if result["state"] == "done":
+            result["thumbnail_url"] = f"{BATCH_PATH}/{batch_id}/{result['index']}"
+    return BatchStatus.model_validate(state)
+
+
+@router.get("/thumbnails/batch/{batch_id}/{index}", response_class=Response,
+            responses={**ERRORS, 409: {"model": ErrorResponse}, 200: PNG_RESPONSE},
+            summary="The PNG of one document of a thumbnail batch")
+async def thumbnail_batch_png(batches: BatchesDep, batch_id: BatchId,
+                              index: Annotated[int, Path(ge=0, description="the document's place in the batch")]
+                              ) -> Response:
+    return Response(await batches.png(batch_id, index), media_type=PNG)

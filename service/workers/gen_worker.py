@@ -49,7 +49,8 @@ class GenerateHandler:
             prepared = self.generator.prepare(
                 document, target=message["target"], element=message["element"], interface=message["interface"],
                 keep=message.get("keep", ()), values=message.get("values", "listing"),
-                environment=message.get("environment"), lights=message.get("lights", True), base_dir=None,
+                environment=message.get("environment"), lights=message.get("lights", True),
+                names=message.get("names", "structural"), base_dir=None,
                 allow_includes=False, document_format=document_format,
             )
             key = "rec:" + prepared.hash

@@ -59,7 +59,7 @@ def emit_lobes(ctx, inp: Input, point_arguments) -> None:
         state = impl.prepared_state if isinstance(impl, SourceFunctionImpl) else None
         if state is not None:
             args = point_arguments() + [ctx.value(i) for i in node.inputs.values()]
-            lobe = ctx.prepared_lobes[id(node)] = ctx.body.declare(state, ctx.namer(f"{node.name}_lobe"))
+            lobe = ctx.prepared_lobes[id(node)] = ctx.body.declare(state, ctx.namer(f"{ctx.names.node(node)}_lobe"))
             ctx.body.call(f"{impl.function}_prepare", *args, lobe)
 
 
@@ -75,14 +75,14 @@ def emit_weights(ctx, nodes: list[Node]) -> None:
         inputs = closure_inputs(node)
         if inputs:
             if condition is not None and not isinstance(condition, ir.Name):
-                condition = _declare(ctx, declarations, "bool", f"{node.name}_reached", condition)
+                condition = _declare(ctx, declarations, "bool", f"{ctx.names.node(node)}_reached", condition)
             for i in inputs:
                 if i.connection is not None:
                     share = _share_condition(ctx, node, i)
                     reached.setdefault(id(i.connection.node), []).append(_all(condition, share))
         elif condition is not None and "weight" in node.inputs and node.inputs["weight"].type == "float":
             weight = node.inputs["weight"]
-            ctx.lobe_weights[id(weight)] = _declare(ctx, declarations, "float", f"{node.name}_active_weight",
+            ctx.lobe_weights[id(weight)] = _declare(ctx, declarations, "float", f"{ctx.names.node(node)}_active_weight",
                                                     build.select(condition, ctx.value(weight), build.number(0.0)))
     if declarations:
         ctx.body.comment("lobes under a mix: weight 0 where the mix leaves them out")

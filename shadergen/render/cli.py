@@ -21,6 +21,12 @@ EXAMPLES = f"""examples:
   shadergen render examples/marble_checker.mtlx -o marble.png
   shadergen render brass.mtlx --element Tiled_Brass --env studio.hdr --lights rig.mtlx -o brass.png --exr brass.exr
   shadergen generate doc.mtlx > rec.jsonl && shadergen render --record rec.jsonl --npy linear.npy
+  shadergen render --batch library/ -o thumbnails/     # every material of every document under library/
+
+--batch DIR_OR_LIST renders every material of every document under a folder (or named one per line
+in a list file) in this one process, with a progress bar: OUTDIR/<document>/<element>.png, and
+OUTDIR/results.jsonl with one line per material (its PNG, or its error record). One program is
+compiled per topology: the batch generates `complete` (value-free) source unless --interface says.
 
 textures: a relative file name is looked up in the document's folder, then in each --search-path,
 then in each folder of ${TEXTURE_ROOTS_VARIABLE} (':'-separated). The command line reads whatever
@@ -30,16 +36,21 @@ file the document names (../../Images/ included); --confine reads only from thos
 
 def add_arguments(parser) -> None:
     parser.add_argument("document", nargs="?", help="MaterialX document (.mtlx) to generate and render")
+    parser.add_argument("--batch", metavar="DIR_OR_LIST",
+                        help="thumbnails of every material of every document under DIR (or listed in a file, one "
+                             "path a line) into -o OUTDIR; see below")
     parser.add_argument("--record", metavar="REC.json",
                         help="render this shader record (JSON, or JSON Lines: first record or --element; - for stdin)")
     parser.add_argument("--element", metavar="NAMEPATH", help="renderable element (default: the first)")
     parser.add_argument("--backend", choices=tuple(BACKENDS), default="gl",
                         help="gl: our GLSL drawn with OpenGL on EGL; wgpu: our WGSL drawn with WebGPU on Vulkan "
                              "(lavapipe without a GPU), same scene")
-    parser.add_argument("--interface", default="specialized",
+    parser.add_argument("--interface",
                         help="interface of the generated shader (default specialized: values folded into the code, "
-                             "the same image as complete, the smallest shader); complete | reduced | specialized")
-    parser.add_argument("-o", "--output", metavar="OUT.png", help="sRGB PNG composited on --background")
+                             "the same image as complete, the smallest shader; with --batch complete, one program per "
+                             "topology); complete | reduced | specialized")
+    parser.add_argument("-o", "--output", metavar="OUT.png",
+                        help="sRGB PNG composited on --background (with --batch: the folder of the PNGs)")
     parser.add_argument("--exr", metavar="OUT.exr", help="linear RGBA EXR")
     parser.add_argument("--npy", metavar="OUT.npy", help="the linear RGBA float32 framebuffer, top row first")
     parser.add_argument("--size", type=int, default=256, help="image width and height in pixels")
@@ -87,21 +98,19 @@ def _run(args) -> int:
     outputs = [p for p in (args.output, args.exr, args.npy) if p]
     if not outputs:
         raise RenderError("invalid_request", "nothing to write: give -o OUT.png, --exr or --npy")
-    if bool(args.document) == bool(args.record):
-        raise RenderError("invalid_request", "give either a document or --record REC.json")
-    record = _record_from_file(args.record, args.element) if args.record \
-        else _record_from_document(args.document, args.element, args.interface, BACKENDS[args.backend],
-                                   args.env_method, bool(args.lights))
+    if sum(map(bool, (args.document, args.record, args.batch))) != 1:
+        raise RenderError("invalid_request", "give one of a document, --record REC.json or --batch DIR_OR_LIST")
     if args.irr and not args.env:
         raise RenderError("invalid_request", "--irr needs --env (the procedural sky computes its own)")
-    env = Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
+    if args.batch:
+        from .batch import run_batch
+        return run_batch(args, _renderer(args), _environment(args), BACKENDS[args.backend])
+    record = _record_from_file(args.record, args.element) if args.record \
+        else _record_from_document(args.document, args.element, args.interface or "specialized",
+                                   BACKENDS[args.backend], args.env_method, bool(args.lights))
+    env = _environment(args)
     document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
-    env_roots = [p for p in os.environ.get(TEXTURE_ROOTS_VARIABLE, "").split(os.pathsep) if p]
-    renderer_class = Renderer
-    if args.backend == "wgpu":
-        from .wgpu_renderer import WgpuRenderer as renderer_class  # imports wgpu only when asked for
-    renderer = renderer_class(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
-                        confined=args.confine)
+    renderer = _renderer(args)
     result = renderer.render(record, size=args.size, mesh=args.mesh, env=env, env_samples=args.env_samples,
                              env_method=args.env_method,
                              lights=args.lights, supersample=args.ss, document_dir=document_dir,
@@ -118,6 +127,19 @@ def _run(args) -> int:
         print(json.dumps({"document": args.document or record.get("document"), "element": record.get("element"),
                           "outputs": outputs, "timings_ms": t, "warnings": result.warnings}))
     return 0
+
+
+def _environment(args) -> Environment:
+    return Environment.load(args.env, args.irr, args.env_intensity) if args.env else Environment.procedural(args.env_intensity)
+
+
+def _renderer(args):
+    env_roots = [p for p in os.environ.get(TEXTURE_ROOTS_VARIABLE, "").split(os.pathsep) if p]
+    renderer_class = Renderer
+    if args.backend == "wgpu":
+        from .wgpu_renderer import WgpuRenderer as renderer_class  # imports wgpu only when asked for
+    return renderer_class(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
+                          confined=args.confine)
 
 
 def _record_from_file(path: str, element: str | None) -> dict:

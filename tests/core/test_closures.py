@@ -18,7 +18,7 @@ def main_of(rec):
 
 
 def test_each_context_evaluates_the_closures_data_nodes_once(gen):
-    rec = gen.prepare(doc(MATERIAL)).emit()
+    rec = gen.prepare(doc(MATERIAL), names="document").emit()
     main = main_of(rec)
     assert main.count("mx_noise2d") == 1  # data feeding the BSDFs: computed once, before the contexts
     for context in ("CLOSURE_TYPE_INDIRECT", "CLOSURE_TYPE_TRANSMISSION", "CLOSURE_TYPE_EMISSION"):
@@ -30,7 +30,7 @@ def test_each_context_evaluates_the_closures_data_nodes_once(gen):
 
 
 def test_a_lobe_with_a_preparation_is_prepared_once_before_the_contexts(gen):
-    main = main_of(gen.prepare(doc(MATERIAL)).emit())
+    main = main_of(gen.prepare(doc(MATERIAL), names="document").emit())
     assert main.count("mx_dielectric_bsdf_prepare(pointData, coat_weight,") == 1
     prepared = main.index("mx_dielectric_bsdf_prepare(")
     assert prepared < main.index("ClosureData(CLOSURE_TYPE_REFLECTION")

@@ -77,7 +77,7 @@ def test_document_nodegraphs_read_twice_are_not_copied(gen):
 
 def test_a_definition_used_ten_thousand_times_generates(tmp_path):
     """Function sharing used to scan the whole graph per use (ten minutes for this document)."""
-    code, records = cli(tmp_path, wide_definition(10_000), "--element", "result")
+    code, records = cli(tmp_path, wide_definition(10_000), "--element", "result", "--names", "document")
     assert code == 0 and records[0]["passes"]["functions"] == 10_000
     assert records[0]["stages"]["pixel"].count("NG_w(") == 10_001  # the function and a call per use
 

@@ -12,7 +12,9 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
 def first(gen, body, **kw):
-    return gen.prepare(doc(body), **kw).emit()
+    # document names: the checks read the code by the document's node names (test_names.py checks
+    # the structural names every other generation gets)
+    return gen.prepare(doc(body), **{"names": "document", **kw}).emit()
 
 
 def pixel(rec):
@@ -134,13 +136,13 @@ COLORED = ('<multiply name="m" type="color3"><input name="in1" type="color3" val
 
 
 def test_colorspace_inserts_a_transform_into_the_working_space(gen):
-    rec = gen.prepare(doc(COLORED, colorspace="lin_rec709")).emit()
+    rec = gen.prepare(doc(COLORED, colorspace="lin_rec709"), names="document").emit()
     assert "m_in1_cm" in pixel(rec) and "pow(" in pixel(rec)  # gamma22 is MaterialX's name for g22_rec709
     assert public(rec)["m/in1"]["colorspace"] == "gamma22"
 
 
 def test_a_document_without_colorspace_is_not_colour_managed(gen):
-    assert "_cm" not in pixel(gen.prepare(doc(COLORED)).emit())
+    assert "_cm" not in pixel(gen.prepare(doc(COLORED), names="document").emit())
 
 
 def test_units_insert_a_conversion(gen):
@@ -273,7 +275,7 @@ def test_multi_output_image_node_decodes_its_colour_output(gen):
         text = doc(f'<{node} name="img" type="multioutput"><input name="file" type="filename" value="a.png" '
                    'colorspace="srgb_texture"/></' + node + '>'
                    '<output name="o" type="color3" nodename="img" output="outcolor"/>', colorspace="lin_rec709")
-        return gen.prepare(text, element="o").emit()["stages"]["pixel"]
+        return gen.prepare(text, element="o", names="document").emit()["stages"]["pixel"]
     code = pixel("gltf_colorimage")
     assert "o = vec4(img_outcolor_cm_out, 1.0);" in code and "outa_cm" not in code
 

@@ -15,13 +15,13 @@ VERSIONED = '''
 
 
 def test_default_version_and_explicit_version(gen):
-    default = gen.prepare(doc(VERSIONED + '<tint name="t" type="float"/><output name="o" type="float" nodename="t"/>')).emit()
-    v1 = gen.prepare(doc(VERSIONED + '<tint name="t" type="float" version="1.0"/><output name="o" type="float" nodename="t"/>')).emit()
+    default = gen.prepare(doc(VERSIONED + '<tint name="t" type="float"/><output name="o" type="float" nodename="t"/>'), names="document").emit()
+    v1 = gen.prepare(doc(VERSIONED + '<tint name="t" type="float" version="1.0"/><output name="o" type="float" nodename="t"/>'), names="document").emit()
     assert "t_in * 2.0" in default["stages"]["pixel"] and "t_in * 0.5" in v1["stages"]["pixel"]
 
 
 def test_nodedef_attribute_wins(gen):
-    rec = gen.prepare(doc(VERSIONED + '<tint name="t" type="float" nodedef="ND_tint_v1"/><output name="o" type="float" nodename="t"/>')).emit()
+    rec = gen.prepare(doc(VERSIONED + '<tint name="t" type="float" nodedef="ND_tint_v1"/><output name="o" type="float" nodename="t"/>'), names="document").emit()
     assert "t_in * 0.5" in rec["stages"]["pixel"]
 
 
@@ -36,7 +36,7 @@ def test_nodedef_inheritance(gen):
                '<nodedef name="ND_child" node="childnode" inherit="ND_base"><input name="b" type="float" value="4"/><output name="out" type="float"/></nodedef>'
                '<implementation name="IM_child" nodedef="ND_child" target="genglsl" sourcecode="{{a}} + {{b}}" />'
                '<childnode name="c" type="float"/><output name="o" type="float" nodename="c"/>')
-    rec = gen.prepare(text).emit()
+    rec = gen.prepare(text, names="document").emit()
     assert "c_a + c_b" in rec["stages"]["pixel"]
 
 

@@ -1,7 +1,9 @@
 """Names never break code: whatever a document names its elements (Unicode, reserved words of any
 target, names that collide once cleaned, long names), every record generates and compiles with its
 target's checker (glslangValidator for GLSL and ESSL, wgpu for WGSL). The cases are
-tests/name_cases.py's, from a fixed seed; `bench/fuzz.py --kind names` runs more of them."""
+tests/name_cases.py's, from a fixed seed; `bench/fuzz.py --kind names` runs more of them. Generated
+with `names: "document"`, the only names that bring the document's names into the source."""
+import glob
 
 import pytest
 
@@ -48,7 +50,7 @@ def test_a_unicode_prim_name_is_spelled_by_its_code_points(gen, checker):
     material.CreateSurfaceOutput().ConnectToSource(surface.ConnectableAPI(), "surface")
     layer = stage.GetRootLayer().ExportToString().encode()
     records = [("Ω材質", r) for t in ("glsl", "essl", "wgsl")
-               for r in gen.records(layer, target=t, document_format="usda")]
+               for r in gen.records(layer, target=t, document_format="usda", names="document")]
     assert not checker.problems(records)
     listing = {v["path"]: v["name"] for v in records[0][1]["blocks"]["pixel"]["PublicUniforms"]}
     assert listing["/World/Ω材質/Surface.inputs:roughness"] == "World_u03A9_u6750_u8CEA_Surface_roughness"
@@ -64,7 +66,7 @@ def test_names_that_collide_once_cleaned_stay_apart_and_bind_by_the_listing(gen)
                '<output name="out" type="float" nodename="a.b"/></nodegraph>')
     names = {}
     for target in ("glsl", "essl", "wgsl"):
-        rec = gen.prepare(text, target=target).emit()
+        rec = gen.prepare(text, target=target, names="document").emit()
         names[target] = {v["path"]: v["name"] for v in rec["blocks"]["pixel"]["PublicUniforms"]}
     assert names["glsl"] == names["essl"] == names["wgsl"]  # one spelling in every target
     in2 = [names["glsl"][f"g/{n}/in2"] for n in ("a-b", "a_b", "a.b")]
@@ -81,7 +83,7 @@ def test_a_uniform_named_like_a_library_variable_is_not_read_inside_the_library(
                '<add name="s" type="float"><input name="in1" type="float" nodename="a"/>'
                '<input name="in2" type="float" nodename="nz"/></add>'
                '<output name="out" type="float" nodename="s"/></nodegraph>')
-    records = [("a_in", r) for t in ("glsl", "essl", "wgsl") for r in gen.records(text, target=t)]
+    records = [("a_in", r) for t in ("glsl", "essl", "wgsl") for r in gen.records(text, target=t, names="document")]
     assert not checker.problems(records)
     names = {v["path"]: v["name"] for v in records[-1][1]["blocks"]["pixel"]["PublicUniforms"]}
     assert names["g/a/in"] == "a_in"
@@ -93,7 +95,7 @@ def test_a_uniform_named_like_a_library_variable_is_not_read_inside_the_library(
                '<surface name="surf" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="m"/></surface>'
                '<surfacematerial name="mat" type="material">'
                '<input name="surfaceshader" type="surfaceshader" nodename="surf"/></surfacematerial>')
-    record = gen.prepare(text, target="wgsl").emit()
+    record = gen.prepare(text, target="wgsl", names="document").emit()
     assert not checker.problems([("edge_color", record)])
     assert "mx_artistic_ior" in record["stages"]["pixel"]
     names = {v["path"]: v["name"] for v in record["blocks"]["pixel"]["PublicUniforms"]}

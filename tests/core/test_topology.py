@@ -13,7 +13,9 @@ def material(base_color="0.1, 0.25, 0.7", roughness="0.35", coat_connection=Fals
             else '<input name="coat" type="float" value="0.8" />')
     return f"""<?xml version="1.0"?>
 <materialx version="1.39">
-  <constant name="coat_amount" type="float"><input name="value" type="float" value="0.8" /></constant>
+  <multiply name="coat_amount" type="float">
+    <input name="in1" type="float" value="0.8" /><input name="in2" type="float" value="0.5" />
+  </multiply>
   <standard_surface name="SR" type="surfaceshader">
     <input name="base_color" type="color3" value="{base_color}" />
     <input name="specular_roughness" type="float" value="{roughness}" />
@@ -27,6 +29,10 @@ def material(base_color="0.1, 0.25, 0.7", roughness="0.35", coat_connection=Fals
 
 def listing_value(record: dict, path: str):
     return next(v["value"] for v in record["blocks"]["pixel"]["PublicUniforms"] if v["path"] == path)
+
+
+def uniform_name(record: dict, path: str) -> str:
+    return next(v["name"] for v in record["blocks"]["pixel"]["PublicUniforms"] if v["path"] == path)
 
 
 def test_value_only_differences_share_source_and_topology_hash():
@@ -63,8 +69,9 @@ def test_a_record_of_the_same_topology_rebinds_to_what_emission_gives():
 
 
 def test_value_free_initializers_are_the_nodedef_defaults():
-    pixel = GEN.prepare(material(roughness="0.6")).emit()["stages"]["pixel"]
-    assert "uniform float SR_specular_roughness = 0.2;" in pixel  # standard_surface's default, not 0.6
+    record = GEN.prepare(material(roughness="0.6")).emit()
+    declaration = f"uniform float {uniform_name(record, 'SR/specular_roughness')} = 0.2;"
+    assert declaration in record["stages"]["pixel"]  # standard_surface's default, not 0.6
 
 
 def test_a_connection_changes_the_topology_hash():
@@ -76,7 +83,7 @@ def test_a_connection_changes_the_topology_hash():
 def test_values_in_source_are_written_into_initializers():
     a = GEN.prepare(material(roughness="0.6"), values="source").emit()
     b = GEN.prepare(material(roughness="0.7"), values="source").emit()
-    assert "uniform float SR_specular_roughness = 0.6;" in a["stages"]["pixel"]
+    assert f"uniform float {uniform_name(a, 'SR/specular_roughness')} = 0.6;" in a["stages"]["pixel"]
     assert a["stages"] != b["stages"] and a["topology_hash"] != b["topology_hash"]
     listing = GEN.prepare(material(roughness="0.6")).emit()
     assert a["hash"] != listing["hash"]  # the same document with a different source is another record

@@ -473,19 +473,19 @@ uniform int u_numActiveLightSources;
 uniform LightData u_lightData[MAX_LIGHT_SOURCES];
 
 // Uniform block: PublicUniforms
-uniform float glass_lobe_weight;
-uniform vec3 glass_lobe_tint;
-uniform float glass_lobe_ior;
-uniform vec2 glass_lobe_roughness;
-uniform bool glass_lobe_retroreflective;
-uniform float glass_lobe_thinfilm_thickness;
-uniform float glass_lobe_thinfilm_ior;
-uniform int glass_lobe_distribution;
-uniform int glass_lobe_scatter_mode;
-uniform float glass_surface_opacity;
-uniform bool glass_surface_thin_walled;
-uniform surfaceshader Glass_backsurfaceshader;
-uniform displacementshader Glass_displacementshader;
+uniform float u_n2_weight;
+uniform vec3 u_n2_tint;
+uniform float u_n2_ior;
+uniform vec2 u_n2_roughness;
+uniform bool u_n2_retroreflective;
+uniform float u_n2_thinfilm_thickness;
+uniform float u_n2_thinfilm_ior;
+uniform int u_n2_distribution;
+uniform int u_n2_scatter_mode;
+uniform float u_n3_opacity;
+uniform bool u_n3_thin_walled;
+uniform surfaceshader u_n4_backsurfaceshader;
+uniform displacementshader u_n4_displacementshader;
 
 in vec3 vd_normalWorld;
 in vec3 vd_tangentWorld;
@@ -1428,51 +1428,49 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
 
 void main()
 {
-    vec3 geomprop_Nworld_out = normalize(vd_normalWorld);
-    vec3 geomprop_Tworld_out = normalize(vd_tangentWorld);
-    surfaceshader glass_surface_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec3 n0_out = normalize(vd_normalWorld);
+    vec3 n1_out = normalize(vd_tangentWorld);
+    surfaceshader n3_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd_normalWorld);
         vec3 V = normalize(u_viewPosition - vd_positionWorld);
         vec3 P = vd_positionWorld;
         vec3 L = vec3(0.0);
         float occlusion = 1.0;
-        float surfaceOpacity = glass_surface_opacity;
+        float surfaceOpacity = u_n3_opacity;
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        SpecularLobe glass_lobe_lobe;
-        mx_dielectric_bsdf_prepare(pointData, glass_lobe_weight, glass_lobe_tint, glass_lobe_ior,
-                                   glass_lobe_roughness, glass_lobe_retroreflective,
-                                   glass_lobe_thinfilm_thickness, glass_lobe_thinfilm_ior,
-                                   geomprop_Nworld_out, geomprop_Tworld_out, glass_lobe_distribution,
-                                   glass_lobe_scatter_mode, glass_lobe_lobe);
+        SpecularLobe n2_lobe;
+        mx_dielectric_bsdf_prepare(pointData, u_n2_weight, u_n2_tint, u_n2_ior, u_n2_roughness,
+                                   u_n2_retroreflective, u_n2_thinfilm_thickness, u_n2_thinfilm_ior, n0_out,
+                                   n1_out, u_n2_distribution, u_n2_scatter_mode, n2_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++)
         {
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd_positionWorld, lightShader);
             L = lightShader.direction;
             ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
-            glass_surface_out.color += lightShader.intensity * glass_lobe_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            n3_out.color += lightShader.intensity * n2_out.response;
         }
         // environment
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
-            glass_surface_out.color += occlusion * glass_lobe_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            n3_out.color += occlusion * n2_out.response;
         }
         // transmission, seen along the view direction
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
-            glass_surface_out.color += glass_lobe_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            n3_out.color += n2_out.response;
         }
-        glass_surface_out.color *= surfaceOpacity;
-        glass_surface_out.transparency = mix(vec3(1.0), glass_surface_out.transparency, surfaceOpacity);
+        n3_out.color *= surfaceOpacity;
+        n3_out.transparency = mix(vec3(1.0), n3_out.transparency, surfaceOpacity);
     }
-    surfaceshader Glass_out = glass_surface_out;
-    out1 = vec4(Glass_out.color, 1.0 - dot(Glass_out.transparency, vec3(1.0 / 3.0)));
+    surfaceshader n4_out = n3_out;
+    out1 = vec4(n4_out.color, 1.0 - dot(n4_out.transparency, vec3(1.0 / 3.0)));
 }

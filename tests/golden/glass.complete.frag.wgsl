@@ -455,19 +455,19 @@ struct PixelUniforms {
     u_viewPosition: vec3f,  // offset 80
     u_numActiveLightSources: i32,  // offset 92
     u_lightData: array<LightData, MAX_LIGHT_SOURCES>,  // offset 96
-    glass_lobe_weight: f32,  // offset 336
-    glass_lobe_tint: vec3f,  // offset 352
-    glass_lobe_ior: f32,  // offset 364
-    glass_lobe_roughness: vec2f,  // offset 368
-    glass_lobe_retroreflective: i32,  // offset 376
-    glass_lobe_thinfilm_thickness: f32,  // offset 380
-    glass_lobe_thinfilm_ior: f32,  // offset 384
-    glass_lobe_distribution: i32,  // offset 388
-    glass_lobe_scatter_mode: i32,  // offset 392
-    glass_surface_opacity: f32,  // offset 396
-    glass_surface_thin_walled: i32,  // offset 400
-    Glass_backsurfaceshader: surfaceshader,  // offset 416
-    Glass_displacementshader: displacementshader,  // offset 448
+    u_n2_weight: f32,  // offset 336
+    u_n2_tint: vec3f,  // offset 352
+    u_n2_ior: f32,  // offset 364
+    u_n2_roughness: vec2f,  // offset 368
+    u_n2_retroreflective: i32,  // offset 376
+    u_n2_thinfilm_thickness: f32,  // offset 380
+    u_n2_thinfilm_ior: f32,  // offset 384
+    u_n2_distribution: i32,  // offset 388
+    u_n2_scatter_mode: i32,  // offset 392
+    u_n3_opacity: f32,  // offset 396
+    u_n3_thin_walled: i32,  // offset 400
+    u_n4_backsurfaceshader: surfaceshader,  // offset 416
+    u_n4_displacementshader: displacementshader,  // offset 448
 }
 @group(1) @binding(0) var<uniform> pu: PixelUniforms;
 
@@ -1244,52 +1244,50 @@ fn sampleLightSource(light: LightData, position: vec3f, result: ptr<function, li
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var geomprop_Nworld_out: vec3f = normalize(vd.normalWorld);
-    var geomprop_Tworld_out: vec3f = normalize(vd.tangentWorld);
-    var glass_surface_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
+    var n0_out: vec3f = normalize(vd.normalWorld);
+    var n1_out: vec3f = normalize(vd.tangentWorld);
+    var n3_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
     {
         var N: vec3f = normalize(vd.normalWorld);
         var V: vec3f = normalize(pu.u_viewPosition - vd.positionWorld);
         var P: vec3f = vd.positionWorld;
         var L: vec3f = vec3f(0.0);
         var occlusion: f32 = 1.0;
-        var surfaceOpacity: f32 = pu.glass_surface_opacity;
+        var surfaceOpacity: f32 = pu.u_n3_opacity;
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        var glass_lobe_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, pu.glass_lobe_weight, pu.glass_lobe_tint, pu.glass_lobe_ior,
-                                       pu.glass_lobe_roughness, (pu.glass_lobe_retroreflective != 0),
-                                       pu.glass_lobe_thinfilm_thickness, pu.glass_lobe_thinfilm_ior,
-                                       geomprop_Nworld_out, geomprop_Tworld_out, pu.glass_lobe_distribution,
-                                       pu.glass_lobe_scatter_mode, &glass_lobe_lobe);
+        var n2_lobe: SpecularLobe;
+        mx_dielectric_bsdf_prepare(pointData, pu.u_n2_weight, pu.u_n2_tint, pu.u_n2_ior,
+                                       pu.u_n2_roughness, (pu.u_n2_retroreflective != 0),
+                                       pu.u_n2_thinfilm_thickness, pu.u_n2_thinfilm_ior, n0_out, n1_out,
+                                       pu.u_n2_distribution, pu.u_n2_scatter_mode, &n2_lobe);
         for (var activeLightIndex: i32 = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++) {
             var lightShader: lightshader;
             sampleLightSource(pu.u_lightData[activeLightIndex], vd.positionWorld, &lightShader);
             L = lightShader.direction;
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            var glass_lobe_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, &glass_lobe_out);
-            glass_surface_out.color += lightShader.intensity * glass_lobe_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            n3_out.color += lightShader.intensity * n2_out.response;
         }
         // environment
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            var glass_lobe_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, &glass_lobe_out);
-            glass_surface_out.color += occlusion * glass_lobe_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            n3_out.color += occlusion * n2_out.response;
         }
         // transmission, seen along the view direction
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            var glass_lobe_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, &glass_lobe_out);
-            glass_surface_out.color += glass_lobe_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            n3_out.color += n2_out.response;
         }
-        glass_surface_out.color *= surfaceOpacity;
-        glass_surface_out.transparency = mix(vec3f(1.0), glass_surface_out.transparency,
-                                             vec3f(surfaceOpacity));
+        n3_out.color *= surfaceOpacity;
+        n3_out.transparency = mix(vec3f(1.0), n3_out.transparency, vec3f(surfaceOpacity));
     }
-    var Glass_out: surfaceshader = glass_surface_out;
-    out1 = vec4f(Glass_out.color, 1.0 - dot(Glass_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
+    var n4_out: surfaceshader = n3_out;
+    out1 = vec4f(n4_out.color, 1.0 - dot(n4_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
     return out1;
 }

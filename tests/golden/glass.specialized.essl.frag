@@ -1129,9 +1129,9 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
 
 void main()
 {
-    vec3 geomprop_Nworld_out = normalize(vd_normalWorld);
-    vec3 geomprop_Tworld_out = normalize(vd_tangentWorld);
-    surfaceshader glass_surface_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec3 n0_out = normalize(vd_normalWorld);
+    vec3 n1_out = normalize(vd_tangentWorld);
+    surfaceshader n3_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd_normalWorld);
         vec3 V = normalize(u_viewPosition - vd_positionWorld);
@@ -1141,36 +1141,36 @@ void main()
         float surfaceOpacity = 1.0;
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        SpecularLobe glass_lobe_lobe;
+        SpecularLobe n2_lobe;
         mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.45, vec2(0.05, 0.05), false, 0.0,
-                                   1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 2, glass_lobe_lobe);
+                                   1.5, n0_out, n1_out, 0, 2, n2_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++)
         {
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd_positionWorld, lightShader);
             L = lightShader.direction;
             ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
-            glass_surface_out.color += lightShader.intensity * glass_lobe_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            n3_out.color += lightShader.intensity * n2_out.response;
         }
         // environment
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
-            glass_surface_out.color += occlusion * glass_lobe_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            n3_out.color += occlusion * n2_out.response;
         }
         // transmission, seen along the view direction
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            BSDF glass_lobe_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, glass_lobe_out);
-            glass_surface_out.color += glass_lobe_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            n3_out.color += n2_out.response;
         }
-        glass_surface_out.color *= surfaceOpacity;
-        glass_surface_out.transparency = mix(vec3(1.0), glass_surface_out.transparency, surfaceOpacity);
+        n3_out.color *= surfaceOpacity;
+        n3_out.transparency = mix(vec3(1.0), n3_out.transparency, surfaceOpacity);
     }
-    surfaceshader Glass_out = glass_surface_out;
-    out1 = vec4(Glass_out.color, 1.0 - dot(Glass_out.transparency, vec3(1.0 / 3.0)));
+    surfaceshader n4_out = n3_out;
+    out1 = vec4(n4_out.color, 1.0 - dot(n4_out.transparency, vec3(1.0 / 3.0)));
 }

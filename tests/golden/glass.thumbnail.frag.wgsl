@@ -430,9 +430,9 @@ fn mx_dielectric_bsdf(closureData: ClosureData, lobe: SpecularLobe, bsdf: ptr<fu
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var geomprop_Nworld_out: vec3f = normalize(vd.normalWorld);
-    var geomprop_Tworld_out: vec3f = normalize(vd.tangentWorld);
-    var glass_surface_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
+    var n0_out: vec3f = normalize(vd.normalWorld);
+    var n1_out: vec3f = normalize(vd.tangentWorld);
+    var n3_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
     {
         var N: vec3f = normalize(vd.normalWorld);
         var V: vec3f = normalize(pu.u_viewPosition - vd.positionWorld);
@@ -442,29 +442,27 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
         var surfaceOpacity: f32 = 1.0;
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        var glass_lobe_lobe: SpecularLobe;
+        var n2_lobe: SpecularLobe;
         mx_dielectric_bsdf_prepare(pointData, 1.0, vec3f(1.0, 1.0, 1.0), 1.45, vec2f(0.05, 0.05), false,
-                                       0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 2,
-                                       &glass_lobe_lobe);
+                                       0.0, 1.5, n0_out, n1_out, 0, 2, &n2_lobe);
         // environment
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            var glass_lobe_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, &glass_lobe_out);
-            glass_surface_out.color += occlusion * glass_lobe_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            n3_out.color += occlusion * n2_out.response;
         }
         // transmission, seen along the view direction
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            var glass_lobe_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, glass_lobe_lobe, &glass_lobe_out);
-            glass_surface_out.color += glass_lobe_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            n3_out.color += n2_out.response;
         }
-        glass_surface_out.color *= surfaceOpacity;
-        glass_surface_out.transparency = mix(vec3f(1.0), glass_surface_out.transparency,
-                                             vec3f(surfaceOpacity));
+        n3_out.color *= surfaceOpacity;
+        n3_out.transparency = mix(vec3f(1.0), n3_out.transparency, vec3f(surfaceOpacity));
     }
-    var Glass_out: surfaceshader = glass_surface_out;
-    out1 = vec4f(Glass_out.color, 1.0 - dot(Glass_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
+    var n4_out: surfaceshader = n3_out;
+    out1 = vec4f(n4_out.color, 1.0 - dot(n4_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
     return out1;
 }

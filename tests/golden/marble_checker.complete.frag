@@ -1,18 +1,18 @@
 #version 400
 
 // Uniform block: PublicUniforms
-uniform vec3 marble_bg_cm_in = vec3(0.0, 0.0, 0.0);
-uniform float scaled_in2 = 1.0;
-uniform float veins_amplitude = 1.0;
-uniform int veins_octaves = 3;
-uniform float veins_lacunarity = 2.0;
-uniform float veins_diminish = 0.5;
-uniform vec3 marble_fg = vec3(0.0, 0.0, 0.0);
-uniform int geomprop_UV0_index = 0;
-uniform vec3 checker_color1 = vec3(1.0, 1.0, 1.0);
-uniform vec3 checker_color2 = vec3(0.0, 0.0, 0.0);
-uniform vec2 checker_uvtiling = vec2(8.0, 8.0);
-uniform vec2 checker_uvoffset = vec2(0.0, 0.0);
+uniform vec3 u_n0_in = vec3(0.0, 0.0, 0.0);
+uniform float u_n2_in2 = 1.0;
+uniform float u_n3_amplitude = 1.0;
+uniform int u_n3_octaves = 3;
+uniform float u_n3_lacunarity = 2.0;
+uniform float u_n3_diminish = 0.5;
+uniform vec3 u_n4_fg = vec3(0.0, 0.0, 0.0);
+uniform int u_n5_index = 0;
+uniform vec3 u_n13_color1 = vec3(1.0, 1.0, 1.0);
+uniform vec3 u_n13_color2 = vec3(0.0, 0.0, 0.0);
+uniform vec2 u_n13_uvtiling = vec2(8.0, 8.0);
+uniform vec2 u_n13_uvoffset = vec2(0.0, 0.0);
 
 in VertexData
 {
@@ -105,22 +105,20 @@ void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float di
 
 void main()
 {
-    vec3 marble_bg_cm_out = mix(marble_bg_cm_in / 12.92,
-                                pow(max(marble_bg_cm_in + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
-                                greaterThan(marble_bg_cm_in, vec3(0.04045)));
-    vec3 pos_out = vd.positionObject;
-    vec3 scaled_out = pos_out * scaled_in2;
-    float veins_out;
-    mx_fractal3d_float(veins_amplitude, veins_octaves, veins_lacunarity, veins_diminish, scaled_out,
-                       veins_out);
-    vec3 marble_out = mix(marble_bg_cm_out, marble_fg, veins_out);
-    vec2 geomprop_UV0_out = vd.texcoord_0;
-    vec2 checker_tiled_out = geomprop_UV0_out * checker_uvtiling;
-    vec2 checker_shifted_out = checker_tiled_out - checker_uvoffset;
-    vec2 checker_cell_out = floor(checker_shifted_out);
-    float checker_cell_sum_out = dot(checker_cell_out, vec2(1.0, 1.0));
-    float checker_parity_out = mod(checker_cell_sum_out, 2.0);
-    vec3 checker_pick_out = mix(checker_color2, checker_color1, checker_parity_out);
-    vec3 combined_out = marble_out * checker_pick_out;
-    out1 = vec4(combined_out, 1.0);
+    vec3 n0_out = mix(u_n0_in / 12.92, pow(max(u_n0_in + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
+                      greaterThan(u_n0_in, vec3(0.04045)));
+    vec3 n1_out = vd.positionObject;
+    vec3 n2_out = n1_out * u_n2_in2;
+    float n3_out;
+    mx_fractal3d_float(u_n3_amplitude, u_n3_octaves, u_n3_lacunarity, u_n3_diminish, n2_out, n3_out);
+    vec3 n4_out = mix(n0_out, u_n4_fg, n3_out);
+    vec2 n5_out = vd.texcoord_0;
+    vec2 n6_out = n5_out * u_n13_uvtiling;
+    vec2 n7_out = n6_out - u_n13_uvoffset;
+    vec2 n8_out = floor(n7_out);
+    float n9_out = dot(n8_out, vec2(1.0, 1.0));
+    float n10_out = mod(n9_out, 2.0);
+    vec3 n11_out = mix(u_n13_color2, u_n13_color1, n10_out);
+    vec3 n12_out = n4_out * n11_out;
+    out1 = vec4(n12_out, 1.0);
 }

@@ -1,16 +1,16 @@
 struct PixelUniforms {
-    marble_bg_cm_in: vec3f,  // offset 0
-    scaled_in2: f32,  // offset 12
-    veins_amplitude: f32,  // offset 16
-    veins_octaves: i32,  // offset 20
-    veins_lacunarity: f32,  // offset 24
-    veins_diminish: f32,  // offset 28
-    marble_fg: vec3f,  // offset 32
-    geomprop_UV0_index: i32,  // offset 44
-    checker_color1: vec3f,  // offset 48
-    checker_color2: vec3f,  // offset 64
-    checker_uvtiling: vec2f,  // offset 80
-    checker_uvoffset: vec2f,  // offset 88
+    u_n0_in: vec3f,  // offset 0
+    u_n2_in2: f32,  // offset 12
+    u_n3_amplitude: f32,  // offset 16
+    u_n3_octaves: i32,  // offset 20
+    u_n3_lacunarity: f32,  // offset 24
+    u_n3_diminish: f32,  // offset 28
+    u_n4_fg: vec3f,  // offset 32
+    u_n5_index: i32,  // offset 44
+    u_n13_color1: vec3f,  // offset 48
+    u_n13_color2: vec3f,  // offset 64
+    u_n13_uvtiling: vec2f,  // offset 80
+    u_n13_uvoffset: vec2f,  // offset 88
 }
 @group(1) @binding(0) var<uniform> pu: PixelUniforms;
 
@@ -102,23 +102,23 @@ fn mx_fractal3d_float(amplitude: f32, octaves: i32, lacunarity: f32, diminish: f
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var marble_bg_cm_out: vec3f = select(pu.marble_bg_cm_in / 12.92,
-                                         pow(max(pu.marble_bg_cm_in + 0.055, vec3f(0.0)) / 1.055, vec3f(2.4)),
-                                         pu.marble_bg_cm_in > vec3f(0.04045));
-    var pos_out: vec3f = vd.positionObject;
-    var scaled_out: vec3f = pos_out * pu.scaled_in2;
-    var veins_out: f32;
-    mx_fractal3d_float(pu.veins_amplitude, pu.veins_octaves, pu.veins_lacunarity, pu.veins_diminish,
-                           scaled_out, &veins_out);
-    var marble_out: vec3f = mix(marble_bg_cm_out, pu.marble_fg, vec3f(veins_out));
-    var geomprop_UV0_out: vec2f = vd.texcoord_0;
-    var checker_tiled_out: vec2f = geomprop_UV0_out * pu.checker_uvtiling;
-    var checker_shifted_out: vec2f = checker_tiled_out - pu.checker_uvoffset;
-    var checker_cell_out: vec2f = floor(checker_shifted_out);
-    var checker_cell_sum_out: f32 = dot(checker_cell_out, vec2f(1.0, 1.0));
-    var checker_parity_out: f32 = checker_cell_sum_out - 2.0 * floor(checker_cell_sum_out / 2.0);
-    var checker_pick_out: vec3f = mix(pu.checker_color2, pu.checker_color1, vec3f(checker_parity_out));
-    var combined_out: vec3f = marble_out * checker_pick_out;
-    out1 = vec4f(combined_out, 1.0);
+    var n0_out: vec3f = select(pu.u_n0_in / 12.92,
+                               pow(max(pu.u_n0_in + 0.055, vec3f(0.0)) / 1.055, vec3f(2.4)),
+                               pu.u_n0_in > vec3f(0.04045));
+    var n1_out: vec3f = vd.positionObject;
+    var n2_out: vec3f = n1_out * pu.u_n2_in2;
+    var n3_out: f32;
+    mx_fractal3d_float(pu.u_n3_amplitude, pu.u_n3_octaves, pu.u_n3_lacunarity, pu.u_n3_diminish, n2_out,
+                           &n3_out);
+    var n4_out: vec3f = mix(n0_out, pu.u_n4_fg, vec3f(n3_out));
+    var n5_out: vec2f = vd.texcoord_0;
+    var n6_out: vec2f = n5_out * pu.u_n13_uvtiling;
+    var n7_out: vec2f = n6_out - pu.u_n13_uvoffset;
+    var n8_out: vec2f = floor(n7_out);
+    var n9_out: f32 = dot(n8_out, vec2f(1.0, 1.0));
+    var n10_out: f32 = n9_out - 2.0 * floor(n9_out / 2.0);
+    var n11_out: vec3f = mix(pu.u_n13_color2, pu.u_n13_color1, vec3f(n10_out));
+    var n12_out: vec3f = n4_out * n11_out;
+    out1 = vec4f(n12_out, 1.0);
     return out1;
 }

@@ -1,7 +1,7 @@
 #version 400
 
 // Uniform block: PublicUniforms
-uniform float scaled_in2 = 4.0;
+uniform float u_n2_in2 = 4.0;
 
 in VertexData
 {
@@ -94,20 +94,20 @@ void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float di
 
 void main()
 {
-    vec3 marble_bg_cm_out = mix(vec3(0.9, 0.88, 0.85) / 12.92,
-                                pow(max(vec3(0.9, 0.88, 0.85) + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
-                                greaterThan(vec3(0.9, 0.88, 0.85), vec3(0.04045)));
-    vec3 pos_out = vd.positionObject;
-    vec3 scaled_out = pos_out * scaled_in2;
-    float veins_out;
-    mx_fractal3d_float(1.0, 4, 2.0, 0.5, scaled_out, veins_out);
-    vec3 marble_out = mix(marble_bg_cm_out, vec3(0.25, 0.22, 0.2), veins_out);
-    vec2 geomprop_UV0_out = vd.texcoord_0;
-    vec2 checker_tiled_out = geomprop_UV0_out * vec2(8.0, 8.0);
-    vec2 checker_cell_out = floor(checker_tiled_out);
-    float checker_cell_sum_out = dot(checker_cell_out, vec2(1.0, 1.0));
-    float checker_parity_out = mod(checker_cell_sum_out, 2.0);
-    vec3 checker_pick_out = mix(vec3(0.0, 0.0, 0.0), vec3(1.0, 1.0, 1.0), checker_parity_out);
-    vec3 combined_out = marble_out * checker_pick_out;
-    out1 = vec4(combined_out, 1.0);
+    vec3 n0_out = mix(vec3(0.9, 0.88, 0.85) / 12.92,
+                      pow(max(vec3(0.9, 0.88, 0.85) + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
+                      greaterThan(vec3(0.9, 0.88, 0.85), vec3(0.04045)));
+    vec3 n1_out = vd.positionObject;
+    vec3 n2_out = n1_out * u_n2_in2;
+    float n3_out;
+    mx_fractal3d_float(1.0, 4, 2.0, 0.5, n2_out, n3_out);
+    vec3 n4_out = mix(n0_out, vec3(0.25, 0.22, 0.2), n3_out);
+    vec2 n5_out = vd.texcoord_0;
+    vec2 n6_out = n5_out * vec2(8.0, 8.0);
+    vec2 n7_out = floor(n6_out);
+    float n8_out = dot(n7_out, vec2(1.0, 1.0));
+    float n9_out = mod(n8_out, 2.0);
+    vec3 n10_out = mix(vec3(0.0, 0.0, 0.0), vec3(1.0, 1.0, 1.0), n9_out);
+    vec3 n11_out = n4_out * n10_out;
+    out1 = vec4(n11_out, 1.0);
 }

@@ -1,5 +1,5 @@
 struct PixelUniforms {
-    scaled_in2: f32,  // offset 0
+    u_n2_in2: f32,  // offset 0
 }
 @group(1) @binding(0) var<uniform> pu: PixelUniforms;
 
@@ -95,22 +95,21 @@ fn mx_fractal3d_float(amplitude: f32, octaves: i32, lacunarity: f32, diminish: f
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var marble_bg_cm_out: vec3f = select(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) / 12.92,
-                                         pow(max(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) + 0.055, vec3f(0.0)) / 1.055,
-                                             vec3f(2.4)),
-                                         mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) > vec3f(0.04045));
-    var pos_out: vec3f = vd.positionObject;
-    var scaled_out: vec3f = pos_out * pu.scaled_in2;
-    var veins_out: f32;
-    mx_fractal3d_float(1.0, 4, 2.0, 0.5, scaled_out, &veins_out);
-    var marble_out: vec3f = mix(marble_bg_cm_out, vec3f(0.25, 0.22, 0.2), vec3f(veins_out));
-    var geomprop_UV0_out: vec2f = vd.texcoord_0;
-    var checker_tiled_out: vec2f = geomprop_UV0_out * vec2f(8.0, 8.0);
-    var checker_cell_out: vec2f = floor(checker_tiled_out);
-    var checker_cell_sum_out: f32 = dot(checker_cell_out, vec2f(1.0, 1.0));
-    var checker_parity_out: f32 = checker_cell_sum_out - 2.0 * floor(checker_cell_sum_out / 2.0);
-    var checker_pick_out: vec3f = mix(vec3f(0.0, 0.0, 0.0), vec3f(1.0, 1.0, 1.0), vec3f(checker_parity_out));
-    var combined_out: vec3f = marble_out * checker_pick_out;
-    out1 = vec4f(combined_out, 1.0);
+    var n0_out: vec3f = select(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) / 12.92,
+                               pow(max(mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) + 0.055, vec3f(0.0)) / 1.055,
+                                   vec3f(2.4)), mx_runtime_vec3f(vec3f(0.9, 0.88, 0.85)) > vec3f(0.04045));
+    var n1_out: vec3f = vd.positionObject;
+    var n2_out: vec3f = n1_out * pu.u_n2_in2;
+    var n3_out: f32;
+    mx_fractal3d_float(1.0, 4, 2.0, 0.5, n2_out, &n3_out);
+    var n4_out: vec3f = mix(n0_out, vec3f(0.25, 0.22, 0.2), vec3f(n3_out));
+    var n5_out: vec2f = vd.texcoord_0;
+    var n6_out: vec2f = n5_out * vec2f(8.0, 8.0);
+    var n7_out: vec2f = floor(n6_out);
+    var n8_out: f32 = dot(n7_out, vec2f(1.0, 1.0));
+    var n9_out: f32 = n8_out - 2.0 * floor(n8_out / 2.0);
+    var n10_out: vec3f = mix(vec3f(0.0, 0.0, 0.0), vec3f(1.0, 1.0, 1.0), vec3f(n9_out));
+    var n11_out: vec3f = n4_out * n10_out;
+    out1 = vec4f(n11_out, 1.0);
     return out1;
 }

@@ -597,47 +597,47 @@ uniform int u_numActiveLightSources;
 uniform LightData u_lightData[MAX_LIGHT_SOURCES];
 
 // Uniform block: PublicUniforms
-uniform float SR_coated_diffuse_roughness = 0.0;
-uniform float SR_coated_metalness = 0.0;
-uniform float SR_coated_specular = 1.0;
-uniform vec3 SR_coated_specular_color = vec3(1.0, 1.0, 1.0);
-uniform float SR_coated_specular_roughness = 0.2;
-uniform float SR_coated_specular_IOR = 1.5;
-uniform float SR_coated_specular_anisotropy = 0.0;
-uniform float SR_coated_specular_rotation = 0.0;
-uniform float SR_coated_transmission = 0.0;
-uniform vec3 SR_coated_transmission_color = vec3(1.0, 1.0, 1.0);
-uniform float SR_coated_transmission_depth = 0.0;
-uniform vec3 SR_coated_transmission_scatter = vec3(0.0, 0.0, 0.0);
-uniform float SR_coated_transmission_scatter_anisotropy = 0.0;
-uniform float SR_coated_transmission_dispersion = 0.0;
-uniform float SR_coated_transmission_extra_roughness = 0.0;
-uniform float SR_coated_subsurface = 0.0;
-uniform vec3 SR_coated_subsurface_color = vec3(1.0, 1.0, 1.0);
-uniform vec3 SR_coated_subsurface_radius = vec3(1.0, 1.0, 1.0);
-uniform float SR_coated_subsurface_scale = 1.0;
-uniform float SR_coated_subsurface_anisotropy = 0.0;
-uniform float SR_coated_sheen = 0.0;
-uniform vec3 SR_coated_sheen_color = vec3(1.0, 1.0, 1.0);
-uniform float SR_coated_sheen_roughness = 0.3;
-uniform float SR_coated_coat = 0.0;
-uniform vec3 SR_coated_coat_color = vec3(1.0, 1.0, 1.0);
-uniform float SR_coated_coat_roughness = 0.1;
-uniform float SR_coated_coat_anisotropy = 0.0;
-uniform float SR_coated_coat_rotation = 0.0;
-uniform float SR_coated_coat_IOR = 1.5;
-uniform float SR_coated_coat_affect_color = 0.0;
-uniform float SR_coated_coat_affect_roughness = 0.0;
-uniform float SR_coated_thin_film_thickness = 0.0;
-uniform float SR_coated_thin_film_IOR = 1.5;
-uniform float SR_coated_emission = 0.0;
-uniform vec3 SR_coated_emission_color = vec3(1.0, 1.0, 1.0);
-uniform vec3 SR_coated_opacity = vec3(1.0, 1.0, 1.0);
-uniform bool SR_coated_thin_walled = false;
-uniform float SR_coated_base = 1.0;
-uniform vec3 SR_coated_base_color = vec3(0.8, 0.8, 0.8);
-uniform surfaceshader Coated_backsurfaceshader;
-uniform displacementshader Coated_displacementshader;
+uniform float u_n70_diffuse_roughness = 0.0;
+uniform float u_n70_metalness = 0.0;
+uniform float u_n70_specular = 1.0;
+uniform vec3 u_n70_specular_color = vec3(1.0, 1.0, 1.0);
+uniform float u_n70_specular_roughness = 0.2;
+uniform float u_n70_specular_IOR = 1.5;
+uniform float u_n70_specular_anisotropy = 0.0;
+uniform float u_n70_specular_rotation = 0.0;
+uniform float u_n70_transmission = 0.0;
+uniform vec3 u_n70_transmission_color = vec3(1.0, 1.0, 1.0);
+uniform float u_n70_transmission_depth = 0.0;
+uniform vec3 u_n70_transmission_scatter = vec3(0.0, 0.0, 0.0);
+uniform float u_n70_transmission_scatter_anisotropy = 0.0;
+uniform float u_n70_transmission_dispersion = 0.0;
+uniform float u_n70_transmission_extra_roughness = 0.0;
+uniform float u_n70_subsurface = 0.0;
+uniform vec3 u_n70_subsurface_color = vec3(1.0, 1.0, 1.0);
+uniform vec3 u_n70_subsurface_radius = vec3(1.0, 1.0, 1.0);
+uniform float u_n70_subsurface_scale = 1.0;
+uniform float u_n70_subsurface_anisotropy = 0.0;
+uniform float u_n70_sheen = 0.0;
+uniform vec3 u_n70_sheen_color = vec3(1.0, 1.0, 1.0);
+uniform float u_n70_sheen_roughness = 0.3;
+uniform float u_n70_coat = 0.0;
+uniform vec3 u_n70_coat_color = vec3(1.0, 1.0, 1.0);
+uniform float u_n70_coat_roughness = 0.1;
+uniform float u_n70_coat_anisotropy = 0.0;
+uniform float u_n70_coat_rotation = 0.0;
+uniform float u_n70_coat_IOR = 1.5;
+uniform float u_n70_coat_affect_color = 0.0;
+uniform float u_n70_coat_affect_roughness = 0.0;
+uniform float u_n70_thin_film_thickness = 0.0;
+uniform float u_n70_thin_film_IOR = 1.5;
+uniform float u_n70_emission = 0.0;
+uniform vec3 u_n70_emission_color = vec3(1.0, 1.0, 1.0);
+uniform vec3 u_n70_opacity = vec3(1.0, 1.0, 1.0);
+uniform bool u_n70_thin_walled = false;
+uniform float u_n70_base = 1.0;
+uniform vec3 u_n70_base_color = vec3(0.8, 0.8, 0.8);
+uniform surfaceshader u_n69_backsurfaceshader;
+uniform displacementshader u_n69_displacementshader;
 
 in VertexData
 {
@@ -2047,340 +2047,249 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
 
 void main()
 {
-    vec2 SR_coated_coat_alpha_out;
-    mx_roughness_anisotropy(SR_coated_coat_roughness, SR_coated_coat_anisotropy, SR_coated_coat_alpha_out);
-    vec3 geomprop_Nworld_out = normalize(vd.normalWorld);
-    vec3 geomprop_Tworld_out = normalize(vd.tangentWorld);
-    float SR_coated_coat_angle_out = SR_coated_coat_rotation * 180.0;
-    vec3 SR_coated_coat_tangent_out;
-    mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_coat_angle_out, geomprop_Nworld_out,
-                        SR_coated_coat_tangent_out);
-    float SR_coated_coat_saturation_out = SR_coated_coat * SR_coated_coat_affect_color;
-    float SR_coated_saturation_exponent_out = SR_coated_coat_saturation_out + 1.0;
-    vec3 SR_coated_saturated_base_color_out = pow(SR_coated_base_color,
-                                                  vec3(SR_coated_saturation_exponent_out));
-    vec3 SR_coated_metal_reflectivity_out = SR_coated_saturated_base_color_out * SR_coated_base;
-    vec3 SR_coated_metal_ior_ior;
-    vec3 SR_coated_metal_ior_extinction;
-    mx_artistic_ior(SR_coated_metal_reflectivity_out, SR_coated_specular_color, SR_coated_metal_ior_ior,
-                    SR_coated_metal_ior_extinction);
-    float SR_coated_coat_gloss_loss_out = SR_coated_coat * SR_coated_coat_affect_roughness;
-    float SR_coated_coat_roughening_out = SR_coated_coat_gloss_loss_out * SR_coated_coat_roughness;
-    float SR_coated_base_roughness_out = mix(SR_coated_specular_roughness, 1.0, SR_coated_coat_roughening_out);
-    vec2 SR_coated_specular_alpha_out;
-    mx_roughness_anisotropy(SR_coated_base_roughness_out, SR_coated_specular_anisotropy,
-                            SR_coated_specular_alpha_out);
-    float SR_coated_specular_angle_out = SR_coated_specular_rotation * 180.0;
-    vec3 SR_coated_specular_tangent_out;
-    mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_specular_angle_out, geomprop_Nworld_out,
-                        SR_coated_specular_tangent_out);
-    float SR_coated_transmission_bsdf_has_medium_out = (SR_coated_transmission_depth > 0.0) ? 1.0 : 0.0;
-    vec3 SR_coated_transmission_bsdf_interface_tint_out = mix(SR_coated_transmission_color,
-                                                              vec3(1.0, 1.0, 1.0),
-                                                              SR_coated_transmission_bsdf_has_medium_out);
-    float SR_coated_transmission_roughness_sum_out = SR_coated_base_roughness_out +
-                                                     SR_coated_transmission_extra_roughness;
-    float SR_coated_transmission_roughness_out = clamp(SR_coated_transmission_roughness_sum_out, 0.0, 1.0);
-    vec2 SR_coated_transmission_alpha_out;
-    mx_roughness_anisotropy(SR_coated_transmission_roughness_out, SR_coated_specular_anisotropy,
-                            SR_coated_transmission_alpha_out);
-    vec3 SR_coated_transmission_bsdf_medium_color_v_out = SR_coated_transmission_color;
-    vec3 SR_coated_transmission_bsdf_medium_positive_color_out = max(SR_coated_transmission_bsdf_medium_color_v_out,
-                                                                     1.0e-6);
-    vec3 SR_coated_transmission_bsdf_medium_log_transmittance_out = log(SR_coated_transmission_bsdf_medium_positive_color_out);
-    float SR_coated_transmission_bsdf_medium_safe_depth_out = max(SR_coated_transmission_depth, 1.0e-6);
-    vec3 SR_coated_transmission_bsdf_medium_log_per_depth_out = SR_coated_transmission_bsdf_medium_log_transmittance_out / SR_coated_transmission_bsdf_medium_safe_depth_out;
-    vec3 SR_coated_transmission_bsdf_medium_scatter_v_out = SR_coated_transmission_scatter;
-    vec3 SR_coated_transmission_bsdf_medium_scattering_out = SR_coated_transmission_bsdf_medium_scatter_v_out / SR_coated_transmission_bsdf_medium_safe_depth_out;
-    vec3 SR_coated_transmission_bsdf_medium_log_per_depth_and_scattering_out = SR_coated_transmission_bsdf_medium_log_per_depth_out + SR_coated_transmission_bsdf_medium_scattering_out;
-    vec3 SR_coated_transmission_bsdf_medium_negative_absorption_out = min(SR_coated_transmission_bsdf_medium_log_per_depth_and_scattering_out, 0.0);
-    vec3 SR_coated_transmission_bsdf_medium_absorption_out = SR_coated_transmission_bsdf_medium_negative_absorption_out * (-1.0);
-    vec3 SR_coated_saturated_subsurface_color_out = pow(SR_coated_subsurface_color,
-                                                        vec3(SR_coated_saturation_exponent_out));
-    vec3 SR_coated_mean_free_path_out = SR_coated_subsurface_radius * SR_coated_subsurface_scale;
-    float SR_coated_thin_walled_weight_out = float(SR_coated_thin_walled);
-    vec3 SR_coated_coat_absorption_out = mix(vec3(1.0, 1.0, 1.0), SR_coated_coat_color, SR_coated_coat);
-    float SR_coated_emission_edf_ior_minus_one_out = SR_coated_coat_IOR - 1.0;
-    float SR_coated_emission_edf_ior_plus_one_out = SR_coated_coat_IOR + 1.0;
-    float SR_coated_emission_edf_amplitude_ratio_out = SR_coated_emission_edf_ior_minus_one_out /
-                                                       SR_coated_emission_edf_ior_plus_one_out;
-    float SR_coated_emission_edf_f0_out = SR_coated_emission_edf_amplitude_ratio_out *
-                                          SR_coated_emission_edf_amplitude_ratio_out;
-    float SR_coated_emission_edf_t0_out = 1.0 - SR_coated_emission_edf_f0_out;
-    vec3 SR_coated_emission_edf_tinted_t0_out = SR_coated_coat_color * SR_coated_emission_edf_t0_out;
-    vec3 SR_coated_emission_edf_facing_out = mix(vec3(1.0, 1.0, 1.0), SR_coated_emission_edf_tinted_t0_out,
-                                                 SR_coated_coat);
-    float SR_coated_emission_edf_uncoated_out = 1.0 - SR_coated_coat;
-    vec3 SR_coated_emission_edf_grazing_out = vec3(SR_coated_emission_edf_uncoated_out);
-    vec3 SR_coated_emission_radiance_out = SR_coated_emission_color * SR_coated_emission;
-    vec3 SR_coated_opacity_v_out = SR_coated_opacity;
-    float SR_coated_opacity_mean_out = dot(SR_coated_opacity_v_out, vec3(0.333333, 0.333333, 0.333334));
-    surfaceshader SR_coated_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec2 n0_out;
+    mx_roughness_anisotropy(u_n70_coat_roughness, u_n70_coat_anisotropy, n0_out);
+    vec3 n1_out = normalize(vd.normalWorld);
+    vec3 n2_out = normalize(vd.tangentWorld);
+    float n3_out = u_n70_coat_rotation * 180.0;
+    vec3 n4_out;
+    mx_rotate3d_vector3(n2_out, n3_out, n1_out, n4_out);
+    float n7_out = u_n70_coat * u_n70_coat_affect_color;
+    float n8_out = n7_out + 1.0;
+    vec3 n9_out = pow(u_n70_base_color, vec3(n8_out));
+    vec3 n10_out = n9_out * u_n70_base;
+    vec3 n11_ior;
+    vec3 n11_extinction;
+    mx_artistic_ior(n10_out, u_n70_specular_color, n11_ior, n11_extinction);
+    float n12_out = u_n70_coat * u_n70_coat_affect_roughness;
+    float n13_out = n12_out * u_n70_coat_roughness;
+    float n14_out = mix(u_n70_specular_roughness, 1.0, n13_out);
+    vec2 n15_out;
+    mx_roughness_anisotropy(n14_out, u_n70_specular_anisotropy, n15_out);
+    float n16_out = u_n70_specular_rotation * 180.0;
+    vec3 n17_out;
+    mx_rotate3d_vector3(n2_out, n16_out, n1_out, n17_out);
+    float n20_out = (u_n70_transmission_depth > 0.0) ? 1.0 : 0.0;
+    vec3 n21_out = mix(u_n70_transmission_color, vec3(1.0, 1.0, 1.0), n20_out);
+    float n22_out = n14_out + u_n70_transmission_extra_roughness;
+    float n23_out = clamp(n22_out, 0.0, 1.0);
+    vec2 n24_out;
+    mx_roughness_anisotropy(n23_out, u_n70_specular_anisotropy, n24_out);
+    vec3 n26_out = u_n70_transmission_color;
+    vec3 n27_out = max(n26_out, 1.0e-6);
+    vec3 n28_out = log(n27_out);
+    float n29_out = max(u_n70_transmission_depth, 1.0e-6);
+    vec3 n30_out = n28_out / n29_out;
+    vec3 n31_out = u_n70_transmission_scatter;
+    vec3 n32_out = n31_out / n29_out;
+    vec3 n33_out = n30_out + n32_out;
+    vec3 n34_out = min(n33_out, 0.0);
+    vec3 n35_out = n34_out * (-1.0);
+    vec3 n39_out = pow(u_n70_subsurface_color, vec3(n8_out));
+    vec3 n41_out = u_n70_subsurface_radius * u_n70_subsurface_scale;
+    float n43_out = float(u_n70_thin_walled);
+    vec3 n51_out = mix(vec3(1.0, 1.0, 1.0), u_n70_coat_color, u_n70_coat);
+    float n54_out = u_n70_coat_IOR - 1.0;
+    float n55_out = u_n70_coat_IOR + 1.0;
+    float n56_out = n54_out / n55_out;
+    float n57_out = n56_out * n56_out;
+    float n58_out = 1.0 - n57_out;
+    vec3 n59_out = u_n70_coat_color * n58_out;
+    vec3 n60_out = mix(vec3(1.0, 1.0, 1.0), n59_out, u_n70_coat);
+    float n61_out = 1.0 - u_n70_coat;
+    vec3 n62_out = vec3(n61_out);
+    vec3 n63_out = u_n70_emission_color * u_n70_emission;
+    vec3 n66_out = u_n70_opacity;
+    float n67_out = dot(n66_out, vec3(0.333333, 0.333333, 0.333334));
+    surfaceshader n68_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd.normalWorld);
         vec3 V = normalize(u_viewPosition - vd.positionWorld);
         vec3 P = vd.positionWorld;
         vec3 L = vec3(0.0);
         float occlusion = 1.0;
-        float surfaceOpacity = SR_coated_opacity_mean_out;
+        float surfaceOpacity = n67_out;
         // lobes under a mix: weight 0 where the mix leaves them out
-        bool SR_coated_dielectric_reached = SR_coated_metalness != 1.0;
-        bool SR_coated_opaque_base_reached = SR_coated_dielectric_reached && SR_coated_transmission != 1.0;
-        float SR_coated_diffuse_brdf_active_weight = (SR_coated_opaque_base_reached &&
-                                                      SR_coated_subsurface != 1.0) ? SR_coated_base : 0.0;
-        bool SR_coated_subsurface_bsdf_reached = SR_coated_opaque_base_reached && SR_coated_subsurface != 0.0;
-        float SR_coated_volume_subsurface_active_weight = (SR_coated_subsurface_bsdf_reached &&
-                                                           SR_coated_thin_walled_weight_out != 1.0) ? 1.0 : 0.0;
-        float SR_coated_thin_subsurface_active_weight = (SR_coated_subsurface_bsdf_reached &&
-                                                         SR_coated_thin_walled_weight_out != 0.0) ? 1.0 : 0.0;
-        bool SR_coated_transmission_bsdf_transmission_reached = SR_coated_dielectric_reached &&
-                                                                SR_coated_transmission != 0.0;
-        bool SR_coated_transmission_bsdf_interface_over_medium_reached = SR_coated_transmission_bsdf_transmission_reached && SR_coated_transmission_bsdf_has_medium_out != 0.0;
-        float SR_coated_transmission_bsdf_interface_active_weight = ((SR_coated_transmission_bsdf_transmission_reached && SR_coated_transmission_bsdf_has_medium_out != 1.0) || SR_coated_transmission_bsdf_interface_over_medium_reached) ? 1.0 : 0.0;
-        float SR_coated_specular_brdf_active_weight = SR_coated_dielectric_reached ? SR_coated_specular : 0.0;
-        float SR_coated_metal_brdf_active_weight = (SR_coated_metalness != 0.0) ? 1.0 : 0.0;
+        bool n48_reached = u_n70_metalness != 1.0;
+        bool n46_reached = n48_reached && u_n70_transmission != 1.0;
+        float n45_active_weight = (n46_reached && u_n70_subsurface != 1.0) ? u_n70_base : 0.0;
+        bool n44_reached = n46_reached && u_n70_subsurface != 0.0;
+        float n42_active_weight = (n44_reached && n43_out != 1.0) ? 1.0 : 0.0;
+        float n40_active_weight = (n44_reached && n43_out != 0.0) ? 1.0 : 0.0;
+        bool n38_reached = n48_reached && u_n70_transmission != 0.0;
+        bool n37_reached = n38_reached && n20_out != 0.0;
+        float n25_active_weight = ((n38_reached && n20_out != 1.0) || n37_reached) ? 1.0 : 0.0;
+        float n19_active_weight = n48_reached ? u_n70_specular : 0.0;
+        float n18_active_weight = (u_n70_metalness != 0.0) ? 1.0 : 0.0;
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        SpecularLobe SR_coated_coat_brdf_lobe;
-        mx_dielectric_bsdf_prepare(pointData, SR_coated_coat, vec3(1.0, 1.0, 1.0), SR_coated_coat_IOR,
-                                   SR_coated_coat_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out,
-                                   SR_coated_coat_tangent_out, 0, 0, SR_coated_coat_brdf_lobe);
-        SpecularLobe SR_coated_metal_brdf_lobe;
-        mx_conductor_bsdf_prepare(pointData, SR_coated_metal_brdf_active_weight, SR_coated_metal_ior_ior,
-                                  SR_coated_metal_ior_extinction, SR_coated_specular_alpha_out, false,
-                                  SR_coated_thin_film_thickness, SR_coated_thin_film_IOR, geomprop_Nworld_out,
-                                  SR_coated_specular_tangent_out, 0, SR_coated_metal_brdf_lobe);
-        SpecularLobe SR_coated_specular_brdf_lobe;
-        mx_dielectric_bsdf_prepare(pointData, SR_coated_specular_brdf_active_weight, SR_coated_specular_color,
-                                   SR_coated_specular_IOR, SR_coated_specular_alpha_out, false,
-                                   SR_coated_thin_film_thickness, SR_coated_thin_film_IOR,
-                                   geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 0,
-                                   SR_coated_specular_brdf_lobe);
-        SpecularLobe SR_coated_transmission_bsdf_interface_lobe;
-        mx_dielectric_bsdf_prepare(pointData, SR_coated_transmission_bsdf_interface_active_weight,
-                                   SR_coated_transmission_bsdf_interface_tint_out, SR_coated_specular_IOR,
-                                   SR_coated_transmission_alpha_out, false, 0.0, 1.5, geomprop_Nworld_out,
-                                   SR_coated_specular_tangent_out, 0, 1,
-                                   SR_coated_transmission_bsdf_interface_lobe);
+        SpecularLobe n5_lobe;
+        mx_dielectric_bsdf_prepare(pointData, u_n70_coat, vec3(1.0, 1.0, 1.0), u_n70_coat_IOR, n0_out, false,
+                                   0.0, 1.5, n1_out, n4_out, 0, 0, n5_lobe);
+        SpecularLobe n18_lobe;
+        mx_conductor_bsdf_prepare(pointData, n18_active_weight, n11_ior, n11_extinction, n15_out, false,
+                                  u_n70_thin_film_thickness, u_n70_thin_film_IOR, n1_out, n17_out, 0,
+                                  n18_lobe);
+        SpecularLobe n19_lobe;
+        mx_dielectric_bsdf_prepare(pointData, n19_active_weight, u_n70_specular_color, u_n70_specular_IOR,
+                                   n15_out, false, u_n70_thin_film_thickness, u_n70_thin_film_IOR, n1_out,
+                                   n17_out, 0, 0, n19_lobe);
+        SpecularLobe n25_lobe;
+        mx_dielectric_bsdf_prepare(pointData, n25_active_weight, n21_out, u_n70_specular_IOR, n24_out, false,
+                                   0.0, 1.5, n1_out, n17_out, 0, 1, n25_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++)
         {
             lightshader lightShader;
             sampleLightSource(u_lightData[activeLightIndex], vd.positionWorld, lightShader);
             L = lightShader.direction;
             ClosureData closureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
-            BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness,
-                          geomprop_Nworld_out, 0, SR_coated_sheen_brdf_out);
-            BSDF SR_coated_metal_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_conductor_bsdf(closureData, SR_coated_metal_brdf_lobe, SR_coated_metal_brdf_out);
-            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
-            BSDF SR_coated_transmission_bsdf_interface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_transmission_bsdf_interface_lobe,
-                               SR_coated_transmission_bsdf_interface_out);
-            VDF SR_coated_transmission_bsdf_medium_medium_out = VDF(vec3(0.0), vec3(1.0));
-            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out,
-                               SR_coated_transmission_bsdf_medium_scattering_out,
-                               SR_coated_transmission_scatter_anisotropy,
-                               SR_coated_transmission_bsdf_medium_medium_out);
-            BSDF SR_coated_transmission_bsdf_interface_over_medium_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out,
-                         SR_coated_transmission_bsdf_medium_medium_out,
-                         SR_coated_transmission_bsdf_interface_over_medium_out);
-            BSDF SR_coated_transmission_bsdf_transmission_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out,
-                        SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_has_medium_out,
-                        SR_coated_transmission_bsdf_transmission_out);
-            BSDF SR_coated_thin_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, SR_coated_thin_subsurface_active_weight,
-                                SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out,
-                                SR_coated_thin_subsurface_out);
-            BSDF SR_coated_volume_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, SR_coated_volume_subsurface_active_weight,
-                               SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out,
-                               SR_coated_subsurface_anisotropy, geomprop_Nworld_out,
-                               SR_coated_volume_subsurface_out);
-            BSDF SR_coated_subsurface_bsdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out,
-                        SR_coated_thin_walled_weight_out, SR_coated_subsurface_bsdf_out);
-            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_diffuse_brdf_active_weight,
-                                       SR_coated_saturated_base_color_out, SR_coated_diffuse_roughness,
-                                       geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
-            BSDF SR_coated_opaque_base_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out,
-                        SR_coated_subsurface, SR_coated_opaque_base_out);
-            BSDF SR_coated_dielectric_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out, SR_coated_opaque_base_out,
-                        SR_coated_transmission, SR_coated_dielectric_substrate_out);
-            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out,
-                          SR_coated_dielectric_out);
-            BSDF SR_coated_base_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out, SR_coated_metalness,
-                        SR_coated_base_substrate_out);
-            BSDF SR_coated_sheen_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out,
-                          SR_coated_sheen_layer_out);
-            BSDF SR_coated_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out,
-                                    SR_coated_under_coat_out);
-            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out,
-                          SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += lightShader.intensity * SR_coated_coat_layer_out.response;
+            BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n5_lobe, n5_out);
+            BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_sheen_bsdf(closureData, u_n70_sheen, u_n70_sheen_color, u_n70_sheen_roughness, n1_out, 0,
+                          n6_out);
+            BSDF n18_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_conductor_bsdf(closureData, n18_lobe, n18_out);
+            BSDF n19_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n19_lobe, n19_out);
+            BSDF n25_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n25_lobe, n25_out);
+            VDF n36_out = VDF(vec3(0.0), vec3(1.0));
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n70_transmission_scatter_anisotropy, n36_out);
+            BSDF n37_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_vdf(closureData, n25_out, n36_out, n37_out);
+            BSDF n38_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, n38_out);
+            BSDF n40_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, n40_out);
+            BSDF n42_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out, u_n70_subsurface_anisotropy,
+                               n1_out, n42_out);
+            BSDF n44_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, n44_out);
+            BSDF n45_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, u_n70_diffuse_roughness,
+                                       n1_out, false, n45_out);
+            BSDF n46_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n44_out, n45_out, u_n70_subsurface, n46_out);
+            BSDF n47_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n38_out, n46_out, u_n70_transmission, n47_out);
+            BSDF n48_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n19_out, n47_out, n48_out);
+            BSDF n49_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n18_out, n48_out, u_n70_metalness, n49_out);
+            BSDF n50_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n6_out, n49_out, n50_out);
+            BSDF n52_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, n52_out);
+            BSDF n53_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n5_out, n52_out, n53_out);
+            n68_out.color += lightShader.intensity * n53_out.response;
         }
         // environment
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
-            BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness,
-                          geomprop_Nworld_out, 0, SR_coated_sheen_brdf_out);
-            BSDF SR_coated_metal_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_conductor_bsdf(closureData, SR_coated_metal_brdf_lobe, SR_coated_metal_brdf_out);
-            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
-            BSDF SR_coated_transmission_bsdf_interface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_transmission_bsdf_interface_lobe,
-                               SR_coated_transmission_bsdf_interface_out);
-            VDF SR_coated_transmission_bsdf_medium_medium_out = VDF(vec3(0.0), vec3(1.0));
-            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out,
-                               SR_coated_transmission_bsdf_medium_scattering_out,
-                               SR_coated_transmission_scatter_anisotropy,
-                               SR_coated_transmission_bsdf_medium_medium_out);
-            BSDF SR_coated_transmission_bsdf_interface_over_medium_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out,
-                         SR_coated_transmission_bsdf_medium_medium_out,
-                         SR_coated_transmission_bsdf_interface_over_medium_out);
-            BSDF SR_coated_transmission_bsdf_transmission_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out,
-                        SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_has_medium_out,
-                        SR_coated_transmission_bsdf_transmission_out);
-            BSDF SR_coated_thin_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, SR_coated_thin_subsurface_active_weight,
-                                SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out,
-                                SR_coated_thin_subsurface_out);
-            BSDF SR_coated_volume_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, SR_coated_volume_subsurface_active_weight,
-                               SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out,
-                               SR_coated_subsurface_anisotropy, geomprop_Nworld_out,
-                               SR_coated_volume_subsurface_out);
-            BSDF SR_coated_subsurface_bsdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out,
-                        SR_coated_thin_walled_weight_out, SR_coated_subsurface_bsdf_out);
-            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_diffuse_brdf_active_weight,
-                                       SR_coated_saturated_base_color_out, SR_coated_diffuse_roughness,
-                                       geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
-            BSDF SR_coated_opaque_base_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out,
-                        SR_coated_subsurface, SR_coated_opaque_base_out);
-            BSDF SR_coated_dielectric_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out, SR_coated_opaque_base_out,
-                        SR_coated_transmission, SR_coated_dielectric_substrate_out);
-            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out,
-                          SR_coated_dielectric_out);
-            BSDF SR_coated_base_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out, SR_coated_metalness,
-                        SR_coated_base_substrate_out);
-            BSDF SR_coated_sheen_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out,
-                          SR_coated_sheen_layer_out);
-            BSDF SR_coated_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out,
-                                    SR_coated_under_coat_out);
-            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out,
-                          SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
+            BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n5_lobe, n5_out);
+            BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_sheen_bsdf(closureData, u_n70_sheen, u_n70_sheen_color, u_n70_sheen_roughness, n1_out, 0,
+                          n6_out);
+            BSDF n18_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_conductor_bsdf(closureData, n18_lobe, n18_out);
+            BSDF n19_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n19_lobe, n19_out);
+            BSDF n25_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n25_lobe, n25_out);
+            VDF n36_out = VDF(vec3(0.0), vec3(1.0));
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n70_transmission_scatter_anisotropy, n36_out);
+            BSDF n37_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_vdf(closureData, n25_out, n36_out, n37_out);
+            BSDF n38_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, n38_out);
+            BSDF n40_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, n40_out);
+            BSDF n42_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out, u_n70_subsurface_anisotropy,
+                               n1_out, n42_out);
+            BSDF n44_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, n44_out);
+            BSDF n45_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, u_n70_diffuse_roughness,
+                                       n1_out, false, n45_out);
+            BSDF n46_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n44_out, n45_out, u_n70_subsurface, n46_out);
+            BSDF n47_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n38_out, n46_out, u_n70_transmission, n47_out);
+            BSDF n48_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n19_out, n47_out, n48_out);
+            BSDF n49_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n18_out, n48_out, u_n70_metalness, n49_out);
+            BSDF n50_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n6_out, n49_out, n50_out);
+            BSDF n52_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, n52_out);
+            BSDF n53_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n5_out, n52_out, n53_out);
+            n68_out.color += occlusion * n53_out.response;
         }
         // emission
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
-            vec3 SR_coated_emission_edf_emission_out = vec3(0.0);
-            mx_uniform_edf(closureData, SR_coated_emission_radiance_out, SR_coated_emission_edf_emission_out);
-            vec3 SR_coated_emission_edf_through_coat_out = vec3(0.0);
-            mx_generalized_schlick_edf(closureData, SR_coated_emission_edf_facing_out,
-                                       SR_coated_emission_edf_grazing_out, 5.0,
-                                       SR_coated_emission_edf_emission_out,
-                                       SR_coated_emission_edf_through_coat_out);
-            SR_coated_shader_out.color += SR_coated_emission_edf_through_coat_out;
+            vec3 n64_out = vec3(0.0);
+            mx_uniform_edf(closureData, n63_out, n64_out);
+            vec3 n65_out = vec3(0.0);
+            mx_generalized_schlick_edf(closureData, n60_out, n62_out, 5.0, n64_out, n65_out);
+            n68_out.color += n65_out;
         }
         // transmission, seen along the view direction
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
-            BSDF SR_coated_sheen_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, SR_coated_sheen, SR_coated_sheen_color, SR_coated_sheen_roughness,
-                          geomprop_Nworld_out, 0, SR_coated_sheen_brdf_out);
-            BSDF SR_coated_metal_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_conductor_bsdf(closureData, SR_coated_metal_brdf_lobe, SR_coated_metal_brdf_out);
-            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
-            BSDF SR_coated_transmission_bsdf_interface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_transmission_bsdf_interface_lobe,
-                               SR_coated_transmission_bsdf_interface_out);
-            VDF SR_coated_transmission_bsdf_medium_medium_out = VDF(vec3(0.0), vec3(1.0));
-            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out,
-                               SR_coated_transmission_bsdf_medium_scattering_out,
-                               SR_coated_transmission_scatter_anisotropy,
-                               SR_coated_transmission_bsdf_medium_medium_out);
-            BSDF SR_coated_transmission_bsdf_interface_over_medium_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out,
-                         SR_coated_transmission_bsdf_medium_medium_out,
-                         SR_coated_transmission_bsdf_interface_over_medium_out);
-            BSDF SR_coated_transmission_bsdf_transmission_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out,
-                        SR_coated_transmission_bsdf_interface_out, SR_coated_transmission_bsdf_has_medium_out,
-                        SR_coated_transmission_bsdf_transmission_out);
-            BSDF SR_coated_thin_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, SR_coated_thin_subsurface_active_weight,
-                                SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out,
-                                SR_coated_thin_subsurface_out);
-            BSDF SR_coated_volume_subsurface_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, SR_coated_volume_subsurface_active_weight,
-                               SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out,
-                               SR_coated_subsurface_anisotropy, geomprop_Nworld_out,
-                               SR_coated_volume_subsurface_out);
-            BSDF SR_coated_subsurface_bsdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out,
-                        SR_coated_thin_walled_weight_out, SR_coated_subsurface_bsdf_out);
-            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_diffuse_brdf_active_weight,
-                                       SR_coated_saturated_base_color_out, SR_coated_diffuse_roughness,
-                                       geomprop_Nworld_out, false, SR_coated_diffuse_brdf_out);
-            BSDF SR_coated_opaque_base_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out,
-                        SR_coated_subsurface, SR_coated_opaque_base_out);
-            BSDF SR_coated_dielectric_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out, SR_coated_opaque_base_out,
-                        SR_coated_transmission, SR_coated_dielectric_substrate_out);
-            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out,
-                          SR_coated_dielectric_out);
-            BSDF SR_coated_base_substrate_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out, SR_coated_metalness,
-                        SR_coated_base_substrate_out);
-            BSDF SR_coated_sheen_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out,
-                          SR_coated_sheen_layer_out);
-            BSDF SR_coated_under_coat_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out,
-                                    SR_coated_under_coat_out);
-            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out,
-                          SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += SR_coated_coat_layer_out.response;
+            BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n5_lobe, n5_out);
+            BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_sheen_bsdf(closureData, u_n70_sheen, u_n70_sheen_color, u_n70_sheen_roughness, n1_out, 0,
+                          n6_out);
+            BSDF n18_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_conductor_bsdf(closureData, n18_lobe, n18_out);
+            BSDF n19_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n19_lobe, n19_out);
+            BSDF n25_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n25_lobe, n25_out);
+            VDF n36_out = VDF(vec3(0.0), vec3(1.0));
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n70_transmission_scatter_anisotropy, n36_out);
+            BSDF n37_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_vdf(closureData, n25_out, n36_out, n37_out);
+            BSDF n38_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, n38_out);
+            BSDF n40_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, n40_out);
+            BSDF n42_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out, u_n70_subsurface_anisotropy,
+                               n1_out, n42_out);
+            BSDF n44_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, n44_out);
+            BSDF n45_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, u_n70_diffuse_roughness,
+                                       n1_out, false, n45_out);
+            BSDF n46_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n44_out, n45_out, u_n70_subsurface, n46_out);
+            BSDF n47_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n38_out, n46_out, u_n70_transmission, n47_out);
+            BSDF n48_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n19_out, n47_out, n48_out);
+            BSDF n49_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_mix_bsdf(closureData, n18_out, n48_out, u_n70_metalness, n49_out);
+            BSDF n50_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n6_out, n49_out, n50_out);
+            BSDF n52_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, n52_out);
+            BSDF n53_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n5_out, n52_out, n53_out);
+            n68_out.color += n53_out.response;
         }
-        SR_coated_shader_out.color *= surfaceOpacity;
-        SR_coated_shader_out.transparency = mix(vec3(1.0), SR_coated_shader_out.transparency, surfaceOpacity);
+        n68_out.color *= surfaceOpacity;
+        n68_out.transparency = mix(vec3(1.0), n68_out.transparency, surfaceOpacity);
     }
-    surfaceshader Coated_out = SR_coated_shader_out;
-    out1 = vec4(Coated_out.color, 1.0 - dot(Coated_out.transparency, vec3(1.0 / 3.0)));
+    surfaceshader n69_out = n68_out;
+    out1 = vec4(n69_out.color, 1.0 - dot(n69_out.transparency, vec3(1.0 / 3.0)));
 }

@@ -580,47 +580,47 @@ struct PixelUniforms {
     u_viewPosition: vec3f,  // offset 80
     u_numActiveLightSources: i32,  // offset 92
     u_lightData: array<LightData, MAX_LIGHT_SOURCES>,  // offset 96
-    SR_coated_diffuse_roughness: f32,  // offset 336
-    SR_coated_metalness: f32,  // offset 340
-    SR_coated_specular: f32,  // offset 344
-    SR_coated_specular_color: vec3f,  // offset 352
-    SR_coated_specular_roughness: f32,  // offset 364
-    SR_coated_specular_IOR: f32,  // offset 368
-    SR_coated_specular_anisotropy: f32,  // offset 372
-    SR_coated_specular_rotation: f32,  // offset 376
-    SR_coated_transmission: f32,  // offset 380
-    SR_coated_transmission_color: vec3f,  // offset 384
-    SR_coated_transmission_depth: f32,  // offset 396
-    SR_coated_transmission_scatter: vec3f,  // offset 400
-    SR_coated_transmission_scatter_anisotropy: f32,  // offset 412
-    SR_coated_transmission_dispersion: f32,  // offset 416
-    SR_coated_transmission_extra_roughness: f32,  // offset 420
-    SR_coated_subsurface: f32,  // offset 424
-    SR_coated_subsurface_color: vec3f,  // offset 432
-    SR_coated_subsurface_radius: vec3f,  // offset 448
-    SR_coated_subsurface_scale: f32,  // offset 460
-    SR_coated_subsurface_anisotropy: f32,  // offset 464
-    SR_coated_sheen: f32,  // offset 468
-    SR_coated_sheen_color: vec3f,  // offset 480
-    SR_coated_sheen_roughness: f32,  // offset 492
-    SR_coated_coat: f32,  // offset 496
-    SR_coated_coat_color: vec3f,  // offset 512
-    SR_coated_coat_roughness: f32,  // offset 524
-    SR_coated_coat_anisotropy: f32,  // offset 528
-    SR_coated_coat_rotation: f32,  // offset 532
-    SR_coated_coat_IOR: f32,  // offset 536
-    SR_coated_coat_affect_color: f32,  // offset 540
-    SR_coated_coat_affect_roughness: f32,  // offset 544
-    SR_coated_thin_film_thickness: f32,  // offset 548
-    SR_coated_thin_film_IOR: f32,  // offset 552
-    SR_coated_emission: f32,  // offset 556
-    SR_coated_emission_color: vec3f,  // offset 560
-    SR_coated_opacity: vec3f,  // offset 576
-    SR_coated_thin_walled: i32,  // offset 588
-    SR_coated_base: f32,  // offset 592
-    SR_coated_base_color: vec3f,  // offset 608
-    Coated_backsurfaceshader: surfaceshader,  // offset 624
-    Coated_displacementshader: displacementshader,  // offset 656
+    u_n70_diffuse_roughness: f32,  // offset 336
+    u_n70_metalness: f32,  // offset 340
+    u_n70_specular: f32,  // offset 344
+    u_n70_specular_color: vec3f,  // offset 352
+    u_n70_specular_roughness: f32,  // offset 364
+    u_n70_specular_IOR: f32,  // offset 368
+    u_n70_specular_anisotropy: f32,  // offset 372
+    u_n70_specular_rotation: f32,  // offset 376
+    u_n70_transmission: f32,  // offset 380
+    u_n70_transmission_color: vec3f,  // offset 384
+    u_n70_transmission_depth: f32,  // offset 396
+    u_n70_transmission_scatter: vec3f,  // offset 400
+    u_n70_transmission_scatter_anisotropy: f32,  // offset 412
+    u_n70_transmission_dispersion: f32,  // offset 416
+    u_n70_transmission_extra_roughness: f32,  // offset 420
+    u_n70_subsurface: f32,  // offset 424
+    u_n70_subsurface_color: vec3f,  // offset 432
+    u_n70_subsurface_radius: vec3f,  // offset 448
+    u_n70_subsurface_scale: f32,  // offset 460
+    u_n70_subsurface_anisotropy: f32,  // offset 464
+    u_n70_sheen: f32,  // offset 468
+    u_n70_sheen_color: vec3f,  // offset 480
+    u_n70_sheen_roughness: f32,  // offset 492
+    u_n70_coat: f32,  // offset 496
+    u_n70_coat_color: vec3f,  // offset 512
+    u_n70_coat_roughness: f32,  // offset 524
+    u_n70_coat_anisotropy: f32,  // offset 528
+    u_n70_coat_rotation: f32,  // offset 532
+    u_n70_coat_IOR: f32,  // offset 536
+    u_n70_coat_affect_color: f32,  // offset 540
+    u_n70_coat_affect_roughness: f32,  // offset 544
+    u_n70_thin_film_thickness: f32,  // offset 548
+    u_n70_thin_film_IOR: f32,  // offset 552
+    u_n70_emission: f32,  // offset 556
+    u_n70_emission_color: vec3f,  // offset 560
+    u_n70_opacity: vec3f,  // offset 576
+    u_n70_thin_walled: i32,  // offset 588
+    u_n70_base: f32,  // offset 592
+    u_n70_base_color: vec3f,  // offset 608
+    u_n69_backsurfaceshader: surfaceshader,  // offset 624
+    u_n69_displacementshader: displacementshader,  // offset 656
 }
 @group(1) @binding(0) var<uniform> pu: PixelUniforms;
 
@@ -1817,360 +1817,252 @@ fn sampleLightSource(light: LightData, position: vec3f, result: ptr<function, li
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var SR_coated_coat_alpha_out: vec2f;
-    mx_roughness_anisotropy(pu.SR_coated_coat_roughness, pu.SR_coated_coat_anisotropy,
-                                &SR_coated_coat_alpha_out);
-    var geomprop_Nworld_out: vec3f = normalize(vd.normalWorld);
-    var geomprop_Tworld_out: vec3f = normalize(vd.tangentWorld);
-    var SR_coated_coat_angle_out: f32 = pu.SR_coated_coat_rotation * 180.0;
-    var SR_coated_coat_tangent_out: vec3f;
-    mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_coat_angle_out, geomprop_Nworld_out,
-                            &SR_coated_coat_tangent_out);
-    var SR_coated_coat_saturation_out: f32 = pu.SR_coated_coat * pu.SR_coated_coat_affect_color;
-    var SR_coated_saturation_exponent_out: f32 = SR_coated_coat_saturation_out + 1.0;
-    var SR_coated_saturated_base_color_out: vec3f = pow(pu.SR_coated_base_color,
-                                                        vec3f(SR_coated_saturation_exponent_out));
-    var SR_coated_metal_reflectivity_out: vec3f = SR_coated_saturated_base_color_out * pu.SR_coated_base;
-    var SR_coated_metal_ior_ior: vec3f;
-    var SR_coated_metal_ior_extinction: vec3f;
-    mx_artistic_ior(SR_coated_metal_reflectivity_out, pu.SR_coated_specular_color,
-                        &SR_coated_metal_ior_ior, &SR_coated_metal_ior_extinction);
-    var SR_coated_coat_gloss_loss_out: f32 = pu.SR_coated_coat * pu.SR_coated_coat_affect_roughness;
-    var SR_coated_coat_roughening_out: f32 = SR_coated_coat_gloss_loss_out * pu.SR_coated_coat_roughness;
-    var SR_coated_base_roughness_out: f32 = mix(pu.SR_coated_specular_roughness, 1.0,
-                                                SR_coated_coat_roughening_out);
-    var SR_coated_specular_alpha_out: vec2f;
-    mx_roughness_anisotropy(SR_coated_base_roughness_out, pu.SR_coated_specular_anisotropy,
-                                &SR_coated_specular_alpha_out);
-    var SR_coated_specular_angle_out: f32 = pu.SR_coated_specular_rotation * 180.0;
-    var SR_coated_specular_tangent_out: vec3f;
-    mx_rotate3d_vector3(geomprop_Tworld_out, SR_coated_specular_angle_out, geomprop_Nworld_out,
-                            &SR_coated_specular_tangent_out);
-    var SR_coated_transmission_bsdf_has_medium_out: f32 = select(0.0, 1.0,
-                                                                 pu.SR_coated_transmission_depth > 0.0);
-    var SR_coated_transmission_bsdf_interface_tint_out: vec3f = mix(pu.SR_coated_transmission_color,
-                                                                    vec3f(1.0, 1.0, 1.0),
-                                                                    vec3f(SR_coated_transmission_bsdf_has_medium_out));
-    var SR_coated_transmission_roughness_sum_out: f32 = SR_coated_base_roughness_out +
-                                                        pu.SR_coated_transmission_extra_roughness;
-    var SR_coated_transmission_roughness_out: f32 = clamp(SR_coated_transmission_roughness_sum_out, 0.0, 1.0);
-    var SR_coated_transmission_alpha_out: vec2f;
-    mx_roughness_anisotropy(SR_coated_transmission_roughness_out, pu.SR_coated_specular_anisotropy,
-                                &SR_coated_transmission_alpha_out);
-    var SR_coated_transmission_bsdf_medium_color_v_out: vec3f = pu.SR_coated_transmission_color;
-    var SR_coated_transmission_bsdf_medium_positive_color_out: vec3f = max(SR_coated_transmission_bsdf_medium_color_v_out, vec3f(1.0e-6));
-    var SR_coated_transmission_bsdf_medium_log_transmittance_out: vec3f = log(SR_coated_transmission_bsdf_medium_positive_color_out);
-    var SR_coated_transmission_bsdf_medium_safe_depth_out: f32 = max(pu.SR_coated_transmission_depth, 1.0e-6);
-    var SR_coated_transmission_bsdf_medium_log_per_depth_out: vec3f = SR_coated_transmission_bsdf_medium_log_transmittance_out / SR_coated_transmission_bsdf_medium_safe_depth_out;
-    var SR_coated_transmission_bsdf_medium_scatter_v_out: vec3f = pu.SR_coated_transmission_scatter;
-    var SR_coated_transmission_bsdf_medium_scattering_out: vec3f = SR_coated_transmission_bsdf_medium_scatter_v_out / SR_coated_transmission_bsdf_medium_safe_depth_out;
-    var SR_coated_transmission_bsdf_medium_log_per_depth_and_scattering_out: vec3f = SR_coated_transmission_bsdf_medium_log_per_depth_out + SR_coated_transmission_bsdf_medium_scattering_out;
-    var SR_coated_transmission_bsdf_medium_negative_absorption_out: vec3f = min(SR_coated_transmission_bsdf_medium_log_per_depth_and_scattering_out, vec3f(0.0));
-    var SR_coated_transmission_bsdf_medium_absorption_out: vec3f = SR_coated_transmission_bsdf_medium_negative_absorption_out * -1.0;
-    var SR_coated_saturated_subsurface_color_out: vec3f = pow(pu.SR_coated_subsurface_color,
-                                                              vec3f(SR_coated_saturation_exponent_out));
-    var SR_coated_mean_free_path_out: vec3f = pu.SR_coated_subsurface_radius * pu.SR_coated_subsurface_scale;
-    var SR_coated_thin_walled_weight_out: f32 = f32((pu.SR_coated_thin_walled != 0));
-    var SR_coated_coat_absorption_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), pu.SR_coated_coat_color,
-                                                   vec3f(pu.SR_coated_coat));
-    var SR_coated_emission_edf_ior_minus_one_out: f32 = pu.SR_coated_coat_IOR - 1.0;
-    var SR_coated_emission_edf_ior_plus_one_out: f32 = pu.SR_coated_coat_IOR + 1.0;
-    var SR_coated_emission_edf_amplitude_ratio_out: f32 = SR_coated_emission_edf_ior_minus_one_out /
-                                                          SR_coated_emission_edf_ior_plus_one_out;
-    var SR_coated_emission_edf_f0_out: f32 = SR_coated_emission_edf_amplitude_ratio_out *
-                                             SR_coated_emission_edf_amplitude_ratio_out;
-    var SR_coated_emission_edf_t0_out: f32 = 1.0 - SR_coated_emission_edf_f0_out;
-    var SR_coated_emission_edf_tinted_t0_out: vec3f = pu.SR_coated_coat_color * SR_coated_emission_edf_t0_out;
-    var SR_coated_emission_edf_facing_out: vec3f = mix(vec3f(1.0, 1.0, 1.0),
-                                                       SR_coated_emission_edf_tinted_t0_out,
-                                                       vec3f(pu.SR_coated_coat));
-    var SR_coated_emission_edf_uncoated_out: f32 = 1.0 - pu.SR_coated_coat;
-    var SR_coated_emission_edf_grazing_out: vec3f = vec3f(SR_coated_emission_edf_uncoated_out);
-    var SR_coated_emission_radiance_out: vec3f = pu.SR_coated_emission_color * pu.SR_coated_emission;
-    var SR_coated_opacity_v_out: vec3f = pu.SR_coated_opacity;
-    var SR_coated_opacity_mean_out: f32 = dot(SR_coated_opacity_v_out, vec3f(0.333333, 0.333333, 0.333334));
-    var SR_coated_shader_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
+    var n0_out: vec2f;
+    mx_roughness_anisotropy(pu.u_n70_coat_roughness, pu.u_n70_coat_anisotropy, &n0_out);
+    var n1_out: vec3f = normalize(vd.normalWorld);
+    var n2_out: vec3f = normalize(vd.tangentWorld);
+    var n3_out: f32 = pu.u_n70_coat_rotation * 180.0;
+    var n4_out: vec3f;
+    mx_rotate3d_vector3(n2_out, n3_out, n1_out, &n4_out);
+    var n7_out: f32 = pu.u_n70_coat * pu.u_n70_coat_affect_color;
+    var n8_out: f32 = n7_out + 1.0;
+    var n9_out: vec3f = pow(pu.u_n70_base_color, vec3f(n8_out));
+    var n10_out: vec3f = n9_out * pu.u_n70_base;
+    var n11_ior: vec3f;
+    var n11_extinction: vec3f;
+    mx_artistic_ior(n10_out, pu.u_n70_specular_color, &n11_ior, &n11_extinction);
+    var n12_out: f32 = pu.u_n70_coat * pu.u_n70_coat_affect_roughness;
+    var n13_out: f32 = n12_out * pu.u_n70_coat_roughness;
+    var n14_out: f32 = mix(pu.u_n70_specular_roughness, 1.0, n13_out);
+    var n15_out: vec2f;
+    mx_roughness_anisotropy(n14_out, pu.u_n70_specular_anisotropy, &n15_out);
+    var n16_out: f32 = pu.u_n70_specular_rotation * 180.0;
+    var n17_out: vec3f;
+    mx_rotate3d_vector3(n2_out, n16_out, n1_out, &n17_out);
+    var n20_out: f32 = select(0.0, 1.0, pu.u_n70_transmission_depth > 0.0);
+    var n21_out: vec3f = mix(pu.u_n70_transmission_color, vec3f(1.0, 1.0, 1.0), vec3f(n20_out));
+    var n22_out: f32 = n14_out + pu.u_n70_transmission_extra_roughness;
+    var n23_out: f32 = clamp(n22_out, 0.0, 1.0);
+    var n24_out: vec2f;
+    mx_roughness_anisotropy(n23_out, pu.u_n70_specular_anisotropy, &n24_out);
+    var n26_out: vec3f = pu.u_n70_transmission_color;
+    var n27_out: vec3f = max(n26_out, vec3f(1.0e-6));
+    var n28_out: vec3f = log(n27_out);
+    var n29_out: f32 = max(pu.u_n70_transmission_depth, 1.0e-6);
+    var n30_out: vec3f = n28_out / n29_out;
+    var n31_out: vec3f = pu.u_n70_transmission_scatter;
+    var n32_out: vec3f = n31_out / n29_out;
+    var n33_out: vec3f = n30_out + n32_out;
+    var n34_out: vec3f = min(n33_out, vec3f(0.0));
+    var n35_out: vec3f = n34_out * -1.0;
+    var n39_out: vec3f = pow(pu.u_n70_subsurface_color, vec3f(n8_out));
+    var n41_out: vec3f = pu.u_n70_subsurface_radius * pu.u_n70_subsurface_scale;
+    var n43_out: f32 = f32((pu.u_n70_thin_walled != 0));
+    var n51_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), pu.u_n70_coat_color, vec3f(pu.u_n70_coat));
+    var n54_out: f32 = pu.u_n70_coat_IOR - 1.0;
+    var n55_out: f32 = pu.u_n70_coat_IOR + 1.0;
+    var n56_out: f32 = n54_out / n55_out;
+    var n57_out: f32 = n56_out * n56_out;
+    var n58_out: f32 = 1.0 - n57_out;
+    var n59_out: vec3f = pu.u_n70_coat_color * n58_out;
+    var n60_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), n59_out, vec3f(pu.u_n70_coat));
+    var n61_out: f32 = 1.0 - pu.u_n70_coat;
+    var n62_out: vec3f = vec3f(n61_out);
+    var n63_out: vec3f = pu.u_n70_emission_color * pu.u_n70_emission;
+    var n66_out: vec3f = pu.u_n70_opacity;
+    var n67_out: f32 = dot(n66_out, vec3f(0.333333, 0.333333, 0.333334));
+    var n68_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
     {
         var N: vec3f = normalize(vd.normalWorld);
         var V: vec3f = normalize(pu.u_viewPosition - vd.positionWorld);
         var P: vec3f = vd.positionWorld;
         var L: vec3f = vec3f(0.0);
         var occlusion: f32 = 1.0;
-        var surfaceOpacity: f32 = SR_coated_opacity_mean_out;
+        var surfaceOpacity: f32 = n67_out;
         // lobes under a mix: weight 0 where the mix leaves them out
-        var SR_coated_dielectric_reached: bool = pu.SR_coated_metalness != 1.0;
-        var SR_coated_opaque_base_reached: bool = SR_coated_dielectric_reached &&
-                                                  pu.SR_coated_transmission != 1.0;
-        var SR_coated_diffuse_brdf_active_weight: f32 = select(0.0, pu.SR_coated_base,
-                                                               SR_coated_opaque_base_reached &&
-                                                               pu.SR_coated_subsurface != 1.0);
-        var SR_coated_subsurface_bsdf_reached: bool = SR_coated_opaque_base_reached &&
-                                                      pu.SR_coated_subsurface != 0.0;
-        var SR_coated_volume_subsurface_active_weight: f32 = select(0.0, 1.0,
-                                                                    SR_coated_subsurface_bsdf_reached &&
-                                                                    SR_coated_thin_walled_weight_out != 1.0);
-        var SR_coated_thin_subsurface_active_weight: f32 = select(0.0, 1.0,
-                                                                  SR_coated_subsurface_bsdf_reached &&
-                                                                  SR_coated_thin_walled_weight_out != 0.0);
-        var SR_coated_transmission_bsdf_transmission_reached: bool = SR_coated_dielectric_reached &&
-                                                                     pu.SR_coated_transmission != 0.0;
-        var SR_coated_transmission_bsdf_interface_over_medium_reached: bool = SR_coated_transmission_bsdf_transmission_reached && SR_coated_transmission_bsdf_has_medium_out != 0.0;
-        var SR_coated_transmission_bsdf_interface_active_weight: f32 = select(0.0, 1.0, (SR_coated_transmission_bsdf_transmission_reached && SR_coated_transmission_bsdf_has_medium_out != 1.0) || SR_coated_transmission_bsdf_interface_over_medium_reached);
-        var SR_coated_specular_brdf_active_weight: f32 = select(0.0, pu.SR_coated_specular,
-                                                                SR_coated_dielectric_reached);
-        var SR_coated_metal_brdf_active_weight: f32 = select(0.0, 1.0, pu.SR_coated_metalness != 0.0);
+        var n48_reached: bool = pu.u_n70_metalness != 1.0;
+        var n46_reached: bool = n48_reached && pu.u_n70_transmission != 1.0;
+        var n45_active_weight: f32 = select(0.0, pu.u_n70_base, n46_reached && pu.u_n70_subsurface != 1.0);
+        var n44_reached: bool = n46_reached && pu.u_n70_subsurface != 0.0;
+        var n42_active_weight: f32 = select(0.0, 1.0, n44_reached && n43_out != 1.0);
+        var n40_active_weight: f32 = select(0.0, 1.0, n44_reached && n43_out != 0.0);
+        var n38_reached: bool = n48_reached && pu.u_n70_transmission != 0.0;
+        var n37_reached: bool = n38_reached && n20_out != 0.0;
+        var n25_active_weight: f32 = select(0.0, 1.0, (n38_reached && n20_out != 1.0) || n37_reached);
+        var n19_active_weight: f32 = select(0.0, pu.u_n70_specular, n48_reached);
+        var n18_active_weight: f32 = select(0.0, 1.0, pu.u_n70_metalness != 0.0);
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        var SR_coated_coat_brdf_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, pu.SR_coated_coat, vec3f(1.0, 1.0, 1.0),
-                                       pu.SR_coated_coat_IOR, SR_coated_coat_alpha_out, false, 0.0, 1.5,
-                                       geomprop_Nworld_out, SR_coated_coat_tangent_out, 0, 0,
-                                       &SR_coated_coat_brdf_lobe);
-        var SR_coated_metal_brdf_lobe: SpecularLobe;
-        mx_conductor_bsdf_prepare(pointData, SR_coated_metal_brdf_active_weight, SR_coated_metal_ior_ior,
-                                      SR_coated_metal_ior_extinction, SR_coated_specular_alpha_out, false,
-                                      pu.SR_coated_thin_film_thickness, pu.SR_coated_thin_film_IOR,
-                                      geomprop_Nworld_out, SR_coated_specular_tangent_out, 0,
-                                      &SR_coated_metal_brdf_lobe);
-        var SR_coated_specular_brdf_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, SR_coated_specular_brdf_active_weight,
-                                       pu.SR_coated_specular_color, pu.SR_coated_specular_IOR,
-                                       SR_coated_specular_alpha_out, false, pu.SR_coated_thin_film_thickness,
-                                       pu.SR_coated_thin_film_IOR, geomprop_Nworld_out,
-                                       SR_coated_specular_tangent_out, 0, 0, &SR_coated_specular_brdf_lobe);
-        var SR_coated_transmission_bsdf_interface_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, SR_coated_transmission_bsdf_interface_active_weight,
-                                       SR_coated_transmission_bsdf_interface_tint_out,
-                                       pu.SR_coated_specular_IOR, SR_coated_transmission_alpha_out, false,
-                                       0.0, 1.5, geomprop_Nworld_out, SR_coated_specular_tangent_out, 0, 1,
-                                       &SR_coated_transmission_bsdf_interface_lobe);
+        var n5_lobe: SpecularLobe;
+        mx_dielectric_bsdf_prepare(pointData, pu.u_n70_coat, vec3f(1.0, 1.0, 1.0), pu.u_n70_coat_IOR,
+                                       n0_out, false, 0.0, 1.5, n1_out, n4_out, 0, 0, &n5_lobe);
+        var n18_lobe: SpecularLobe;
+        mx_conductor_bsdf_prepare(pointData, n18_active_weight, n11_ior, n11_extinction, n15_out, false,
+                                      pu.u_n70_thin_film_thickness, pu.u_n70_thin_film_IOR, n1_out, n17_out,
+                                      0, &n18_lobe);
+        var n19_lobe: SpecularLobe;
+        mx_dielectric_bsdf_prepare(pointData, n19_active_weight, pu.u_n70_specular_color,
+                                       pu.u_n70_specular_IOR, n15_out, false, pu.u_n70_thin_film_thickness,
+                                       pu.u_n70_thin_film_IOR, n1_out, n17_out, 0, 0, &n19_lobe);
+        var n25_lobe: SpecularLobe;
+        mx_dielectric_bsdf_prepare(pointData, n25_active_weight, n21_out, pu.u_n70_specular_IOR, n24_out,
+                                       false, 0.0, 1.5, n1_out, n17_out, 0, 1, &n25_lobe);
         for (var activeLightIndex: i32 = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++) {
             var lightShader: lightshader;
             sampleLightSource(pu.u_lightData[activeLightIndex], vd.positionWorld, &lightShader);
             L = lightShader.direction;
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            var SR_coated_coat_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, &SR_coated_coat_brdf_out);
-            var SR_coated_sheen_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_sheen_bsdf(closureData, pu.SR_coated_sheen, pu.SR_coated_sheen_color,
-                              pu.SR_coated_sheen_roughness, geomprop_Nworld_out, 0, &SR_coated_sheen_brdf_out);
-            var SR_coated_metal_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_conductor_bsdf(closureData, SR_coated_metal_brdf_lobe, &SR_coated_metal_brdf_out);
-            var SR_coated_specular_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, &SR_coated_specular_brdf_out);
-            var SR_coated_transmission_bsdf_interface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_transmission_bsdf_interface_lobe,
-                                   &SR_coated_transmission_bsdf_interface_out);
-            var SR_coated_transmission_bsdf_medium_medium_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
-            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out,
-                                   SR_coated_transmission_bsdf_medium_scattering_out,
-                                   pu.SR_coated_transmission_scatter_anisotropy,
-                                   &SR_coated_transmission_bsdf_medium_medium_out);
-            var SR_coated_transmission_bsdf_interface_over_medium_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out,
-                             SR_coated_transmission_bsdf_medium_medium_out,
-                             &SR_coated_transmission_bsdf_interface_over_medium_out);
-            var SR_coated_transmission_bsdf_transmission_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out,
-                            SR_coated_transmission_bsdf_interface_out,
-                            SR_coated_transmission_bsdf_has_medium_out,
-                            &SR_coated_transmission_bsdf_transmission_out);
-            var SR_coated_thin_subsurface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_translucent_bsdf(closureData, SR_coated_thin_subsurface_active_weight,
-                                    SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out,
-                                    &SR_coated_thin_subsurface_out);
-            var SR_coated_volume_subsurface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_subsurface_bsdf(closureData, SR_coated_volume_subsurface_active_weight,
-                                   SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out,
-                                   pu.SR_coated_subsurface_anisotropy, geomprop_Nworld_out,
-                                   &SR_coated_volume_subsurface_out);
-            var SR_coated_subsurface_bsdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out,
-                            SR_coated_thin_walled_weight_out, &SR_coated_subsurface_bsdf_out);
-            var SR_coated_diffuse_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_diffuse_brdf_active_weight,
-                                           SR_coated_saturated_base_color_out, pu.SR_coated_diffuse_roughness,
-                                           geomprop_Nworld_out, false, &SR_coated_diffuse_brdf_out);
-            var SR_coated_opaque_base_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out,
-                            pu.SR_coated_subsurface, &SR_coated_opaque_base_out);
-            var SR_coated_dielectric_substrate_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out,
-                            SR_coated_opaque_base_out, pu.SR_coated_transmission,
-                            &SR_coated_dielectric_substrate_out);
-            var SR_coated_dielectric_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out,
-                              &SR_coated_dielectric_out);
-            var SR_coated_base_substrate_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out,
-                            pu.SR_coated_metalness, &SR_coated_base_substrate_out);
-            var SR_coated_sheen_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out,
-                              &SR_coated_sheen_layer_out);
-            var SR_coated_under_coat_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out,
-                                        &SR_coated_under_coat_out);
-            var SR_coated_coat_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out,
-                              &SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += lightShader.intensity * SR_coated_coat_layer_out.response;
+            var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n5_lobe, &n5_out);
+            var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_sheen_bsdf(closureData, pu.u_n70_sheen, pu.u_n70_sheen_color, pu.u_n70_sheen_roughness,
+                              n1_out, 0, &n6_out);
+            var n18_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_conductor_bsdf(closureData, n18_lobe, &n18_out);
+            var n19_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n19_lobe, &n19_out);
+            var n25_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n25_lobe, &n25_out);
+            var n36_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n70_transmission_scatter_anisotropy,
+                                   &n36_out);
+            var n37_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_vdf(closureData, n25_out, n36_out, &n37_out);
+            var n38_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, &n38_out);
+            var n40_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, &n40_out);
+            var n42_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out,
+                                   pu.u_n70_subsurface_anisotropy, n1_out, &n42_out);
+            var n44_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, &n44_out);
+            var n45_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, pu.u_n70_diffuse_roughness,
+                                           n1_out, false, &n45_out);
+            var n46_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n44_out, n45_out, pu.u_n70_subsurface, &n46_out);
+            var n47_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n38_out, n46_out, pu.u_n70_transmission, &n47_out);
+            var n48_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n19_out, n47_out, &n48_out);
+            var n49_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n18_out, n48_out, pu.u_n70_metalness, &n49_out);
+            var n50_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n6_out, n49_out, &n50_out);
+            var n52_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, &n52_out);
+            var n53_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n5_out, n52_out, &n53_out);
+            n68_out.color += lightShader.intensity * n53_out.response;
         }
         // environment
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            var SR_coated_coat_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, &SR_coated_coat_brdf_out);
-            var SR_coated_sheen_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_sheen_bsdf(closureData, pu.SR_coated_sheen, pu.SR_coated_sheen_color,
-                              pu.SR_coated_sheen_roughness, geomprop_Nworld_out, 0, &SR_coated_sheen_brdf_out);
-            var SR_coated_metal_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_conductor_bsdf(closureData, SR_coated_metal_brdf_lobe, &SR_coated_metal_brdf_out);
-            var SR_coated_specular_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, &SR_coated_specular_brdf_out);
-            var SR_coated_transmission_bsdf_interface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_transmission_bsdf_interface_lobe,
-                                   &SR_coated_transmission_bsdf_interface_out);
-            var SR_coated_transmission_bsdf_medium_medium_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
-            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out,
-                                   SR_coated_transmission_bsdf_medium_scattering_out,
-                                   pu.SR_coated_transmission_scatter_anisotropy,
-                                   &SR_coated_transmission_bsdf_medium_medium_out);
-            var SR_coated_transmission_bsdf_interface_over_medium_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out,
-                             SR_coated_transmission_bsdf_medium_medium_out,
-                             &SR_coated_transmission_bsdf_interface_over_medium_out);
-            var SR_coated_transmission_bsdf_transmission_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out,
-                            SR_coated_transmission_bsdf_interface_out,
-                            SR_coated_transmission_bsdf_has_medium_out,
-                            &SR_coated_transmission_bsdf_transmission_out);
-            var SR_coated_thin_subsurface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_translucent_bsdf(closureData, SR_coated_thin_subsurface_active_weight,
-                                    SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out,
-                                    &SR_coated_thin_subsurface_out);
-            var SR_coated_volume_subsurface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_subsurface_bsdf(closureData, SR_coated_volume_subsurface_active_weight,
-                                   SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out,
-                                   pu.SR_coated_subsurface_anisotropy, geomprop_Nworld_out,
-                                   &SR_coated_volume_subsurface_out);
-            var SR_coated_subsurface_bsdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out,
-                            SR_coated_thin_walled_weight_out, &SR_coated_subsurface_bsdf_out);
-            var SR_coated_diffuse_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_diffuse_brdf_active_weight,
-                                           SR_coated_saturated_base_color_out, pu.SR_coated_diffuse_roughness,
-                                           geomprop_Nworld_out, false, &SR_coated_diffuse_brdf_out);
-            var SR_coated_opaque_base_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out,
-                            pu.SR_coated_subsurface, &SR_coated_opaque_base_out);
-            var SR_coated_dielectric_substrate_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out,
-                            SR_coated_opaque_base_out, pu.SR_coated_transmission,
-                            &SR_coated_dielectric_substrate_out);
-            var SR_coated_dielectric_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out,
-                              &SR_coated_dielectric_out);
-            var SR_coated_base_substrate_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out,
-                            pu.SR_coated_metalness, &SR_coated_base_substrate_out);
-            var SR_coated_sheen_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out,
-                              &SR_coated_sheen_layer_out);
-            var SR_coated_under_coat_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out,
-                                        &SR_coated_under_coat_out);
-            var SR_coated_coat_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out,
-                              &SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
+            var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n5_lobe, &n5_out);
+            var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_sheen_bsdf(closureData, pu.u_n70_sheen, pu.u_n70_sheen_color, pu.u_n70_sheen_roughness,
+                              n1_out, 0, &n6_out);
+            var n18_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_conductor_bsdf(closureData, n18_lobe, &n18_out);
+            var n19_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n19_lobe, &n19_out);
+            var n25_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n25_lobe, &n25_out);
+            var n36_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n70_transmission_scatter_anisotropy,
+                                   &n36_out);
+            var n37_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_vdf(closureData, n25_out, n36_out, &n37_out);
+            var n38_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, &n38_out);
+            var n40_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, &n40_out);
+            var n42_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out,
+                                   pu.u_n70_subsurface_anisotropy, n1_out, &n42_out);
+            var n44_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, &n44_out);
+            var n45_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, pu.u_n70_diffuse_roughness,
+                                           n1_out, false, &n45_out);
+            var n46_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n44_out, n45_out, pu.u_n70_subsurface, &n46_out);
+            var n47_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n38_out, n46_out, pu.u_n70_transmission, &n47_out);
+            var n48_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n19_out, n47_out, &n48_out);
+            var n49_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n18_out, n48_out, pu.u_n70_metalness, &n49_out);
+            var n50_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n6_out, n49_out, &n50_out);
+            var n52_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, &n52_out);
+            var n53_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n5_out, n52_out, &n53_out);
+            n68_out.color += occlusion * n53_out.response;
         }
         // emission
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
-            var SR_coated_emission_edf_emission_out: vec3f = vec3f(0.0);
-            mx_uniform_edf(closureData, SR_coated_emission_radiance_out,
-                               &SR_coated_emission_edf_emission_out);
-            var SR_coated_emission_edf_through_coat_out: vec3f = vec3f(0.0);
-            mx_generalized_schlick_edf(closureData, SR_coated_emission_edf_facing_out,
-                                           SR_coated_emission_edf_grazing_out, 5.0,
-                                           SR_coated_emission_edf_emission_out,
-                                           &SR_coated_emission_edf_through_coat_out);
-            SR_coated_shader_out.color += SR_coated_emission_edf_through_coat_out;
+            var n64_out: vec3f = vec3f(0.0);
+            mx_uniform_edf(closureData, n63_out, &n64_out);
+            var n65_out: vec3f = vec3f(0.0);
+            mx_generalized_schlick_edf(closureData, n60_out, n62_out, 5.0, n64_out, &n65_out);
+            n68_out.color += n65_out;
         }
         // transmission, seen along the view direction
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_TRANSMISSION, L, V, N, P, occlusion);
-            var SR_coated_coat_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, &SR_coated_coat_brdf_out);
-            var SR_coated_sheen_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_sheen_bsdf(closureData, pu.SR_coated_sheen, pu.SR_coated_sheen_color,
-                              pu.SR_coated_sheen_roughness, geomprop_Nworld_out, 0, &SR_coated_sheen_brdf_out);
-            var SR_coated_metal_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_conductor_bsdf(closureData, SR_coated_metal_brdf_lobe, &SR_coated_metal_brdf_out);
-            var SR_coated_specular_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, &SR_coated_specular_brdf_out);
-            var SR_coated_transmission_bsdf_interface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_transmission_bsdf_interface_lobe,
-                                   &SR_coated_transmission_bsdf_interface_out);
-            var SR_coated_transmission_bsdf_medium_medium_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
-            mx_anisotropic_vdf(closureData, SR_coated_transmission_bsdf_medium_absorption_out,
-                                   SR_coated_transmission_bsdf_medium_scattering_out,
-                                   pu.SR_coated_transmission_scatter_anisotropy,
-                                   &SR_coated_transmission_bsdf_medium_medium_out);
-            var SR_coated_transmission_bsdf_interface_over_medium_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_vdf(closureData, SR_coated_transmission_bsdf_interface_out,
-                             SR_coated_transmission_bsdf_medium_medium_out,
-                             &SR_coated_transmission_bsdf_interface_over_medium_out);
-            var SR_coated_transmission_bsdf_transmission_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_interface_over_medium_out,
-                            SR_coated_transmission_bsdf_interface_out,
-                            SR_coated_transmission_bsdf_has_medium_out,
-                            &SR_coated_transmission_bsdf_transmission_out);
-            var SR_coated_thin_subsurface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_translucent_bsdf(closureData, SR_coated_thin_subsurface_active_weight,
-                                    SR_coated_saturated_subsurface_color_out, geomprop_Nworld_out,
-                                    &SR_coated_thin_subsurface_out);
-            var SR_coated_volume_subsurface_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_subsurface_bsdf(closureData, SR_coated_volume_subsurface_active_weight,
-                                   SR_coated_saturated_subsurface_color_out, SR_coated_mean_free_path_out,
-                                   pu.SR_coated_subsurface_anisotropy, geomprop_Nworld_out,
-                                   &SR_coated_volume_subsurface_out);
-            var SR_coated_subsurface_bsdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_thin_subsurface_out, SR_coated_volume_subsurface_out,
-                            SR_coated_thin_walled_weight_out, &SR_coated_subsurface_bsdf_out);
-            var SR_coated_diffuse_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, SR_coated_diffuse_brdf_active_weight,
-                                           SR_coated_saturated_base_color_out, pu.SR_coated_diffuse_roughness,
-                                           geomprop_Nworld_out, false, &SR_coated_diffuse_brdf_out);
-            var SR_coated_opaque_base_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_subsurface_bsdf_out, SR_coated_diffuse_brdf_out,
-                            pu.SR_coated_subsurface, &SR_coated_opaque_base_out);
-            var SR_coated_dielectric_substrate_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_transmission_bsdf_transmission_out,
-                            SR_coated_opaque_base_out, pu.SR_coated_transmission,
-                            &SR_coated_dielectric_substrate_out);
-            var SR_coated_dielectric_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_dielectric_substrate_out,
-                              &SR_coated_dielectric_out);
-            var SR_coated_base_substrate_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, SR_coated_metal_brdf_out, SR_coated_dielectric_out,
-                            pu.SR_coated_metalness, &SR_coated_base_substrate_out);
-            var SR_coated_sheen_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_sheen_brdf_out, SR_coated_base_substrate_out,
-                              &SR_coated_sheen_layer_out);
-            var SR_coated_under_coat_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_multiply_bsdf_color3(closureData, SR_coated_sheen_layer_out, SR_coated_coat_absorption_out,
-                                        &SR_coated_under_coat_out);
-            var SR_coated_coat_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_under_coat_out,
-                              &SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += SR_coated_coat_layer_out.response;
+            var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n5_lobe, &n5_out);
+            var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_sheen_bsdf(closureData, pu.u_n70_sheen, pu.u_n70_sheen_color, pu.u_n70_sheen_roughness,
+                              n1_out, 0, &n6_out);
+            var n18_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_conductor_bsdf(closureData, n18_lobe, &n18_out);
+            var n19_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n19_lobe, &n19_out);
+            var n25_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n25_lobe, &n25_out);
+            var n36_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n70_transmission_scatter_anisotropy,
+                                   &n36_out);
+            var n37_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_vdf(closureData, n25_out, n36_out, &n37_out);
+            var n38_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, &n38_out);
+            var n40_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, &n40_out);
+            var n42_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out,
+                                   pu.u_n70_subsurface_anisotropy, n1_out, &n42_out);
+            var n44_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, &n44_out);
+            var n45_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, pu.u_n70_diffuse_roughness,
+                                           n1_out, false, &n45_out);
+            var n46_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n44_out, n45_out, pu.u_n70_subsurface, &n46_out);
+            var n47_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n38_out, n46_out, pu.u_n70_transmission, &n47_out);
+            var n48_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n19_out, n47_out, &n48_out);
+            var n49_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_mix_bsdf(closureData, n18_out, n48_out, pu.u_n70_metalness, &n49_out);
+            var n50_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n6_out, n49_out, &n50_out);
+            var n52_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, &n52_out);
+            var n53_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n5_out, n52_out, &n53_out);
+            n68_out.color += n53_out.response;
         }
-        SR_coated_shader_out.color *= surfaceOpacity;
-        SR_coated_shader_out.transparency = mix(vec3f(1.0), SR_coated_shader_out.transparency,
-                                                vec3f(surfaceOpacity));
+        n68_out.color *= surfaceOpacity;
+        n68_out.transparency = mix(vec3f(1.0), n68_out.transparency, vec3f(surfaceOpacity));
     }
-    var Coated_out: surfaceshader = SR_coated_shader_out;
-    out1 = vec4f(Coated_out.color, 1.0 - dot(Coated_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
+    var n69_out: surfaceshader = n68_out;
+    out1 = vec4f(n69_out.color, 1.0 - dot(n69_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
     return out1;
 }

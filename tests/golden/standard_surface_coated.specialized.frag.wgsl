@@ -951,9 +951,9 @@ fn sampleLightSource(light: LightData, position: vec3f, result: ptr<function, li
 fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
-    var geomprop_Nworld_out: vec3f = normalize(vd.normalWorld);
-    var geomprop_Tworld_out: vec3f = normalize(vd.tangentWorld);
-    var SR_coated_shader_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
+    var n0_out: vec3f = normalize(vd.normalWorld);
+    var n1_out: vec3f = normalize(vd.tangentWorld);
+    var n7_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
     {
         var N: vec3f = normalize(vd.normalWorld);
         var V: vec3f = normalize(pu.u_viewPosition - vd.positionWorld);
@@ -963,57 +963,50 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
         var surfaceOpacity: f32 = 1.0;
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        var SR_coated_coat_brdf_lobe: SpecularLobe;
+        var n2_lobe: SpecularLobe;
         mx_dielectric_bsdf_prepare(pointData, 0.8, vec3f(1.0, 1.0, 1.0), 1.5, vec2f(0.0025, 0.0025),
-                                       false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
-                                       &SR_coated_coat_brdf_lobe);
-        var SR_coated_specular_brdf_lobe: SpecularLobe;
+                                       false, 0.0, 1.5, n0_out, n1_out, 0, 0, &n2_lobe);
+        var n3_lobe: SpecularLobe;
         mx_dielectric_bsdf_prepare(pointData, 1.0, vec3f(1.0, 1.0, 1.0), 1.5, vec2f(0.1225, 0.1225),
-                                       false, 0.0, 1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
-                                       &SR_coated_specular_brdf_lobe);
+                                       false, 0.0, 1.5, n0_out, n1_out, 0, 0, &n3_lobe);
         for (var activeLightIndex: i32 = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++) {
             var lightShader: lightshader;
             sampleLightSource(pu.u_lightData[activeLightIndex], vd.positionWorld, &lightShader);
             L = lightShader.direction;
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_REFLECTION, L, V, N, P, occlusion);
-            var SR_coated_coat_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, &SR_coated_coat_brdf_out);
-            var SR_coated_specular_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, &SR_coated_specular_brdf_out);
-            var SR_coated_diffuse_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3f(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out,
-                                           false, &SR_coated_diffuse_brdf_out);
-            var SR_coated_dielectric_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out,
-                              &SR_coated_dielectric_out);
-            var SR_coated_coat_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out,
-                              &SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += lightShader.intensity * SR_coated_coat_layer_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            var n3_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n3_lobe, &n3_out);
+            var n4_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3f(0.1, 0.25, 0.7), 0.0, n0_out, false,
+                                           &n4_out);
+            var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n3_out, n4_out, &n5_out);
+            var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n2_out, n5_out, &n6_out);
+            n7_out.color += lightShader.intensity * n6_out.response;
         }
         // environment
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            var SR_coated_coat_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, &SR_coated_coat_brdf_out);
-            var SR_coated_specular_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, &SR_coated_specular_brdf_out);
-            var SR_coated_diffuse_brdf_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3f(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out,
-                                           false, &SR_coated_diffuse_brdf_out);
-            var SR_coated_dielectric_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out,
-                              &SR_coated_dielectric_out);
-            var SR_coated_coat_layer_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out,
-                              &SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
+            var n2_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, &n2_out);
+            var n3_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_dielectric_bsdf(closureData, n3_lobe, &n3_out);
+            var n4_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3f(0.1, 0.25, 0.7), 0.0, n0_out, false,
+                                           &n4_out);
+            var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n3_out, n4_out, &n5_out);
+            var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n2_out, n5_out, &n6_out);
+            n7_out.color += occlusion * n6_out.response;
         }
-        SR_coated_shader_out.color *= surfaceOpacity;
-        SR_coated_shader_out.transparency = mix(vec3f(1.0), SR_coated_shader_out.transparency,
-                                                vec3f(surfaceOpacity));
+        n7_out.color *= surfaceOpacity;
+        n7_out.transparency = mix(vec3f(1.0), n7_out.transparency, vec3f(surfaceOpacity));
     }
-    var Coated_out: surfaceshader = SR_coated_shader_out;
-    out1 = vec4f(Coated_out.color, 1.0 - dot(Coated_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
+    var n8_out: surfaceshader = n7_out;
+    out1 = vec4f(n8_out.color, 1.0 - dot(n8_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
     return out1;
 }

@@ -441,9 +441,9 @@ void mx_layer_bsdf(ClosureData closureData, BSDF top, BSDF base, out BSDF result
 
 void main()
 {
-    vec3 geomprop_Nworld_out = normalize(vd_normalWorld);
-    vec3 geomprop_Tworld_out = normalize(vd_tangentWorld);
-    surfaceshader SR_coated_shader_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec3 n0_out = normalize(vd_normalWorld);
+    vec3 n1_out = normalize(vd_tangentWorld);
+    surfaceshader n7_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd_normalWorld);
         vec3 V = normalize(u_viewPosition - vd_positionWorld);
@@ -453,35 +453,30 @@ void main()
         float surfaceOpacity = 1.0;
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
-        SpecularLobe SR_coated_coat_brdf_lobe;
+        SpecularLobe n2_lobe;
         mx_dielectric_bsdf_prepare(pointData, 0.8, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.0025, 0.0025), false, 0.0,
-                                   1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
-                                   SR_coated_coat_brdf_lobe);
-        SpecularLobe SR_coated_specular_brdf_lobe;
+                                   1.5, n0_out, n1_out, 0, 0, n2_lobe);
+        SpecularLobe n3_lobe;
         mx_dielectric_bsdf_prepare(pointData, 1.0, vec3(1.0, 1.0, 1.0), 1.5, vec2(0.1225, 0.1225), false, 0.0,
-                                   1.5, geomprop_Nworld_out, geomprop_Tworld_out, 0, 0,
-                                   SR_coated_specular_brdf_lobe);
+                                   1.5, n0_out, n1_out, 0, 0, n3_lobe);
         // environment
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_INDIRECT, L, V, N, P, occlusion);
-            BSDF SR_coated_coat_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_coat_brdf_lobe, SR_coated_coat_brdf_out);
-            BSDF SR_coated_specular_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_dielectric_bsdf(closureData, SR_coated_specular_brdf_lobe, SR_coated_specular_brdf_out);
-            BSDF SR_coated_diffuse_brdf_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, geomprop_Nworld_out,
-                                       false, SR_coated_diffuse_brdf_out);
-            BSDF SR_coated_dielectric_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_specular_brdf_out, SR_coated_diffuse_brdf_out,
-                          SR_coated_dielectric_out);
-            BSDF SR_coated_coat_layer_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, SR_coated_coat_brdf_out, SR_coated_dielectric_out,
-                          SR_coated_coat_layer_out);
-            SR_coated_shader_out.color += occlusion * SR_coated_coat_layer_out.response;
+            BSDF n2_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n2_lobe, n2_out);
+            BSDF n3_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_dielectric_bsdf(closureData, n3_lobe, n3_out);
+            BSDF n4_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_oren_nayar_diffuse_bsdf(closureData, 1.0, vec3(0.1, 0.25, 0.7), 0.0, n0_out, false, n4_out);
+            BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n3_out, n4_out, n5_out);
+            BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n2_out, n5_out, n6_out);
+            n7_out.color += occlusion * n6_out.response;
         }
-        SR_coated_shader_out.color *= surfaceOpacity;
-        SR_coated_shader_out.transparency = mix(vec3(1.0), SR_coated_shader_out.transparency, surfaceOpacity);
+        n7_out.color *= surfaceOpacity;
+        n7_out.transparency = mix(vec3(1.0), n7_out.transparency, surfaceOpacity);
     }
-    surfaceshader Coated_out = SR_coated_shader_out;
-    out1 = vec4(Coated_out.color, 1.0 - dot(Coated_out.transparency, vec3(1.0 / 3.0)));
+    surfaceshader n8_out = n7_out;
+    out1 = vec4(n8_out.color, 1.0 - dot(n8_out.transparency, vec3(1.0 / 3.0)));
 }

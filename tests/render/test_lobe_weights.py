@@ -30,7 +30,7 @@ MIXED = material("blend", LOBES["metal"] + LOBES["matte"] + '<mix name="blend" t
 
 
 def test_the_mix_weight_gates_its_lobes_in_the_source():
-    main = GEN.prepare(MIXED).emit()["stages"]["pixel"].split("void main()")[1]
+    main = GEN.prepare(MIXED, names="document").emit()["stages"]["pixel"].split("void main()")[1]
     assert "metal_active_weight = (blend_mix != 0.0) ? metal_weight : 0.0;" in main
     assert "matte_active_weight = (blend_mix != 1.0) ? matte_weight : 0.0;" in main
     assert main.count("mx_conductor_bsdf_prepare(pointData, metal_active_weight,") == 1
@@ -39,7 +39,7 @@ def test_the_mix_weight_gates_its_lobes_in_the_source():
 
 
 def test_a_lobe_left_out_at_run_time_leaves_the_image_of_the_other(renderer):
-    mixed = GEN.prepare(MIXED).emit()
+    mixed = GEN.prepare(MIXED, names="document").emit()
     image = {}
     for weight in (0.0, 0.5, 1.0):
         image[weight] = renderer.render(set_value(mixed, "blend_mix", weight), size=32).rgba

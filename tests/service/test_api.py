@@ -43,8 +43,9 @@ def test_generate_wgsl_returns_both_modules_and_the_buffer_layout(client):
     assert rec["target"] == "wgsl", rec
     assert "@fragment" in rec["stages"]["pixel"] and "@vertex" in rec["stages"]["vertex"]
     members = {m["name"]: m for m in rec["layout"]["pixel"]["members"]}
-    assert "mul_in2" in members and members["mul_in2"]["offset"] % 4 == 0
-    assert "pu.mul_in2" in rec["stages"]["pixel"]
+    in2 = next(v["name"] for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["path"].endswith("mul/in2"))
+    assert in2 in members and members[in2]["offset"] % 4 == 0
+    assert f"pu.{in2}" in rec["stages"]["pixel"]
     listed = client.post("/v1/generate?target=wgsl&source=false", content=document("ramp.mtlx"), headers=XML).json()
     assert listed["stages"] == {"vertex": None, "pixel": None} and listed["layout"] == rec["layout"]
 
@@ -60,7 +61,18 @@ def test_source_false_gives_listings_only(client):
     assert rec["stages"] == {"vertex": None, "pixel": None}
     ShaderRecord.model_validate(rec)  # the response model (and so openapi.yaml) says a stage may be null
     names = [v["name"] for v in rec["blocks"]["pixel"]["PublicUniforms"]]
-    assert "mul_in2" in names
+    assert any(name.endswith("_in2") for name in names)
+
+
+def test_names_document_keeps_the_documents_names_in_the_source(client):
+    """Structural names by default (issue 23); `names: "document"` in the JSON body or the query
+    keeps the node names, and is another record."""
+    structural = generate(client, "ramp.mtlx").json()
+    named = generate(client, "ramp.mtlx", names="document").json()
+    queried = client.post("/v1/generate?names=document", content=document("ramp.mtlx"), headers=XML).json()
+    assert "mul_in2" not in structural["stages"]["pixel"] and "mul_in2" in named["stages"]["pixel"]
+    assert queried["stages"] == named["stages"] and named["hash"] != structural["hash"]
+    assert_error(generate(client, "ramp.mtlx", names="anonymous"), 422, "invalid_request")
 
 
 def test_specialized_with_keep_leaves_chosen_inputs_live(client):

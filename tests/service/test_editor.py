@@ -97,11 +97,12 @@ def test_the_editor_loads_with_controls_from_the_listing_and_no_console_errors(e
     assert js(editor, "window.shaderxEditor.preview !== null"), "no WebGL2 preview in Chromium"
     sections = js(editor, "[...document.querySelectorAll('#controls summary')].map(s => s.textContent)")
     assert {"Base", "Specular", "Coat"} <= set(sections)
-    metalness = editor.find_element("css selector", "[data-uniform=SR_gold_metalness] input[type=range]")
+    metalness = editor.find_element("css selector", "[data-path='SR_gold/metalness'] input[type=range]")
     assert (metalness.get_attribute("min"), metalness.get_attribute("max")) == ("0", "1")
-    assert editor.find_elements("css selector", "[data-uniform=SR_gold_base_color] input[type=color]")
-    assert editor.find_elements("css selector", "[data-uniform=SR_gold_thin_walled] input[type=checkbox]")
-    assert "uniform float SR_gold_metalness;" in editor.find_element("id", "output").text
+    assert editor.find_elements("css selector", "[data-path='SR_gold/base_color'] input[type=color]")
+    assert editor.find_elements("css selector", "[data-path='SR_gold/thin_walled'] input[type=checkbox]")
+    uniform = editor.find_element("css selector", "[data-path='SR_gold/metalness']").get_attribute("data-uniform")
+    assert f"uniform float {uniform};" in editor.find_element("id", "output").text  # the control binds by the listing
     assert js(editor, "window.shaderxEditor.preview.stats.compiles") == 1
     screenshot(editor, "editor.png", tmp_path)
 
@@ -111,14 +112,14 @@ def test_a_slider_changes_the_canvas_on_the_gpu_without_a_request(editor, tmp_pa
 
     before = canvas_pixels(editor, tmp_path)
     requests, draws = js(editor, "window.shaderxEditor.traffic.generate"), js(editor, "window.shaderxEditor.preview.stats.draws")
-    track = editor.find_element("css selector", "[data-uniform=SR_gold_specular_roughness] input[type=range]")
+    track = editor.find_element("css selector", "[data-path='SR_gold/specular_roughness'] input[type=range]")
     ActionChains(editor).move_to_element_with_offset(track, track.size["width"] // 2 - 4, 0).click().perform()
     wait_for_draw(editor, draws)
     after = canvas_pixels(editor, tmp_path)
     changed = float((np.abs(after - before).max(axis=2) > 2 / 255).mean())
     assert changed > 0.05, f"only {changed:.1%} of the pixels changed"
     assert js(editor, "window.shaderxEditor.traffic.generate") == requests
-    roughness = float(editor.find_element("css selector", "[data-uniform=SR_gold_specular_roughness] input[type=number]")
+    roughness = float(editor.find_element("css selector", "[data-path='SR_gold/specular_roughness'] input[type=number]")
                       .get_attribute("value"))
     assert roughness > 0.9
     # the document follows the control; generating it again gives the same source: no recompile
@@ -168,8 +169,8 @@ def test_an_enum_is_a_menu_and_listings_alone_are_asked_without_source(editor, t
     from selenium.webdriver.support.select import Select
 
     Select(editor.find_element("id", "example")).select_by_value("saturated_plastic.mtlx")
-    wait_until(lambda: editor.find_elements("css selector", "[data-uniform=tint_lumacoeffs] select"), 60, "the menu")
-    menu = Select(editor.find_element("css selector", "[data-uniform=tint_lumacoeffs] select"))
+    wait_until(lambda: editor.find_elements("css selector", "[data-path='NG_tint/tint/lumacoeffs'] select"), 60, "the menu")
+    menu = Select(editor.find_element("css selector", "[data-path='NG_tint/tint/lumacoeffs'] select"))
     assert [o.text for o in menu.options] == ["acescg", "rec709", "rec2020", "rec2100"]
     assert menu.first_selected_option.text == "rec709"
     draws = js(editor, "window.shaderxEditor.preview.stats.draws")

@@ -48,6 +48,7 @@ function row(variable, control) {
   const div = document.createElement("div");
   div.className = "control" + (variable.ui?.advanced ? " advanced" : "");
   div.dataset.uniform = variable.name;
+  div.dataset.path = variable.path ?? "";  // the element it edits: uniform names come from the graph's structure
   const label = document.createElement("label");
   label.textContent = variable.ui?.name ?? lastName(variable.path) ?? variable.name;
   label.title = [variable.path, variable.ui?.doc].filter(Boolean).join("\n");

@@ -1,0 +1,142 @@
+"""`shadergen render --batch DIR_OR_LIST -o OUTDIR`: a library's thumbnails in one process.
+
+One generator and one renderer for the whole batch: the library is loaded once, and a compiled
+program serves every material of its topology (value-free `complete` source and structural names:
+a new material of a known topology is a bind and a draw). Every material gets one line in
+OUTDIR/results.jsonl, its PNG's path or its error record; a broken document is an error record
+beside the others' thumbnails, never the end of the batch.
+"""
+import json
+import os
+import sys
+import time
+
+from .errors import RenderError
+from .imageio import write_image
+
+DOCUMENT_SUFFIXES = (".mtlx", ".usda", ".usd", ".usdc", ".usdz")
+RESULTS = "results.jsonl"
+
+
+def batch_documents(spec: str) -> tuple[str, list[str]]:
+    """(the folder the documents' output names are relative to, the documents): every document
+    under a folder (recursively, sorted), or the paths a list file names one per line (relative to
+    its folder; blank lines and lines starting with # skipped)."""
+    if os.path.isdir(spec):
+        found = [os.path.join(folder, name) for folder, _, names in os.walk(spec) for name in names
+                 if name.lower().endswith(DOCUMENT_SUFFIXES)]
+        if not found:
+            raise RenderError("invalid_request", f"no documents ({', '.join(DOCUMENT_SUFFIXES)}) under {spec}", spec)
+        return spec, sorted(found)
+    try:
+        with open(spec, encoding="utf-8") as f:
+            lines = [line.strip() for line in f]
+    except (OSError, UnicodeDecodeError) as exc:
+        raise RenderError("invalid_request", f"cannot read the batch list {spec}: "
+                          f"{getattr(exc, 'strerror', None) or exc}", spec) from None
+    root = os.path.dirname(os.path.abspath(spec))
+    paths = [os.path.join(root, line) for line in lines if line and not line.startswith("#")]
+    if not paths:
+        raise RenderError("invalid_request", f"the batch list {spec} names no documents", spec)
+    return root, paths
+
+
+def output_name(root: str, document: str, element: str | None) -> str:
+    """The PNG's path under OUTDIR: the document's path from `root` without its suffix, then the
+    element (`/` spelled `_`): documents of one name in different folders keep apart."""
+    relative = os.path.relpath(os.path.abspath(document), os.path.abspath(root))
+    if relative.startswith(os.pardir):  # a list may name documents outside its folder
+        relative = os.path.basename(document)
+    stem = os.path.splitext(relative)[0]
+    return os.path.join(stem, f"{(element or 'shader').replace('/', '_')}.png")
+
+
+class Progress:
+    """A bar on a terminal (rewritten in place), else a line at every tenth of the batch."""
+
+    def __init__(self, total: int, stream=None):
+        self.total, self.done = total, 0
+        self.stream = stream or sys.stderr
+        self.tty = self.stream.isatty()
+        self.started = time.perf_counter()
+
+    def step(self, label: str, errors: int, compiled: int) -> None:
+        self.done += 1
+        counts = f"{self.done}/{self.total} documents, {errors} errors, {compiled} programs compiled"
+        if self.tty:
+            filled = 30 * self.done // self.total
+            self.stream.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {counts} {label[-30:]:30}")
+            if self.done == self.total:
+                self.stream.write("\n")
+            self.stream.flush()
+        elif self.done * 10 // self.total != (self.done - 1) * 10 // self.total:
+            self.stream.write(f"shadergen render: {counts}\n")
+
+    def seconds(self) -> float:
+        return time.perf_counter() - self.started
+
+
+def run_batch(args, renderer, env, target: str) -> int:
+    """Thumbnails of every material of every document of `args.batch` under `args.output`."""
+    from shadergen.api import DocumentFile, default_generator
+
+    if args.exr or args.npy or not args.output:
+        raise RenderError("invalid_request", "--batch writes PNGs under -o OUTDIR (no --exr or --npy)")
+    root, documents = batch_documents(args.batch)
+    os.makedirs(args.output, exist_ok=True)
+    generator = default_generator()
+    options = dict(target=target, all=True, interface=args.interface or "complete", environment=args.env_method,
+                   lights=bool(args.lights))
+    progress = Progress(len(documents))
+    counts = {"materials": 0, "thumbnails": 0, "errors": 0}
+    written: set[str] = set()
+    with open(os.path.join(args.output, RESULTS), "w", encoding="utf-8") as results:
+        for document in documents:
+            for result in _document_results(generator.records(DocumentFile(document), **options), document, root,
+                                            args, renderer, env, written):
+                counts["materials"] += 1
+                counts["errors" if "error" in result else "thumbnails"] += 1
+                results.write(json.dumps(result) + "\n")
+                if args.json:
+                    print(json.dumps(result))
+            progress.step(os.path.basename(document), counts["errors"], renderer.program_counts["compiled"])
+    programs = renderer.program_counts
+    print(f"shadergen render: {len(documents)} documents, {counts['materials']} materials: {counts['thumbnails']} "
+          f"thumbnails, {counts['errors']} errors; {programs['compiled']} programs compiled, {programs['reused']} "
+          f"reused; {progress.seconds():.1f} s; results in {os.path.join(args.output, RESULTS)}", file=sys.stderr)
+    return 0 if counts["errors"] == 0 else 1
+
+
+def _document_results(records, document: str, root: str, args, renderer, env, written: set[str]):
+    """One result per material of the document: its thumbnail written, or its error record."""
+    base = {"document": document}
+    try:
+        for record in records:
+            yield _thumbnail(record, document, root, args, renderer, env, written)
+    except Exception as exc:  # a document the generator could not even start on: its record, not a traceback
+        yield dict(base, element=None, error={"code": "internal_error", "message": f"{type(exc).__name__}: {exc}",
+                                              "where": None})
+
+
+def _thumbnail(record: dict, document: str, root: str, args, renderer, env, written: set[str]) -> dict:
+    result = {"document": document, "element": record.get("element")}
+    if "error" in record:
+        return dict(result, error=record["error"])
+    path = os.path.join(args.output, output_name(root, document, record["element"]))
+    if path in written:
+        return dict(result, error={"code": "output_collision", "message": f"{path} was already written in this batch",
+                                   "where": path})
+    try:
+        drawn = renderer.render(record, size=args.size, mesh=args.mesh, env=env, env_samples=args.env_samples,
+                                env_method=args.env_method, lights=args.lights, supersample=args.ss,
+                                document_dir=os.path.dirname(os.path.abspath(document)))
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        write_image(path, drawn.rgba, background=args.background)
+    except RenderError as exc:
+        return dict(result, error=exc.to_dict())
+    except Exception as exc:  # one material's failure is its record; the batch goes on
+        return dict(result, error={"code": "internal_error", "message": f"{type(exc).__name__}: {exc}",
+                                   "where": record.get("element")})
+    written.add(path)
+    return dict(result, png=path, program_reused=drawn.program_reused, timings_ms=drawn.timings_ms,
+                warnings=drawn.warnings)
