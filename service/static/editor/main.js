@@ -2,25 +2,28 @@
 // or the error where it belongs). A control's change goes to the GPU and into the document
 // text; only Generate (or a new document, material or interface) asks the server again.
 
-import { exampleDocument, generate, traffic } from "./api.js";
+import { exampleDocument, generate, generatePackage, traffic } from "./api.js";
 import { buildControls } from "./controls.js";
 import { materials, parseDocument, serialize, setInputValue } from "./documents.js";
+import { acceptDrops } from "./drops.js";
+import { DroppedFiles } from "./files.js";
 import { Preview } from "./preview.js";
 
 const $ = (id) => document.getElementById(id);
 const page = {
   document: $("document"), error: $("error"), status: $("status"), material: $("material"),
   interface: $("interface"), live: $("live"), controls: $("controls"), output: $("output"),
-  note: $("preview-note"), canvas: $("preview"),
+  note: $("preview-note"), canvas: $("preview"), textures: $("textures"),
 };
-const state = { record: null, tab: "pixel", preview: null, xml: null };
+// `package`: a dropped usdz generated as it is, instead of the document text
+const state = { record: null, tab: "pixel", preview: null, xml: null, files: new DroppedFiles(), package: null };
 
 // for the browser tests and for anyone curious in the console
-window.shaderxEditor = { state, traffic, ready: false };
+window.shaderxEditor = { state, traffic, ready: false, runs: 0 };  // runs: records shown (or failed)
 
 async function start() {
   try {
-    state.preview = await Preview.create(page.canvas);
+    state.preview = await Preview.create(page.canvas, state.files);
     if (!state.preview) page.note.textContent = "This browser has no WebGL2: listings only.";
   } catch (failure) {
     page.note.textContent = `No live preview: ${failure.message}`;
@@ -32,6 +35,14 @@ async function start() {
   $("upload").addEventListener("change", async (event) => {
     const file = event.target.files[0];
     if (file) await openDocument(await file.text());
+  });
+  acceptDrops(document.body, state.files, {
+    open: (dropped) => (dropped.package ? openPackage(dropped.package, dropped.name) : openDocument(dropped.text)),
+    texturesChanged: async () => {
+      if (state.preview && state.record?.stages?.pixel) await state.preview.reloadTextures(state.record);
+      showTextures();
+    },
+    failed: (failure) => showError({ error: { code: "invalid_drop", message: failure.message, where: null } }),
   });
   $("generate").addEventListener("click", () => run());
   page.material.addEventListener("change", () => run());
@@ -50,7 +61,16 @@ async function loadExample(name) {
 }
 
 async function openDocument(text) {
+  state.package = null;
+  page.document.readOnly = false;
   page.document.value = text;
+  await run();
+}
+
+async function openPackage(blob, name) {
+  state.package = { blob, name };
+  page.document.readOnly = true;
+  page.document.value = `${name}: a usdz package, generated as it is (its layers are not edited here)`;
   await run();
 }
 
@@ -65,15 +85,18 @@ function refreshMaterials() {
 // listing is needed, so the source is not requested.
 async function run() {
   const text = page.document.value;
-  state.xml = parseDocument(text);
+  state.xml = state.package ? null : parseDocument(text);
   refreshMaterials();
   const source = page.live.checked && state.preview !== null;
   page.status.textContent = "generating…";
-  const record = await generate(text, {
-    element: page.material.value || null, interface: page.interface.value, source,
-  });
+  const options = { element: page.material.value || null, interface: page.interface.value, source };
+  const record = state.package ? await generatePackage(state.package.blob, options) : await generate(text, options);
   page.status.textContent = `${traffic.generate} requests`;
-  if (record.error) return showError(record);
+  if (record.error) {
+    showError(record);
+    window.shaderxEditor.runs += 1;
+    return;
+  }
   page.error.hidden = true;
   state.record = record;
   const uniforms = record.blocks.pixel?.PublicUniforms ?? [];
@@ -82,7 +105,9 @@ async function run() {
     `${record.cached ? " (cached)" : ""}; ${traffic.generate} requests`;
   if (source) await showPreview(record);
   else page.note.textContent = state.preview ? "Live preview off: listings only (source: false)." : page.note.textContent;
+  showTextures();
   showTab(state.tab);
+  window.shaderxEditor.runs += 1;
 }
 
 async function showPreview(record) {
@@ -102,6 +127,18 @@ function changeValue(variable, value, text, type) {
   if (state.xml && variable.path && setInputValue(state.xml, variable.path, type, text)) {
     page.document.value = serialize(state.xml);
   }
+}
+
+// Each file texture of the record shown: where it came from, or why its default colour is drawn.
+function showTextures() {
+  const files = state.preview ? [...state.preview.files.values()] : [];
+  page.textures.replaceChildren(...files.map(({ request, from, problem }) => {
+    const item = document.createElement("li");
+    item.dataset.sampler = request.name;
+    item.className = problem ? "missing" : "loaded";
+    item.textContent = problem ? `${request.file}: default colour (${problem})` : `${request.file} (${from})`;
+    return item;
+  }));
 }
 
 function showError(record) {
