@@ -18,6 +18,10 @@ export async function generatePackage(blob, { element = null, target = "essl", i
   return answer(await request(`v1/generate?${query}`, init));
 }
 
+export async function nodedefs() {
+  return answer(await request("v1/nodedefs"));
+}
+
 export async function previewScene() {
   return answer(await request("v1/preview/scene"));
 }

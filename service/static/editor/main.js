@@ -1,12 +1,16 @@
-// The editor page: a document in, the server's record out (controls, preview, source, passes,
-// or the error where it belongs). A control's change goes to the GPU and into the document
-// text; only Generate (or a new document, material or interface) asks the server again.
+// The editor page: a document in, the server's record out (controls, graph, preview, source,
+// passes, or the error where it belongs). A value edit (a control, a value in the graph's
+// inspector) goes to the GPU and into the document text; a topology edit (edits.js), Generate,
+// or a new document, material or interface asks the server again.
 
-import { exampleDocument, generate, generatePackage, traffic } from "./api.js";
+import { exampleDocument, generate, generatePackage, nodedefs, traffic } from "./api.js";
 import { buildControls } from "./controls.js";
-import { materials, parseDocument, serialize, setInputValue } from "./documents.js";
+import { materials, parseDocument } from "./documents.js";
 import { acceptDrops } from "./drops.js";
+import { Edits } from "./edits.js";
 import { DroppedFiles } from "./files.js";
+import { GraphEditor } from "./grapheditor.js";
+import { Library } from "./library.js";
 import { Preview } from "./preview.js";
 
 const $ = (id) => document.getElementById(id);
@@ -20,6 +24,8 @@ const state = { record: null, tab: "pixel", preview: null, xml: null, files: new
 
 // for the browser tests and for anyone curious in the console
 window.shaderxEditor = { state, traffic, ready: false, runs: 0 };  // runs: records shown (or failed)
+state.edits = new Edits({ state, textarea: page.document, run: () => run(), refresh: () => refresh() });
+window.shaderxEditor.timings = state.edits.timings;
 
 async function start() {
   try {
@@ -29,6 +35,24 @@ async function start() {
     page.note.textContent = `No live preview: ${failure.message}`;
   }
   window.shaderxEditor.preview = state.preview;
+  const definitions = await nodedefs();
+  if (definitions.error) page.note.textContent = `No node palette: ${definitions.error.message}`;
+  state.graph = new GraphEditor({ canvas: $("graph"), crumbs: $("graph-crumbs"), inspector: $("inspector"),
+                                  search: $("palette-search"), palette: $("palette"), note: $("graph-note") },
+                                new Library(definitions.error ? [] : definitions),
+                                { xml: () => state.xml, topology: (mutate) => state.edits.topology(mutate),
+                                  value: (path, type, text) => state.edits.value(path, type, text) });
+  window.shaderxEditor.graph = state.graph;
+  $("undo").addEventListener("click", () => state.edits.undo());
+  $("redo").addEventListener("click", () => state.edits.redo());
+  window.addEventListener("keydown", (event) => {
+    if (!(event.ctrlKey || event.metaKey) || event.target.closest?.("input, textarea")) return;
+    const key = event.key.toLowerCase();
+    if (key === "z" && !event.shiftKey) state.edits.undo();
+    else if (key === "y" || (key === "z" && event.shiftKey)) state.edits.redo();
+    else return;
+    event.preventDefault();
+  });
   page.live.checked = state.preview !== null;
   page.live.disabled = state.preview === null;
   $("example").addEventListener("change", (event) => event.target.value && loadExample(event.target.value));
@@ -48,8 +72,11 @@ async function start() {
   page.material.addEventListener("change", () => run());
   page.interface.addEventListener("change", () => run());
   page.live.addEventListener("change", () => run());
-  for (const button of document.querySelectorAll("nav button")) {
+  for (const button of document.querySelectorAll("#output-pane nav button")) {
     button.addEventListener("click", () => showTab(button.dataset.tab));
+  }
+  for (const button of document.querySelectorAll("#document-pane nav button")) {
+    button.addEventListener("click", () => showDocumentView(button.dataset.view));
   }
   await loadExample("gold.mtlx");
   window.shaderxEditor.ready = true;
@@ -92,15 +119,16 @@ async function run() {
   const options = { element: page.material.value || null, interface: page.interface.value, source };
   const record = state.package ? await generatePackage(state.package.blob, options) : await generate(text, options);
   page.status.textContent = `${traffic.generate} requests`;
+  state.graph?.show();
   if (record.error) {
     showError(record);
     window.shaderxEditor.runs += 1;
-    return;
+    return false;
   }
   page.error.hidden = true;
   state.record = record;
   const uniforms = record.blocks.pixel?.PublicUniforms ?? [];
-  const sections = buildControls(page.controls, uniforms, changeValue);
+  const sections = buildControls(page.controls, uniforms, (...change) => state.edits.control(...change));
   page.status.textContent = `${record.element}: ${uniforms.length} public uniforms in ${sections} sections` +
     `${record.cached ? " (cached)" : ""}; ${traffic.generate} requests`;
   if (source) await showPreview(record);
@@ -108,6 +136,19 @@ async function run() {
   showTextures();
   showTab(state.tab);
   window.shaderxEditor.runs += 1;
+  return source;
+}
+
+// After a value edit: the controls show the values, the graph the document.
+function refresh() {
+  if (state.record) buildControls(page.controls, state.record.blocks.pixel?.PublicUniforms ?? [], (...change) => state.edits.control(...change));
+  state.graph?.show();
+}
+
+function showDocumentView(view) {
+  for (const button of document.querySelectorAll("#document-pane nav button")) button.classList.toggle("active", button.dataset.view === view);
+  $("graph-view").hidden = view !== "graph";
+  page.document.hidden = view !== "text";
 }
 
 async function showPreview(record) {
@@ -117,15 +158,6 @@ async function showPreview(record) {
     page.note.textContent = state.preview.stats.compiles > compiles ? "compiled" : "same source: no recompile";
   } catch (failure) {
     showError({ element: record.element, error: { code: "webgl_compile", message: failure.message, where: record.element } });
-  }
-}
-
-function changeValue(variable, value, text, type) {
-  state.preview?.setUniform(variable.name, value);
-  variable.value = value;
-  // keep the document in step, so Generate (or a download) sees what the controls show
-  if (state.xml && variable.path && setInputValue(state.xml, variable.path, type, text)) {
-    page.document.value = serialize(state.xml);
   }
 }
 
@@ -155,7 +187,7 @@ function showError(record) {
 
 function showTab(tab) {
   state.tab = tab;
-  for (const button of document.querySelectorAll("nav button")) button.classList.toggle("active", button.dataset.tab === tab);
+  for (const button of document.querySelectorAll("#output-pane nav button")) button.classList.toggle("active", button.dataset.tab === tab);
   const record = state.record;
   if (!record) return void (page.output.textContent = "");
   if (tab === "passes") page.output.textContent = passesReport(record.passes);

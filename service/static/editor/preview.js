@@ -68,6 +68,7 @@ export class Preview {
                   background: gl.getUniformLocation(post, "u_background") };
     this.postVao = gl.createVertexArray();
     this.pending = false;
+    this.frameWaiters = [];
   }
 
   buffer(kind, data) {
@@ -232,6 +233,12 @@ export class Preview {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindVertexArray(null);
     this.stats.draws += 1;
+    this.frameWaiters.splice(0).forEach((resolve) => resolve());
+  }
+
+  // Resolves once the next frame is drawn: how the page times an edit to its frame.
+  nextFrame() {
+    return new Promise((resolve) => this.frameWaiters.push(resolve));
   }
 }
 
