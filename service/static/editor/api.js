@@ -9,12 +9,13 @@ export async function generate(document, { element = null, target = "essl", inte
   return answer(await request("v1/generate", { method: "POST", headers: { "content-type": "application/json" }, body }));
 }
 
-// A usdz package (its textures are its own members) generated as it is, the options in the query.
-export async function generatePackage(blob, { element = null, target = "essl", interface: mode = "complete", source = true } = {}) {
+// A USD layer or usdz package (whose textures are its own members) generated as it is, the
+// options in the query.
+export async function generateUsd(blob, media, { element = null, target = "essl", interface: mode = "complete", source = true } = {}) {
   traffic.generate += 1;
   const query = new URLSearchParams({ target, interface: mode, source: String(source) });
   if (element) query.set("element", element);
-  const init = { method: "POST", headers: { "content-type": "model/vnd.usdz+zip" }, body: blob };
+  const init = { method: "POST", headers: { "content-type": media }, body: blob };
   return answer(await request(`v1/generate?${query}`, init));
 }
 

@@ -1,13 +1,14 @@
 // Drops on the page: images, a folder, a .zip or a .usdz. Every file joins the page's dropped
 // files (files.js), which document references are resolved against; a MaterialX document among
-// them (a dropped one, or one inside the archive) is opened, else a usdz package is generated as
-// it is (its textures being its own members).
+// them (a dropped one, or one inside the archive) is opened, else a USD layer or usdz package is
+// generated as it is (a package's textures being its own members).
 
 import { droppedEntries } from "./files.js";
 
-const DOCUMENT = /\.(mtlx|xml)$/i, PACKAGE = /\.usdz$/i;
+const DOCUMENT = /\.(mtlx|xml)$/i;
+const USD = [[/\.usdz$/i, "model/vnd.usdz+zip"], [/\.usda$/i, "model/vnd.usda"]];
 
-// `open({ text, name } | { package: blob, name })` for a document; `texturesChanged()` otherwise.
+// `open({ text, name } | { usd: { blob, media, name } })` for a document; `texturesChanged()` otherwise.
 export function acceptDrops(target, files, { open, texturesChanged, failed }) {
   target.addEventListener("dragover", (event) => {
     event.preventDefault();
@@ -19,9 +20,10 @@ export function acceptDrops(target, files, { open, texturesChanged, failed }) {
       const dropped = await droppedEntries(event.dataTransfer);
       const added = await files.add(dropped);
       const document = added.find((entry) => DOCUMENT.test(entry.path));
-      const pack = dropped.find((entry) => PACKAGE.test(entry.path));
+      const usd = dropped.map((entry) => ({ entry, media: USD.find(([pattern]) => pattern.test(entry.path))?.[1] }))
+        .find(({ media }) => media);
       if (document) await open({ text: await document.blob.text(), name: document.path });
-      else if (pack) await open({ package: pack.blob, name: pack.path });
+      else if (usd) await open({ usd: { blob: usd.entry.blob, media: usd.media, name: usd.entry.path } });
       else await texturesChanged(added.map((entry) => entry.path));
     } catch (failure) {
       failed(failure);

@@ -57,7 +57,11 @@ export class GraphEditor {
   // Draw the scope shown from the document as it is now (the top, if the scope is gone).
   show() {
     const xml = this.page.xml();
-    if (!xml) return;
+    if (!xml) {  // a USD layer or package: generated as it is, not drawn here
+      this.view.draw({ boxes: [], wires: [] });
+      this.elements.inspector.replaceChildren();
+      return;
+    }
     if (!scopeElement(xml, this.scope)) this.scope = "";
     const graph = readScope(xml, this.scope, this.library);
     this.graph = graph;

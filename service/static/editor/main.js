@@ -3,15 +3,17 @@
 // inspector) goes to the GPU and into the document text; a topology edit (edits.js), Generate,
 // or a new document, material or interface asks the server again.
 
-import { exampleDocument, generate, generatePackage, nodedefs, traffic } from "./api.js";
+import { exampleDocument, generate, generateUsd, nodedefs, traffic } from "./api.js";
 import { buildControls } from "./controls.js";
 import { materials, parseDocument } from "./documents.js";
 import { acceptDrops } from "./drops.js";
 import { Edits } from "./edits.js";
+import { installExports } from "./exports.js";
 import { DroppedFiles } from "./files.js";
 import { GraphEditor } from "./grapheditor.js";
 import { Library } from "./library.js";
 import { Preview } from "./preview.js";
+import { documentFromFragment } from "./share.js";
 
 const $ = (id) => document.getElementById(id);
 const page = {
@@ -19,8 +21,8 @@ const page = {
   interface: $("interface"), live: $("live"), controls: $("controls"), output: $("output"),
   note: $("preview-note"), canvas: $("preview"), textures: $("textures"),
 };
-// `package`: a dropped usdz generated as it is, instead of the document text
-const state = { record: null, tab: "pixel", preview: null, xml: null, files: new DroppedFiles(), package: null };
+// `usd`: a dropped USD layer or usdz generated as it is ({ blob, media, name }), instead of the text
+const state = { record: null, tab: "pixel", preview: null, xml: null, files: new DroppedFiles(), usd: null, name: "material" };
 
 // for the browser tests and for anyone curious in the console
 window.shaderxEditor = { state, traffic, ready: false, runs: 0 };  // runs: records shown (or failed)
@@ -61,12 +63,12 @@ async function start() {
     if (file) await openDocument(await file.text());
   });
   acceptDrops(document.body, state.files, {
-    open: (dropped) => (dropped.package ? openPackage(dropped.package, dropped.name) : openDocument(dropped.text)),
+    open: (dropped) => (dropped.usd ? openUsd(dropped.usd) : openDocument(dropped.text, dropped.name)),
     texturesChanged: async () => {
       if (state.preview && state.record?.stages?.pixel) await state.preview.reloadTextures(state.record);
       showTextures();
     },
-    failed: (failure) => showError({ error: { code: "invalid_drop", message: failure.message, where: null } }),
+    failed: (failure) => showError({ error: { code: "invalid_drop", message: failure.message || String(failure), where: null } }),
   });
   $("generate").addEventListener("click", () => run());
   page.material.addEventListener("change", () => run());
@@ -78,28 +80,43 @@ async function start() {
   for (const button of document.querySelectorAll("#document-pane nav button")) {
     button.addEventListener("click", () => showDocumentView(button.dataset.view));
   }
-  await loadExample("gold.mtlx");
+  window.shaderxEditor.exports = installExports(
+    { mtlx: $("save-mtlx"), usda: $("save-usda"), png: $("save-png"), link: $("share"), linkField: $("link") },
+    { text: () => page.document.value, xml: () => state.xml, library: () => state.graph.library, canvas: page.canvas,
+      name: () => state.name },
+    (failure) => showError({ error: { code: "export_failed", message: failure.message, where: null } }));
+  const linked = await documentFromFragment(location.hash).catch((failure) => {
+    showError({ error: { code: "invalid_link", message: `the link's document cannot be read: ${failure.message}`, where: "#doc" } });
+    return null;
+  });
+  if (linked !== null) await openDocument(linked, "linked.mtlx");
+  else await loadExample("gold.mtlx");
   window.shaderxEditor.ready = true;
 }
 
 async function loadExample(name) {
   $("example").value = name;
-  await openDocument(await exampleDocument(name));
+  await openDocument(await exampleDocument(name), name);
 }
 
-async function openDocument(text) {
-  state.package = null;
+async function openDocument(text, name = "material.mtlx") {
+  state.usd = null;
+  state.name = baseName(name);
   page.document.readOnly = false;
   page.document.value = text;
   await run();
 }
 
-async function openPackage(blob, name) {
-  state.package = { blob, name };
+async function openUsd(usd) {
+  state.usd = usd;
+  state.name = baseName(usd.name);
   page.document.readOnly = true;
-  page.document.value = `${name}: a usdz package, generated as it is (its layers are not edited here)`;
+  page.document.value = usd.media === "model/vnd.usda" ? await usd.blob.text()
+    : `${usd.name}: a usdz package, generated as it is (its layers are not edited here)`;
   await run();
 }
+
+const baseName = (path) => path.replace(/^.*[\\/]/, "").replace(/\.[^.]*$/, "") || "material";
 
 // The material menu follows the document text, keeping the choice while it still exists.
 function refreshMaterials() {
@@ -112,12 +129,12 @@ function refreshMaterials() {
 // listing is needed, so the source is not requested.
 async function run() {
   const text = page.document.value;
-  state.xml = state.package ? null : parseDocument(text);
+  state.xml = state.usd ? null : parseDocument(text);
   refreshMaterials();
   const source = page.live.checked && state.preview !== null;
   page.status.textContent = "generating…";
   const options = { element: page.material.value || null, interface: page.interface.value, source };
-  const record = state.package ? await generatePackage(state.package.blob, options) : await generate(text, options);
+  const record = state.usd ? await generateUsd(state.usd.blob, state.usd.media, options) : await generate(text, options);
   page.status.textContent = `${traffic.generate} requests`;
   state.graph?.show();
   if (record.error) {
