@@ -4,12 +4,14 @@
 // generated as it is (a package's textures being its own members).
 
 import { droppedEntries } from "./files.js";
+import { SCENE_FILE } from "./scene.js";
 
 const DOCUMENT = /\.(mtlx|xml)$/i;
 const USD = [[/\.usdz$/i, "model/vnd.usdz+zip"], [/\.usda$/i, "model/vnd.usda"]];
 
-// `open({ text, name } | { usd: { blob, media, name } })` for a document; `texturesChanged()` otherwise.
-export function acceptDrops(target, files, { open, texturesChanged, failed }) {
+// `open({ text, name } | { usd: { blob, media, name } })` for a document; `sceneFiles(entries)` for
+// meshes and environments (scene.js); `texturesChanged()` otherwise.
+export function acceptDrops(target, files, { open, sceneFiles, texturesChanged, failed }) {
   target.addEventListener("dragover", (event) => {
     event.preventDefault();
     event.dataTransfer.dropEffect = "copy";
@@ -17,7 +19,11 @@ export function acceptDrops(target, files, { open, texturesChanged, failed }) {
   target.addEventListener("drop", async (event) => {
     event.preventDefault();
     try {
-      const dropped = await droppedEntries(event.dataTransfer);
+      const everything = await droppedEntries(event.dataTransfer);
+      const scene = everything.filter((entry) => SCENE_FILE.test(entry.path));
+      if (scene.length) await sceneFiles(scene);
+      const dropped = everything.filter((entry) => !SCENE_FILE.test(entry.path));
+      if (!dropped.length) return;
       const added = await files.add(dropped);
       const document = added.find((entry) => DOCUMENT.test(entry.path));
       const usd = dropped.map((entry) => ({ entry, media: USD.find(([pattern]) => pattern.test(entry.path))?.[1] }))

@@ -6,6 +6,7 @@
 
 import { previewArray, previewScene } from "./api.js";
 import { applySampling, constantTexture, floatTexture, toRgba } from "./gltextures.js";
+import { sceneOverrides } from "./sceneuniforms.js";
 import { defaultColour, samplingOf, TextureLoader, textureRequests } from "./textures.js";
 
 const MAX_PROGRAMS = 16;
@@ -50,16 +51,18 @@ export class Preview {
     this.programs = new Map();  // vertex + pixel source -> { program, vao, uniforms, units }
     this.current = null;
     this.values = new Map();    // uniform name -> the record's (or the user's) value
-    this.streams = {};
-    for (const [name, components] of Object.entries(scene.mesh.streams)) {
-      this.streams[name] = { buffer: this.buffer(gl.ARRAY_BUFFER, arrays[name]), components };
-    }
-    this.indexBuffer = this.buffer(gl.ELEMENT_ARRAY_BUFFER, arrays.indices);
-    this.indexCount = arrays.indices.length;
-    this.environment = {};
+    // the thumbnails' sphere and environment, kept to go back to after another choice
+    this.sphere = { name: scene.mesh.name, components: scene.mesh.streams, indices: arrays.indices,
+                    streams: Object.fromEntries(Object.keys(scene.mesh.streams).map((name) => [name, arrays[name]])) };
+    this.useMesh(this.sphere);
+    this.skies = {};
     for (const [name, image] of Object.entries(scene.environment)) {
-      this.environment[name] = environmentTexture(gl, arrays[name], image);
+      this.skies[name] = environmentTexture(gl, arrays[name], image);
     }
+    this.environment = this.skies;
+    this.choices = { intensity: 1, rotationDegrees: 0, turntableDegrees: 0, radianceMips: null };
+    this.overrides = sceneOverrides(scene.uniforms, this.choices);
+    this.turning = false;
     this.black = constantTexture(gl, [0, 0, 0, 1]);
     this.textures = new TextureLoader(gl, files);
     this.files = new Map();     // sampler name -> { request, texture, problem } of the record shown
@@ -134,7 +137,7 @@ export class Preview {
 
   apply(name) {
     const { location, type } = this.current.uniforms.get(name);
-    const fixed = this.scene.uniforms[name];
+    const fixed = this.overrides[name] ?? this.scene.uniforms[name];
     const value = fixed ?? this.values.get(name);
     if (value === undefined || value === null) return;
     setUniform(this.gl, location, type, flatten(value));
@@ -151,6 +154,12 @@ export class Preview {
       if (info.type === gl.SAMPLER_2D) units.push({ location, name });
       else uniforms.set(name, { location, type: info.type });
     }
+    return { program, vao: this.vertexArray(program), uniforms, units };
+  }
+
+  // The program's vertex inputs bound to the mesh's streams.
+  vertexArray(program) {
+    const gl = this.gl;
     const vao = gl.createVertexArray();
     gl.bindVertexArray(vao);
     for (let i = 0; i < gl.getProgramParameter(program, gl.ACTIVE_ATTRIBUTES); i++) {
@@ -170,7 +179,72 @@ export class Preview {
     }
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer);
     gl.bindVertexArray(null);
-    return { program, vao, uniforms, units };
+    return vao;
+  }
+
+  // Scene choices: a mesh (meshes.js, or null for the sphere) -- every program's vertex arrays
+  // are bound to it again.
+  useMesh(mesh) {
+    const gl = this.gl;
+    mesh ??= this.sphere;
+    for (const stream of Object.values(this.streams ?? {})) gl.deleteBuffer(stream.buffer);
+    if (this.indexBuffer) gl.deleteBuffer(this.indexBuffer);
+    this.streams = {};
+    for (const [name, data] of Object.entries(mesh.streams)) {
+      this.streams[name] = { buffer: this.buffer(gl.ARRAY_BUFFER, data), components: mesh.components[name] };
+    }
+    this.indexBuffer = this.buffer(gl.ELEMENT_ARRAY_BUFFER, mesh.indices);
+    this.indexCount = mesh.indices.length;
+    this.mesh = mesh.name;
+    for (const entry of this.programs?.values() ?? []) {
+      gl.deleteVertexArray(entry.vao);
+      entry.vao = this.vertexArray(entry.program);
+    }
+    this.requestDraw?.();
+  }
+
+  // An environment ({ radiance, irradiance } decoded images; null for the thumbnails' sky).
+  useEnvironment(maps) {
+    const gl = this.gl;
+    for (const texture of this.environment === this.skies ? [] : Object.values(this.environment)) gl.deleteTexture(texture);
+    if (!maps) {
+      this.environment = this.skies;
+      this.choose({ radianceMips: null });
+      return;
+    }
+    this.environment = {
+      u_envRadiance: environmentTexture(gl, maps.radiance.data, maps.radiance),
+      u_envIrradiance: environmentTexture(gl, maps.irradiance.data, maps.irradiance),
+    };
+    this.choose({ radianceMips: Math.floor(Math.log2(Math.max(maps.radiance.width, maps.radiance.height))) + 1 });
+  }
+
+  // Intensity, rotation (degrees), turntable (on or off): the scene's uniforms over the thumbnails'.
+  choose(choices) {
+    const { turntable, ...values } = choices;
+    Object.assign(this.choices, values);
+    if (turntable !== undefined) this.turn(turntable);
+    this.overrides = sceneOverrides(this.scene.uniforms, this.choices);
+    if (this.current) {
+      this.gl.useProgram(this.current.program);
+      // every scene uniform: one an earlier choice overrode is the thumbnails' again when unset
+      for (const name of new Set([...Object.keys(this.overrides), ...Object.keys(this.scene.uniforms)])) {
+        if (this.current.uniforms.has(name)) this.apply(name);
+      }
+    }
+    this.requestDraw();
+  }
+
+  // The turntable: a quarter turn every few seconds, drawn every frame while on.
+  turn(on) {
+    this.turning = on;
+    if (!on) return this.choose({ turntableDegrees: 0 });
+    const step = () => {
+      if (!this.turning) return;
+      this.choose({ turntableDegrees: (performance.now() / 1000 * 30) % 360 });
+      requestAnimationFrame(step);
+    };
+    requestAnimationFrame(step);
   }
 
   fallbackStream(name) {
