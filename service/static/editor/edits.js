@@ -102,7 +102,7 @@ function uniforms(record) {
 
 // A document value's text as its uniform takes it: numbers, lists of them, booleans, a string
 // enum as the index of its name (how the listing publishes it).
-export function uniformValue(variable, type, text) {
+function uniformValue(variable, type, text) {
   if (variable.ui?.enum && variable.type === "integer" && type === "string") return Math.max(0, variable.ui.enum.indexOf(text));
   if (type === "boolean") return text.trim() === "true";
   if (type === "float" || type === "integer") return Number(text);

@@ -7,6 +7,7 @@ import { GRAPH_OUTPUTS } from "./graph.js";
 import { BOX_WIDTH, PORT, TITLE, layout } from "./layout.js";
 
 const SVG = "http://www.w3.org/2000/svg";
+const TITLE_CHARACTERS = 24;  // what fits beside the +N toggle in a box
 const TYPE_COLOURS = { float: "#9ecbff", integer: "#7fd1b9", boolean: "#e6a0c4", color3: "#ffcf70", color4: "#ffb347",
   vector2: "#b8e986", vector3: "#8fd694", vector4: "#6fc27a", filename: "#d0a0ff", string: "#c0c0c0",
   surfaceshader: "#ff8a80", material: "#ff5252", displacementshader: "#f48fb1", volumeshader: "#ce93d8",
@@ -64,7 +65,8 @@ export class GraphView {
                                  transform: `translate(${place.x},${place.y})`, "data-box": box.id });
     group.append(element("rect", { width: place.width, height: place.height, rx: 5 }));
     const title = element("text", { x: 8, y: 15, class: "title" });
-    title.textContent = box.category && box.category !== box.label ? `${box.label} · ${box.category}` : box.label;
+    const label = box.category && box.category !== box.label ? `${box.label} · ${box.category}` : box.label;
+    title.textContent = label.length > TITLE_CHARACTERS ? label.slice(0, TITLE_CHARACTERS - 1) + "…" : label;
     group.append(title);
     this.inputsShown(box).forEach((input, i) => group.append(...this.port(box, input, "in", i)));
     box.outputs.forEach((output, i) => group.append(...this.port(box, output, "out", i)));
@@ -127,11 +129,15 @@ export class GraphView {
     window.addEventListener("pointerup", up);
   }
 
+  // The reason over the input it was dropped on, on a backing of its own so it reads over wires.
   showRefusal(text, at) {
     const p = this.portPoint(at.box, "in", at.port);
-    const note = element("text", { x: p.x - 8, y: p.y - 8, class: "refusal", "text-anchor": "end" });
+    const note = element("text", { x: p.x + 8, y: p.y - 10, class: "refusal" });
     note.textContent = `✕ ${text}`;
     this.svg.append(note);
+    const box = note.getBBox();
+    this.svg.insertBefore(element("rect", { x: box.x - 3, y: box.y - 2, width: box.width + 6, height: box.height + 4,
+                                            rx: 3, class: "refusal-backing" }), note);
   }
 
   select(selection) {
