@@ -98,6 +98,9 @@ class Settings(BaseModel):
     topology_sharing: bool = True
     # colon-separated directories that textures named by documents may come from
     texture_roots: list[str] = Field(default_factory=list)
+    # the largest texture file GET /v1/textures sends (the image its header declares is bounded
+    # as the renderer bounds it, SHADERGEN_MAX_IMAGE_VALUES)
+    max_texture_bytes: int = Field(64 * 1024 * 1024, gt=0)
     # comma-separated addresses (or networks) of reverse proxies whose X-Forwarded-For names the
     # client; empty: no proxy is trusted and the client is the connection's peer (uvicorn alone
     # would trust 127.0.0.1, letting any local client choose the address its failures count against)

@@ -51,18 +51,22 @@ def check_texture_paths(record: dict, roots: list[str]) -> None:
                 value = var.get("value")
                 if var.get("type") != "filename" or not value:
                     continue
-                if not isinstance(value, str) or not _allowed(value, real_roots):
+                if not isinstance(value, str) or texture_in_roots(value, real_roots) is None:
                     raise ServiceError("path_not_allowed",
                                        f"texture {value!r} is outside the configured texture roots",
                                        var.get("path"))
 
 
-def _allowed(value: str, roots: list[Path]) -> bool:
+def texture_in_roots(value: str, roots: list[Path]) -> Path | None:
+    """The real path a filename names inside one of the (real) roots, or None when it names a
+    URL, holds a NUL or leaves them: what thumbnails may read, and what the editor may fetch."""
     if "://" in value or "\x00" in value:
-        return False
+        return None
     candidate = Path(value)
     if candidate.is_absolute():
         real = Path(os.path.realpath(candidate))
-        return any(_inside(real, root) for root in roots)
-    # relative names are looked up under a root and must stay under that same root
-    return any(_inside(Path(os.path.realpath(root / candidate)), root) for root in roots)
+        return real if any(_inside(real, root) for root in roots) else None
+    # relative names are looked up under a root and must stay under that same root; the first
+    # root that holds the file, else the first the name stays in (a missing file is no escape)
+    inside = [real for root in roots if _inside(real := Path(os.path.realpath(root / candidate)), root)]
+    return next((real for real in inside if real.is_file()), inside[0] if inside else None)

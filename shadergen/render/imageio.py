@@ -48,6 +48,28 @@ def read_image(path: str, name: str | None = None, max_values: int | None = None
     import OpenImageIO as oiio
 
     name = name or path
+    image, spec = _open_checked(path, name, max_values)
+    try:
+        pixels = image.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT)
+        if pixels is None:
+            raise RenderError("invalid_image", f"cannot decode image {name}: {_oiio_error(image, path, name)}", name)
+    finally:
+        image.close()
+    pixels = np.asarray(pixels, "f4")
+    return pixels[..., None] if pixels.ndim == 2 else pixels
+
+
+def check_image(path: str, name: str | None = None, max_values: int | None = None) -> None:
+    """What read_image refuses from the header alone (too_large, invalid_image), nothing decoded:
+    for files passed on to a reader elsewhere (a browser) under the renderer's limits."""
+    image, _ = _open_checked(path, name or path, max_values)
+    image.close()
+
+
+def _open_checked(path: str, name: str, max_values: int | None):
+    """(the open ImageInput, its spec) once its header is within the limit; closed on refusal."""
+    import OpenImageIO as oiio
+
     max_values = max_values or image_limit()
     image = oiio.ImageInput.open(path)
     if image is None:
@@ -66,13 +88,10 @@ def read_image(path: str, name: str | None = None, max_values: int | None = None
             raise RenderError("too_large", f"{name}: an image of {spec.width} x {spec.height}{depth} pixels x "
                               f"{spec.nchannels} channels is more than the renderer reads (its limit: {max_values} "
                               "values)", name)
-        pixels = image.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT)
-        if pixels is None:
-            raise RenderError("invalid_image", f"cannot decode image {name}: {_oiio_error(image, path, name)}", name)
-    finally:
+    except BaseException:
         image.close()
-    pixels = np.asarray(pixels, "f4")
-    return pixels[..., None] if pixels.ndim == 2 else pixels
+        raise
+    return image, spec
 
 
 def _oiio_error(source, path: str, name: str) -> str:

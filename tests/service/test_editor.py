@@ -1,94 +1,13 @@
-"""The web editor in a real browser: Debian's Chromium, headless, WebGL2 on SwiftShader, driven by
-Selenium through chromedriver against the session's live `shadergen serve` on 127.0.0.1.
-Set SHADERGEN_SCREENSHOT_DIR to keep the screenshots (docs/editor holds the README's)."""
-import base64
-import os
-import time
-from pathlib import Path
-
+"""The web editor in a real browser (editor_testing.py): controls, the live preview against the
+thumbnail, errors in place."""
 import numpy as np
 import pytest
 
-from required_tools import missing
+from editor_testing import EXAMPLES, browser, canvas_pixels, console_problems, editor, js, poll_js, psnr, \
+    screenshot, set_document, thumbnail_pixels, wait_for_draw  # noqa: F401 (fixtures)
 from service_testing import wait_until
 
-CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
-CHROMIUM_FLAGS = ["--headless=new", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox",
-                  "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                  "--disable-quic", "--no-first-run", "--window-size=1400,900"]
-GOLD = Path(__file__).parents[2] / "service" / "static" / "editor" / "examples" / "gold.mtlx"
-
-
-@pytest.fixture(scope="module")
-def browser():
-    try:
-        import selenium  # noqa: F401
-    except ImportError:
-        missing("selenium", "the [dev] extra installs it")
-    for path in (CHROMIUM, CHROMEDRIVER):
-        if not os.access(path, os.X_OK):
-            missing(path)
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for flag in CHROMIUM_FLAGS:
-        options.add_argument(flag)
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
-    driver.set_page_load_timeout(60)
-    driver.set_script_timeout(60)
-    yield driver
-    driver.quit()
-
-
-@pytest.fixture
-def editor(browser, server):
-    """The editor freshly loaded (its first example shown), with the console read empty."""
-    browser.get(server.url + "/")
-    wait_until(lambda: poll_js(browser, "window.shaderxEditor && window.shaderxEditor.ready"),
-               120, "the editor's first example")
-    return browser
-
-
-def console_problems(driver) -> list[dict]:
-    return [entry for entry in driver.get_log("browser") if entry["level"] in ("SEVERE", "WARNING")]
-
-
-def js(driver, expression: str):
-    return driver.execute_script(f"return {expression}")
-
-
-def poll_js(driver, expression: str):
-    """`js` for polling: None while the page's renderer is too busy to answer in time (a software
-    GPU compiling or drawing on a loaded machine), so the poll asks again."""
-    from selenium.common.exceptions import TimeoutException
-
-    try:
-        return js(driver, expression)
-    except TimeoutException:
-        return None
-
-
-def canvas_pixels(driver, tmp_path: Path) -> np.ndarray:
-    import OpenImageIO as oiio
-
-    url = js(driver, "document.getElementById('preview').toDataURL('image/png')")
-    path = tmp_path / f"canvas-{time.monotonic_ns()}.png"
-    path.write_bytes(base64.b64decode(url.split(",", 1)[1]))
-    return oiio.ImageBuf(str(path)).get_pixels(oiio.FLOAT)[..., :3]
-
-
-def wait_for_draw(driver, draws_before: int) -> None:
-    wait_until(lambda: (poll_js(driver, "window.shaderxEditor.preview.stats.draws") or 0) > draws_before, 60,
-               "a new frame")
-
-
-def screenshot(driver, name: str, tmp_path: Path) -> None:
-    folder = Path(os.environ.get("SHADERGEN_SCREENSHOT_DIR") or tmp_path)
-    folder.mkdir(parents=True, exist_ok=True)
-    assert driver.save_screenshot(str(folder / name))
+GOLD = EXAMPLES / "gold.mtlx"
 
 
 def test_the_editor_loads_with_controls_from_the_listing_and_no_console_errors(editor, tmp_path):
@@ -135,26 +54,16 @@ def test_a_slider_changes_the_canvas_on_the_gpu_without_a_request(editor, tmp_pa
 
 @pytest.mark.usefixtures("renderer_required")
 def test_the_preview_matches_the_thumbnail(editor, server, tmp_path):
-    import OpenImageIO as oiio
-
-    response = server.client.post("/v1/thumbnails", json={"document": GOLD.read_text(), "size": 256})
-    assert response.status_code == 200
-    (tmp_path / "thumbnail.png").write_bytes(response.content)
-    thumbnail = oiio.ImageBuf(str(tmp_path / "thumbnail.png")).get_pixels(oiio.FLOAT)[..., :3]
-    preview = canvas_pixels(editor, tmp_path)
-    psnr = 10 * np.log10(1.0 / float(((preview - thumbnail) ** 2).mean()))
-    print(f"\nWebGL2 preview against the service's thumbnail: PSNR {psnr:.1f} dB")
-    assert psnr > 40, f"preview against thumbnail: {psnr:.1f} dB"
+    agreement = psnr(canvas_pixels(editor, tmp_path), thumbnail_pixels(server, GOLD.read_text(), tmp_path))
+    print(f"\nWebGL2 preview against the service's thumbnail: PSNR {agreement:.1f} dB")
+    assert agreement > 40, f"preview against thumbnail: {agreement:.1f} dB"
 
 
 def test_an_invalid_document_shows_its_error_in_place(editor, tmp_path):
-    area = editor.find_element("id", "document")
-    editor.execute_script("arguments[0].value = arguments[1]", area,
-                          '<materialx version="1.39"><standard_surface name="s" type="surfaceshader">'
-                          '<input name="base" type="float" value="1"/></standard_surface>'
-                          '<surfacematerial name="M" type="material"><input name="surfaceshader" '
-                          'type="surfaceshader" nodename="missing"/></surfacematerial></materialx>')
-    editor.find_element("id", "generate").click()
+    set_document(editor, '<materialx version="1.39"><standard_surface name="s" type="surfaceshader">'
+                         '<input name="base" type="float" value="1"/></standard_surface>'
+                         '<surfacematerial name="M" type="material"><input name="surfaceshader" '
+                         'type="surfaceshader" nodename="missing"/></surfacematerial></materialx>')
     error = editor.find_element("id", "error")
     wait_until(lambda: error.is_displayed(), 60, "the error record")
     assert "M/surfaceshader" in error.text and "missing" in error.text

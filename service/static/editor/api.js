@@ -9,6 +9,20 @@ export async function generate(document, { element = null, target = "essl", inte
   return answer(await request("v1/generate", { method: "POST", headers: { "content-type": "application/json" }, body }));
 }
 
+// A USD layer or usdz package (whose textures are its own members) generated as it is, the
+// options in the query.
+export async function generateUsd(blob, media, { element = null, target = "essl", interface: mode = "complete", source = true } = {}) {
+  traffic.generate += 1;
+  const query = new URLSearchParams({ target, interface: mode, source: String(source) });
+  if (element) query.set("element", element);
+  const init = { method: "POST", headers: { "content-type": media }, body: blob };
+  return answer(await request(`v1/generate?${query}`, init));
+}
+
+export async function nodedefs() {
+  return answer(await request("v1/nodedefs"));
+}
+
 export async function previewScene() {
   return answer(await request("v1/preview/scene"));
 }
@@ -17,6 +31,13 @@ export async function previewArray(name, kind = Float32Array) {
   const response = await request(`v1/preview/arrays/${encodeURIComponent(name)}`);
   if (!response.ok) throw new Error(`preview array ${name}: HTTP ${response.status}`);
   return new kind(await response.arrayBuffer());
+}
+
+// A texture the document names, from the service's texture roots: { blob } or the error object.
+export async function textureFile(name) {
+  const response = await request(`v1/textures?path=${encodeURIComponent(name)}`);
+  if (!response.ok) return answer(response);
+  return { blob: await response.blob() };
 }
 
 export async function exampleDocument(name) {

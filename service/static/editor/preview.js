@@ -1,9 +1,13 @@
 // A live WebGL2 preview of an `essl` record, drawn as the service's thumbnails are: the same
-// sphere, camera, environment maps and uniforms (all fetched from /v1/preview), then composited
-// over the same grey and sRGB-encoded. Programs are kept by their source, so a record whose
-// source did not change is drawn without compiling; a uniform change is one gl.uniform call.
+// sphere, camera, environment maps and uniforms (all fetched from /v1/preview), file textures
+// bound as the renderer binds them (textures.js), then composited over the same grey and
+// sRGB-encoded. Programs are kept by their source, so a record whose source did not change is
+// drawn without compiling; a uniform change is one gl.uniform call.
 
 import { previewArray, previewScene } from "./api.js";
+import { applySampling, constantTexture, floatTexture, toRgba } from "./gltextures.js";
+import { sceneOverrides } from "./sceneuniforms.js";
+import { defaultColour, samplingOf, TextureLoader, textureRequests } from "./textures.js";
 
 const MAX_PROGRAMS = 16;
 const COMPILE_POLL_MS = 20;
@@ -28,7 +32,8 @@ void main() {
 }`;
 
 export class Preview {
-  static async create(canvas) {
+  // `files`: the files dropped on the page (files.js), which textures are looked up in first
+  static async create(canvas, files) {
     const gl = canvas.getContext("webgl2", { antialias: false, preserveDrawingBuffer: true });
     if (!gl) return null;
     const scene = await previewScene();
@@ -36,32 +41,37 @@ export class Preview {
     const names = [...Object.keys(scene.mesh.streams), ...Object.keys(scene.environment)];
     const arrays = Object.fromEntries(await Promise.all(names.map(async (name) => [name, await previewArray(name)])));
     arrays.indices = await previewArray("indices", Uint32Array);
-    return new Preview(gl, scene, arrays, await link(gl, POST_VERTEX, POST_PIXEL));
+    return new Preview(gl, scene, arrays, await link(gl, POST_VERTEX, POST_PIXEL), files);
   }
 
-  constructor(gl, scene, arrays, post) {
+  constructor(gl, scene, arrays, post, files) {
     this.gl = gl;
     this.scene = scene;
     this.stats = { compiles: 0, draws: 0 };
     this.programs = new Map();  // vertex + pixel source -> { program, vao, uniforms, units }
     this.current = null;
     this.values = new Map();    // uniform name -> the record's (or the user's) value
-    this.streams = {};
-    for (const [name, components] of Object.entries(scene.mesh.streams)) {
-      this.streams[name] = { buffer: this.buffer(gl.ARRAY_BUFFER, arrays[name]), components };
-    }
-    this.indexBuffer = this.buffer(gl.ELEMENT_ARRAY_BUFFER, arrays.indices);
-    this.indexCount = arrays.indices.length;
-    this.environment = {};
+    // the thumbnails' sphere and environment, kept to go back to after another choice
+    this.sphere = { name: scene.mesh.name, components: scene.mesh.streams, indices: arrays.indices,
+                    streams: Object.fromEntries(Object.keys(scene.mesh.streams).map((name) => [name, arrays[name]])) };
+    this.useMesh(this.sphere);
+    this.skies = {};
     for (const [name, image] of Object.entries(scene.environment)) {
-      this.environment[name] = environmentTexture(gl, arrays[name], image);
+      this.skies[name] = environmentTexture(gl, arrays[name], image);
     }
-    this.black = blackTexture(gl);
+    this.environment = this.skies;
+    this.choices = { intensity: 1, rotationDegrees: 0, turntableDegrees: 0, radianceMips: null };
+    this.overrides = sceneOverrides(scene.uniforms, this.choices);
+    this.turning = false;
+    this.black = constantTexture(gl, [0, 0, 0, 1]);
+    this.textures = new TextureLoader(gl, files);
+    this.files = new Map();     // sampler name -> { request, texture, problem } of the record shown
     this.target = renderTarget(gl, gl.drawingBufferWidth, gl.drawingBufferHeight);
     this.post = { program: post, image: gl.getUniformLocation(post, "u_image"),
                   background: gl.getUniformLocation(post, "u_background") };
     this.postVao = gl.createVertexArray();
     this.pending = false;
+    this.frameWaiters = [];
   }
 
   buffer(kind, data) {
@@ -73,9 +83,11 @@ export class Preview {
 
   // Show a record: compile only when its source is new, then bind all its values. Rejects with
   // an Error whose message is the driver's log when the source does not compile or link.
+  // The record's file textures are loaded meanwhile, so its first frame has them.
   async show(record) {
     const vertex = record.stages.vertex, pixel = record.stages.pixel;
     const key = vertex + "\u0000" + pixel;
+    const files = this.loadTextures(record);
     let entry = this.programs.get(key);
     if (!entry) {
       entry = this.prepare(await link(this.gl, vertex, pixel));
@@ -83,6 +95,7 @@ export class Preview {
       this.programs.set(key, entry);
       if (this.programs.size > MAX_PROGRAMS) this.release(this.programs.keys().next().value);
     }
+    this.files = await files;
     this.current = entry;
     this.values = new Map();
     for (const stage of Object.values(record.blocks)) {
@@ -92,6 +105,23 @@ export class Preview {
     }
     this.gl.useProgram(entry.program);
     for (const name of entry.uniforms.keys()) this.apply(name);
+    this.requestDraw();
+  }
+
+  async loadTextures(record) {
+    const requests = textureRequests(record);
+    const loaded = await Promise.all(requests.map((request) => this.textures.load(request.file)));
+    return new Map(requests.map((request, i) => [request.name, { request, ...loaded[i] }]));
+  }
+
+  // Why file textures of the record shown are drawn in their default colour: [text]
+  textureProblems() {
+    return [...this.files.values()].map((file) => file.problem).filter(Boolean);
+  }
+
+  // Files dropped: textures are looked up again, the record redrawn with what they give.
+  async reloadTextures(record) {
+    this.files = await this.loadTextures(record);
     this.requestDraw();
   }
 
@@ -107,7 +137,7 @@ export class Preview {
 
   apply(name) {
     const { location, type } = this.current.uniforms.get(name);
-    const fixed = this.scene.uniforms[name];
+    const fixed = this.overrides[name] ?? this.scene.uniforms[name];
     const value = fixed ?? this.values.get(name);
     if (value === undefined || value === null) return;
     setUniform(this.gl, location, type, flatten(value));
@@ -121,9 +151,15 @@ export class Preview {
       const info = gl.getActiveUniform(program, i);
       const name = info.name.replace(/\[0\]$/, "");
       const location = gl.getUniformLocation(program, info.name);
-      if (info.type === gl.SAMPLER_2D) units.push({ location, texture: this.environment[name] ?? this.black, name });
+      if (info.type === gl.SAMPLER_2D) units.push({ location, name });
       else uniforms.set(name, { location, type: info.type });
     }
+    return { program, vao: this.vertexArray(program), uniforms, units };
+  }
+
+  // The program's vertex inputs bound to the mesh's streams.
+  vertexArray(program) {
+    const gl = this.gl;
     const vao = gl.createVertexArray();
     gl.bindVertexArray(vao);
     for (let i = 0; i < gl.getProgramParameter(program, gl.ACTIVE_ATTRIBUTES); i++) {
@@ -143,7 +179,72 @@ export class Preview {
     }
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.indexBuffer);
     gl.bindVertexArray(null);
-    return { program, vao, uniforms, units };
+    return vao;
+  }
+
+  // Scene choices: a mesh (meshes.js, or null for the sphere) -- every program's vertex arrays
+  // are bound to it again.
+  useMesh(mesh) {
+    const gl = this.gl;
+    mesh ??= this.sphere;
+    for (const stream of Object.values(this.streams ?? {})) gl.deleteBuffer(stream.buffer);
+    if (this.indexBuffer) gl.deleteBuffer(this.indexBuffer);
+    this.streams = {};
+    for (const [name, data] of Object.entries(mesh.streams)) {
+      this.streams[name] = { buffer: this.buffer(gl.ARRAY_BUFFER, data), components: mesh.components[name] };
+    }
+    this.indexBuffer = this.buffer(gl.ELEMENT_ARRAY_BUFFER, mesh.indices);
+    this.indexCount = mesh.indices.length;
+    this.mesh = mesh.name;
+    for (const entry of this.programs?.values() ?? []) {
+      gl.deleteVertexArray(entry.vao);
+      entry.vao = this.vertexArray(entry.program);
+    }
+    this.requestDraw?.();
+  }
+
+  // An environment ({ radiance, irradiance } decoded images; null for the thumbnails' sky).
+  useEnvironment(maps) {
+    const gl = this.gl;
+    for (const texture of this.environment === this.skies ? [] : Object.values(this.environment)) gl.deleteTexture(texture);
+    if (!maps) {
+      this.environment = this.skies;
+      this.choose({ radianceMips: null });
+      return;
+    }
+    this.environment = {
+      u_envRadiance: environmentTexture(gl, maps.radiance.data, maps.radiance),
+      u_envIrradiance: environmentTexture(gl, maps.irradiance.data, maps.irradiance),
+    };
+    this.choose({ radianceMips: Math.floor(Math.log2(Math.max(maps.radiance.width, maps.radiance.height))) + 1 });
+  }
+
+  // Intensity, rotation (degrees), turntable (on or off): the scene's uniforms over the thumbnails'.
+  choose(choices) {
+    const { turntable, ...values } = choices;
+    Object.assign(this.choices, values);
+    if (turntable !== undefined) this.turn(turntable);
+    this.overrides = sceneOverrides(this.scene.uniforms, this.choices);
+    if (this.current) {
+      this.gl.useProgram(this.current.program);
+      // every scene uniform: one an earlier choice overrode is the thumbnails' again when unset
+      for (const name of new Set([...Object.keys(this.overrides), ...Object.keys(this.scene.uniforms)])) {
+        if (this.current.uniforms.has(name)) this.apply(name);
+      }
+    }
+    this.requestDraw();
+  }
+
+  // The turntable: a quarter turn every few seconds, drawn every frame while on.
+  turn(on) {
+    this.turning = on;
+    if (!on) return this.choose({ turntableDegrees: 0 });
+    const step = () => {
+      if (!this.turning) return;
+      this.choose({ turntableDegrees: (performance.now() / 1000 * 30) % 360 });
+      requestAnimationFrame(step);
+    };
+    requestAnimationFrame(step);
   }
 
   fallbackStream(name) {
@@ -166,6 +267,17 @@ export class Preview {
     });
   }
 
+  // An environment map as it was made; a file texture with its node's sampling now (a control
+  // may have changed it), or its default colour; black for a sampler the record does not list.
+  bindSampler(name) {
+    const gl = this.gl;
+    if (this.environment[name]) return gl.bindTexture(gl.TEXTURE_2D, this.environment[name]);
+    const file = this.files.get(name);
+    if (!file) return gl.bindTexture(gl.TEXTURE_2D, this.black);
+    gl.bindTexture(gl.TEXTURE_2D, file.texture ?? this.textures.constant(defaultColour(file.request, this.values)));
+    applySampling(gl, samplingOf(file.request, this.values));
+  }
+
   draw() {
     const gl = this.gl, entry = this.current;
     if (!entry) return;
@@ -175,9 +287,9 @@ export class Preview {
     gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST);
     gl.useProgram(entry.program);
-    entry.units.forEach(({ location, texture }, unit) => {
+    entry.units.forEach(({ location, name }, unit) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
-      gl.bindTexture(gl.TEXTURE_2D, texture);
+      this.bindSampler(name);
       gl.uniform1i(location, unit);
     });
     gl.bindVertexArray(entry.vao);
@@ -195,6 +307,12 @@ export class Preview {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.bindVertexArray(null);
     this.stats.draws += 1;
+    this.frameWaiters.splice(0).forEach((resolve) => resolve());
+  }
+
+  // Resolves once the next frame is drawn: how the page times an edit to its frame.
+  nextFrame() {
+    return new Promise((resolve) => this.frameWaiters.push(resolve));
   }
 }
 
@@ -252,53 +370,13 @@ function setUniform(gl, location, type, v) {
   }
 }
 
-// A lat-long map as a filterable half-float texture with its full mip chain (box-filtered here:
-// WebGL2 cannot generate mipmaps for float formats it cannot render to).
+// A lat-long map with its mip chain: longitude wraps, latitude stops at the poles.
 function environmentTexture(gl, rgb, { width, height, channels }) {
-  const texture = gl.createTexture();
-  gl.bindTexture(gl.TEXTURE_2D, texture);
-  let level = 0, w = width, h = height, data = toRgba(rgb, channels);
-  for (;;) {
-    gl.texImage2D(gl.TEXTURE_2D, level, gl.RGBA16F, w, h, 0, gl.RGBA, gl.FLOAT, data);
-    if (w === 1 && h === 1) break;
-    [data, w, h] = halve(data, w, h);
-    level += 1;
-  }
+  const texture = floatTexture(gl, toRgba(rgb, channels), width, height);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);          // longitude wraps
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);   // latitude stops at the poles
-  return texture;
-}
-
-function toRgba(pixels, channels) {
-  const count = pixels.length / channels, out = new Float32Array(count * 4);
-  for (let i = 0; i < count; i++) {
-    for (let c = 0; c < 3; c++) out[i * 4 + c] = pixels[i * channels + Math.min(c, channels - 1)];
-    out[i * 4 + 3] = 1;
-  }
-  return out;
-}
-
-function halve(data, w, h) {
-  const nw = Math.max(1, w >> 1), nh = Math.max(1, h >> 1), out = new Float32Array(nw * nh * 4);
-  const sx = w / nw, sy = h / nh;
-  for (let y = 0; y < nh; y++) {
-    for (let x = 0; x < nw; x++) {
-      for (let c = 0; c < 4; c++) {
-        let sum = 0;
-        for (let dy = 0; dy < sy; dy++) for (let dx = 0; dx < sx; dx++) sum += data[((y * sy + dy) * w + x * sx + dx) * 4 + c];
-        out[(y * nw + x) * 4 + c] = sum / (sx * sy);
-      }
-    }
-  }
-  return [out, nw, nh];
-}
-
-function blackTexture(gl) {
-  const texture = gl.createTexture();
-  gl.bindTexture(gl.TEXTURE_2D, texture);
-  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array([0, 0, 0, 255]));
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
   return texture;
 }
 

@@ -1,0 +1,90 @@
+"""Issue 27, item 2: GET /v1/textures gives the editor the images its documents name, from the
+live service's texture roots only. Every name that leaves them (`..`, an absolute path, a
+symbolic link out, a URL, a NUL) is refused 403 before anything is read; a file over
+SHADERGEN_MAX_TEXTURE_BYTES, or whose header declares more than the renderer reads, is 413; a
+file corrupted while the service runs is 422, never a 500, and the next good file is served."""
+import os
+
+import pytest
+
+from hostile_packages import huge_png_header, png
+from service_testing import Server, assert_error
+
+MAX_BYTES = 4096
+SECRET = b"the server's own file"
+
+
+@pytest.fixture(scope="module")
+def folders(tmp_path_factory):
+    base = tmp_path_factory.mktemp("texture_route")
+    root, outside = base / "root", base / "outside"
+    (root / "sub").mkdir(parents=True)
+    outside.mkdir()
+    (outside / "secret.png").write_bytes(SECRET)
+    (root / "sub" / "red.png").write_bytes(png(8, 8, (230, 20, 20)))
+    (root / "huge.png").write_bytes(huge_png_header(60000, 60000))
+    (root / "big.png").write_bytes(png(8, 8, (1, 2, 3)) + bytes(MAX_BYTES))
+    (root / "notes.txt").write_text("not an image")
+    os.symlink(outside / "secret.png", root / "link.png")
+    return root, outside
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory, folders):
+    root, _ = folders
+    srv = Server(tmp_path_factory.mktemp("texture_serve"), workers=1, render_workers=1,
+                 env={"SHADERGEN_TEXTURE_ROOTS": str(root), "SHADERGEN_MAX_TEXTURE_BYTES": str(MAX_BYTES)})
+    yield srv
+    srv.close()
+
+
+def get(server, path: str):
+    return server.client.get("/v1/textures", params={"path": path})
+
+
+def test_a_file_in_a_root_is_served_as_it_is_on_disk(server, folders):
+    root, _ = folders
+    for name in ("sub/red.png", "sub/../sub/red.png", str(root / "sub" / "red.png")):
+        r = get(server, name)
+        assert r.status_code == 200, r.text
+        assert r.headers["content-type"] == "image/png"
+        assert r.content == (root / "sub" / "red.png").read_bytes()
+
+
+@pytest.mark.parametrize("name", ["../outside/secret.png", "sub/../../outside/secret.png", "link.png",
+                                  "{outside}/secret.png", "file:///etc/passwd", "sub/red.png\x00.png", "/etc/passwd"])
+def test_a_name_that_leaves_the_roots_is_refused_before_it_is_read(server, folders, name):
+    _, outside = folders
+    name = name.format(outside=outside)
+    r = get(server, name)
+    error = assert_error(r, 403, "path_not_allowed")
+    assert error["where"] == "path" and SECRET not in r.content
+    # the answer quotes the name sent, never where it led (a link's target)
+    assert repr(name) in error["message"] and (str(outside) in name or str(outside) not in error["message"])
+
+
+def test_sizes_are_bounded_by_the_file_and_by_its_header(server):
+    error = assert_error(get(server, "big.png"), 413, "too_large")
+    assert error["where"] == "path" and str(MAX_BYTES) in error["message"]
+    error = assert_error(get(server, "huge.png"), 413, "too_large")
+    assert error["where"] == "path" and "limit" in error["message"]
+
+
+def test_what_is_no_image_file_is_refused_with_its_reason(server):
+    assert assert_error(get(server, "notes.txt"), 415, "unsupported_media_type")["where"] == "path"
+    assert assert_error(get(server, "sub/missing.png"), 404, "not_found")["where"] == "path"
+    assert_error(server.client.get("/v1/textures"), 422, "invalid_request")
+
+
+def test_a_texture_corrupted_while_served_is_refused_then_served_again(server, folders):
+    root, _ = folders
+    target = root / "sub" / "red.png"
+    good = target.read_bytes()
+    target.write_bytes(good[:20] + b"\xff" * 40)  # the signature kept, the header chunk broken
+    try:
+        error = assert_error(get(server, "sub/red.png"), 422, "invalid_image")
+        assert error["where"] == "path" and str(root) not in error["message"]
+    finally:
+        target.write_bytes(good)
+    assert get(server, "sub/red.png").content == good
+    assert "Traceback" not in server.log_text()
