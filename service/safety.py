@@ -69,4 +69,12 @@ def texture_in_roots(value: str, roots: list[Path]) -> Path | None:
     # relative names are looked up under a root and must stay under that same root; the first
     # root that holds the file, else the first the name stays in (a missing file is no escape)
     inside = [real for root in roots if _inside(real := Path(os.path.realpath(root / candidate)), root)]
-    return next((real for real in inside if real.is_file()), inside[0] if inside else None)
+    return next((real for real in inside if _is_file(real)), inside[0] if inside else None)
+
+
+def _is_file(path: Path) -> bool:
+    """Path.is_file, with a name the system refuses (too long: ENAMETOOLONG) no file either."""
+    try:
+        return path.is_file()
+    except OSError:
+        return False

@@ -107,10 +107,16 @@ def server(tmp_path_factory):
 
 
 def temporary_files(server) -> list[str]:
-    """What children wrote and left: anything in their folders, and any job folder wherever it is."""
-    left = [*server.tmp.glob("shadergen-child-*/**/*"), *server.tmp.rglob("shadergen-usdz-*"),
-            *server.tmp.rglob("shadergen-job-*")]
-    return sorted({str(p.relative_to(server.tmp)) for p in left})
+    """What children wrote and left: anything in their folders, and any job folder wherever it is.
+    A folder a live child removes while it is listed is listed again (CI saw rglob race one)."""
+    for _ in range(20):
+        try:
+            left = [*server.tmp.glob("shadergen-child-*/**/*"), *server.tmp.rglob("shadergen-usdz-*"),
+                    *server.tmp.rglob("shadergen-job-*")]
+        except FileNotFoundError:
+            continue
+        return sorted({str(p.relative_to(server.tmp)) for p in left})
+    raise AssertionError("the children's folders kept changing while listed")
 
 
 def child_folder(pid: int) -> Path:

@@ -74,6 +74,9 @@ def test_what_is_no_image_file_is_refused_with_its_reason(server):
     assert assert_error(get(server, "notes.txt"), 415, "unsupported_media_type")["where"] == "path"
     assert assert_error(get(server, "sub/missing.png"), 404, "not_found")["where"] == "path"
     assert_error(server.client.get("/v1/textures"), 422, "invalid_request")
+    # a name the file system refuses outright (a name longer than a file name may be) is no file: not a 500
+    assert assert_error(get(server, "0" * 300), 415, "unsupported_media_type")["where"] == "path"
+    assert assert_error(get(server, "0" * 300 + ".png"), 404, "not_found")["where"] == "path"
 
 
 def test_a_texture_corrupted_while_served_is_refused_then_served_again(server, folders):

@@ -83,7 +83,8 @@ def canvas_pixels(driver, tmp_path: Path) -> np.ndarray:
 
 
 def wait_for_draw(driver, draws_before: int) -> None:
-    wait_until(lambda: (poll_js(driver, "window.shaderxEditor.preview.stats.draws") or 0) > draws_before, 60,
+    # a bound on a hang, not a speed: a textured surface on SwiftShader under a loaded CI takes long
+    wait_until(lambda: (poll_js(driver, "window.shaderxEditor.preview.stats.draws") or 0) > draws_before, 180,
                "a new frame")
 
 
