@@ -29,7 +29,8 @@ def find_texture(name: str, roots: list[str], max_bytes: int) -> TextureFile:
         raise ServiceError("path_not_allowed", f"texture {name!r} is outside the configured texture roots", "path")
     media_type = MEDIA_TYPES.get(real.suffix.lower())
     if media_type is None:
-        raise ServiceError("unsupported_media_type", f"texture {name!r} is not an image format the editor reads "
+        # no image this route serves is there: 404 (415 is a request body's refusal, the contract's)
+        raise ServiceError("not_found", f"texture {name!r} is not an image format the editor reads "
                            f"({', '.join(sorted(MEDIA_TYPES))})", "path")
     try:
         size = real.stat().st_size if real.is_file() else None

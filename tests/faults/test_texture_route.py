@@ -2,7 +2,9 @@
 live service's texture roots only. Every name that leaves them (`..`, an absolute path, a
 symbolic link out, a URL, a NUL) is refused 403 before anything is read; a file over
 SHADERGEN_MAX_TEXTURE_BYTES, or whose header declares more than the renderer reads, is 413; a
-file corrupted while the service runs is 422, never a 500, and the next good file is served."""
+file corrupted while the service runs is 422; a name that is no file, no image format or no name
+the file system takes (longer than a file name may be) is 404; never a 500, and the next good file
+is served."""
 import os
 
 import pytest
@@ -71,11 +73,12 @@ def test_sizes_are_bounded_by_the_file_and_by_its_header(server):
 
 
 def test_what_is_no_image_file_is_refused_with_its_reason(server):
-    assert assert_error(get(server, "notes.txt"), 415, "unsupported_media_type")["where"] == "path"
+    error = assert_error(get(server, "notes.txt"), 404, "not_found")
+    assert error["where"] == "path" and "not an image format" in error["message"]
     assert assert_error(get(server, "sub/missing.png"), 404, "not_found")["where"] == "path"
     assert_error(server.client.get("/v1/textures"), 422, "invalid_request")
     # a name the file system refuses outright (a name longer than a file name may be) is no file: not a 500
-    assert assert_error(get(server, "0" * 300), 415, "unsupported_media_type")["where"] == "path"
+    assert assert_error(get(server, "0" * 300), 404, "not_found")["where"] == "path"
     assert assert_error(get(server, "0" * 300 + ".png"), 404, "not_found")["where"] == "path"
 
 
