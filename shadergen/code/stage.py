@@ -14,10 +14,10 @@ result, a StageCode, is what every target's stage assembler prints: one mechanis
 """
 from ..shader import PIXEL, VERTEX
 from . import build, ir
+from .library import PRELUDE  # the closure, shader and light structs every shader may name
 from .passes import stage as stage_passes
 from .types import ir_type
 
-PRELUDE = "prelude.glsl"  # the closure, shader and light structs every shader may name
 
 
 class StageCode:

@@ -71,7 +71,7 @@ def kept_code(library: str, roots: str, features: frozenset | None = None) -> st
 
 
 @pytest.fixture(scope="module")
-def code_library():
+def code():
     """The library's code (code/library.py): every source and the prelude parsed and checked, built
     in a cache folder of its own, as a cold process first builds it."""
     from shadergen.code.externals import EXTERNALS

@@ -20,11 +20,6 @@ def library() -> Library:
     return Library.load()
 
 
-@pytest.fixture(scope="module")
-def code(code_library) -> CodeLibrary:
-    return code_library
-
-
 def checked(sources: dict[str, str], externals=None) -> dict[str, ir.Module]:
     """Modules of the given sources, checked with the prelude."""
     modules = {PRELUDE: parse_module(PRELUDE, read_source(PRELUDE_PATH))}

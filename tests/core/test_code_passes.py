@@ -442,18 +442,12 @@ import re  # noqa: E402
 import pytest  # noqa: E402
 
 from shadergen.code.check import flat_items  # noqa: E402
-from shadergen.code.library import CodeLibrary  # noqa: E402
 from shadergen.code.types import ir_type  # noqa: E402
 from shadergen.features import environment_macros  # noqa: E402
 from shadergen.library import default_library  # noqa: E402
 from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
 
 CLOSURE_TYPES = {"BSDF", "EDF", "VDF"}
-
-
-@pytest.fixture(scope="module")
-def code(code_library):
-    return code_library
 
 
 def function_of(code, impl):

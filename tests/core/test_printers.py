@@ -13,7 +13,7 @@ from required_tools import require_wgpu, tool_path
 from shadergen.code import ir
 from shadergen.code.check import check_modules
 from shadergen.code.externals import EXTERNALS
-from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary
+from shadergen.code.library import PRELUDE, PRELUDE_PATH
 from shadergen.code.parse import parse_expression, parse_module
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
@@ -45,12 +45,6 @@ def parsed() -> dict[str, ir.Module]:
 @pytest.fixture(scope="module")
 def library() -> Library:
     return Library.load()
-
-
-@pytest.fixture(scope="module")
-def code(code_library) -> CodeLibrary:
-    """Every library file and the prelude parsed and checked (typed), as the generator gets them."""
-    return code_library
 
 
 @pytest.fixture(scope="module")
