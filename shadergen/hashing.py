@@ -58,7 +58,10 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
              [[inp.authored for inp in n.inputs.values()] for n in graph.nodes]]
 
     def meta(port) -> dict:
-        return port.meta if document_names else {k: v for k, v in port.meta.items() if k not in LISTING_ONLY}
+        m = port.meta
+        if document_names or not any(k in m for k in LISTING_ONLY):  # most metadata has none of them
+            return m
+        return {k: v for k, v in m.items() if k not in LISTING_ONLY}
 
     uniforms = [[p.name, p.type, meta(p)] for p in graph.interface]
     nodes = []

@@ -85,7 +85,7 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     while stack:
         n = stack.pop()
         cls = n.__class__
-        for field in cls.FIELDS:
+        for field in cls.CHILDREN:
             value = getattr(n, field)
             if isinstance(value, ir.Node):
                 stack.append(value)

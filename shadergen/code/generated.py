@@ -16,8 +16,11 @@ class GeneratedChecker(Checker):
     def expr(self, e: ir.Expr) -> ir.Expr:
         """What the generator made typed (its values, an inline template instantiated with its
         inputs' types: code/library.py's `expression`) is typed already, all the way down; a
-        constructor has its type from the start, and is checked for its arguments'."""
-        return e if e.type is not None and e.__class__ is not ir.Construct else super().expr(e)
+        constructor has its type from the start, and is checked for its arguments' unless it is a
+        value's (exact)."""
+        if e.type is None or (e.__class__ is ir.Construct and not e.exact):
+            return super().expr(e)
+        return e
 
     def expr_Name(self, e):
         if e.kind in GENERATED_KINDS and e.type is not None and not any(e.name in s for s in self.scopes):

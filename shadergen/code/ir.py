@@ -44,9 +44,16 @@ def initializer(fields: tuple[str, ...], keywords: tuple, initial: tuple):
     return namespace["__init__"]
 
 
+# Fields that hold a name, a type, an operator, a flag or lines of text, never a node: walks skip them
+# (a walk over generated code runs per request, and most of a node's fields are these)
+VALUE_FIELDS = frozenset({"name", "kind", "type", "op", "text", "const", "scoped", "macro", "defined", "lines",
+                          "qualifier", "returns", "block", "members"})
+
+
 class Node:
     __slots__ = ("where",)
     FIELDS: tuple[str, ...] = ()  # the child-bearing and value fields, in order (replace, children)
+    CHILDREN: tuple[str, ...] = ()  # the FIELDS that may hold nodes (or lists of them), in order
     KEYWORDS: tuple = (("where", None),)  # slots given by keyword, with their defaults
     INITIAL: tuple = ()  # slots every new node starts with, and their values
 
@@ -54,6 +61,8 @@ class Node:
         super().__init_subclass__(**kwargs)
         if "__init__" not in cls.__dict__:
             cls.__init__ = initializer(cls.FIELDS, cls.KEYWORDS, cls.INITIAL)
+        leaves = VALUE_FIELDS | ({"value"} if cls.__name__ == "Literal" else set())
+        cls.CHILDREN = tuple(f for f in cls.FIELDS if f not in leaves)
 
     def __getstate__(self):
         # (None, slots): pickle and copy set the slots themselves, without a Python call per
@@ -105,14 +114,17 @@ class Call(Expr):
 class Construct(Expr):
     """A value of `type` built from `args`: a vector or matrix constructor (with GLSL's rules:
     one scalar fills every component; components taken in order from the arguments), a struct in
-    member order, or an array (`type` `T[N]`)."""
-    __slots__ = ("args",)
+    member order, or an array (`type` `T[N]`). `exact`: every argument is already of the type
+    its place takes (a value's constructor, code/values.py), so checking would change nothing."""
+    __slots__ = ("args", "exact")
     FIELDS = ("args",)
+    KEYWORDS = Expr.KEYWORDS + (("exact", False),)
 
-    def __init__(self, type, args, where=None):
+    def __init__(self, type, args, where=None, exact=False):
         self.args = args
         self.type = type
         self.where = where
+        self.exact = exact
 
 
 class Field(Expr):
@@ -322,7 +334,7 @@ class Module:
 def children(node) -> list:
     """The nodes directly inside `node`, in source order (lists flattened, values skipped)."""
     out = []
-    for name in node.FIELDS:
+    for name in node.CHILDREN:
         value = getattr(node, name)
         if isinstance(value, Node):
             out.append(value)

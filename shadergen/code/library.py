@@ -30,6 +30,18 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
 CACHE_FORMAT = b"shadergen-code-1"
+
+
+def _running_ir() -> bytes:
+    """The IR classes this process runs, as their source read now, at import: the pickle holds
+    their instances. (The library's hash covers the generator's files as they are on disk when a
+    Library loads; a process that imported older files before a release was unpacked would write
+    its pickle under the new files' name.)"""
+    with open(ir.__file__, "rb") as f:
+        return hashlib.sha256(f.read()).digest()
+
+
+RUNNING_IR = _running_ir()
 MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
 
 
@@ -135,7 +147,7 @@ class CodeLibrary:
 
 
 def cache_key(library: Library, externals: dict[str, str]) -> str:
-    h = hashlib.sha256(CACHE_FORMAT + b"\0" + library.content_hash.encode() + b"\0")
+    h = hashlib.sha256(CACHE_FORMAT + b"\0" + RUNNING_IR + b"\0" + library.content_hash.encode() + b"\0")
     with open(PRELUDE_PATH, "rb") as f:  # a package file the generator's fingerprint (.py files) leaves out
         h.update(f.read() + b"\0")
     h.update(repr(sorted(externals.items())).encode())

@@ -69,8 +69,8 @@ def _shared_value(materialx_type: str, value) -> ir.Expr:
 def _value_expr(materialx_type: str, value, meta: dict | None) -> ir.Expr:
     t = ir_type(materialx_type)
     if t in STRUCT_ZERO:
-        return ir.Construct(t, [ir.Construct(mt, [scalar("float", v)]) if mt != "float" else scalar("float", v)
-                                for mt, v in STRUCT_ZERO[t]])
+        return ir.Construct(t, [ir.Construct(mt, [scalar("float", v)], exact=True) if mt != "float"
+                                else scalar("float", v) for mt, v in STRUCT_ZERO[t]], exact=True)
     if value is None:
         value = default_value(materialx_type) if materialx_type in TYPES else None
         value = 0.0 if value is None else value  # an EDF: no emission
@@ -78,6 +78,7 @@ def _value_expr(materialx_type: str, value, meta: dict | None) -> ir.Expr:
         return scalar("int", enum_index(value, meta or {}))
     if t in ("bool", "int", "float"):
         return scalar(t, value)
+    # a vector's or matrix's components are floats (MaterialX has no integer or boolean vectors)
     if isinstance(value, tuple):
-        return ir.Construct(t, [scalar("float", v) for v in value])
-    return ir.Construct(t, [scalar("float", value)])
+        return ir.Construct(t, [scalar("float", v) for v in value], exact=True)
+    return ir.Construct(t, [scalar("float", value)], exact=True)

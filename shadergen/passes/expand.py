@@ -35,11 +35,13 @@ def expand_nodegraphs(graph: Graph, builder: GraphBuilder) -> int:
     replaced: dict[int, Output] = {}  # id(output of an expanded node) -> the body output that replaces it
     nodes = list(graph.nodes)
     expanded: set[int] = set()
+    # id(public port) -> its place in graph.interface: a socket takes its outer input's place there
+    positions = {id(p): i for i, p in enumerate(graph.interface)}
     while pending:
         node = pending.pop()
         expanded.add(id(node))
         instance = Instance(node.implementation, node, node.instance)
-        body = expand(instance, builder, graph)
+        body = expand(instance, builder, graph, positions)
         for name, out in node.outputs.items():
             if name in instance.outputs:
                 replaced[id(out)] = instance.outputs[name]
@@ -135,7 +137,7 @@ class Body:
         self.warnings = warnings
 
 
-def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
+def expand(instance: Instance, outer: GraphBuilder, graph: Graph, positions: dict[int, int]) -> list:
     """Builds one use's body and binds its interface to the node's inputs; returns its nodes."""
     node, elem = instance.node, instance.graph_elem
     instance.sockets = {inp.name: Socket(inp.name, inp.type, inp.value, inp.path, dict(inp.meta), origin=inp,
@@ -145,7 +147,7 @@ def expand(instance: Instance, outer: GraphBuilder, graph: Graph) -> list:
     body = copy_body(template, instance)
     graph.warnings.extend(template.warnings)
     for socket in instance.sockets.values():
-        bind_socket(socket, graph)
+        bind_socket(socket, graph, positions)
     return body
 
 
@@ -188,17 +190,19 @@ def copy_body(template: Body, instance: Instance) -> list[Node]:
     return [copies[id(t)] for t in template.nodes]
 
 
-def bind_socket(socket: Socket, graph: Graph) -> None:
+def bind_socket(socket: Socket, graph: Graph, positions: dict[int, int]) -> None:
     outer: Input = socket.origin
     for inp in list(socket.consumers):
         inp.parameter = socket.name
     if outer.public:  # the node's public input: one uniform the body's inputs share
         socket.public, socket.path = True, outer.path
-        graph.interface[graph.interface.index(outer)] = socket
+        positions[id(socket)] = place = positions.pop(id(outer))
+        graph.interface[place] = socket
         outer.public = False
         return
     if outer.type == "filename" and outer.is_constant():  # a texture fixed by the node still needs a sampler
         socket.public, socket.path = True, outer.path
+        positions[id(socket)] = len(graph.interface)
         graph.interface.append(socket)
         return
     for inp in list(socket.consumers):

@@ -112,6 +112,7 @@ _NOT_IDENTIFIER = re.compile(r"[^A-Za-z0-9_]")
 _UNDERSCORES = re.compile(r"__+")
 
 
+@lru_cache(maxsize=8192)  # a pure function, asked for the same names request after request
 def identifier(wanted: str) -> str:
     """`wanted` spelled as an identifier every target accepts (not yet checked against RESERVED)."""
     name = wanted

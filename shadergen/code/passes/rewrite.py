@@ -18,7 +18,7 @@ def rebuild_list(nodes: list, statement=None, expression=None) -> list:
 
 def _rebuilt(node, statement, expression):
     changes = {}
-    for name in node.FIELDS:
+    for name in node.CHILDREN:
         value = getattr(node, name)
         if isinstance(value, ir.Node):
             new = _one(value, statement, expression)

@@ -168,7 +168,7 @@ def _assigned(node, names: set) -> None:
                 _add_root(a, names)
     elif cls is ir.Name or cls is ir.Literal:
         return
-    for field in cls.FIELDS:  # (ir.walk, but without a list per node: this runs per function printed)
+    for field in cls.CHILDREN:  # (ir.walk, but without a list per node: this runs per function printed)
         value = getattr(node, field)
         if isinstance(value, ir.Node):
             _assigned(value, names)
