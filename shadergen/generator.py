@@ -19,7 +19,7 @@ from .library import Scope
 from .naming import SourceNames
 from .nodes.lobes import closure_nodes, emit_lobes
 from .shader import PIXEL, VERTEX, Stage, Variable
-from .targets.names import identifier, library_identifiers
+from .targets.names import identifier
 
 CLOSURES = ("BSDF", "EDF", "VDF")
 CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}  # the IR's comparison
@@ -118,9 +118,8 @@ class EmitContext:
         # Value-free source (complete, reduced): initialised to the nodedef's value, so materials that
         # differ only in values share one source; the values reach the program from the listing.
         initializer = value if self.values_in_source else listing_value(port, port.default)
-        # a uniform is a global every library function could see: none of their names (names.py)
-        avoid = library_identifiers(self.scope.library.root)
-        name = self.namer(self.names.uniform(port), avoid)
+        # a uniform is a global every library function could see: none of their names
+        name = self.namer(self.names.uniform(port), self.code.identifiers)
         self.add_variable(PIXEL, "PublicUniforms", Variable(
             name, listing_type, value, port.path, unit=port.meta.get("unit"), colorspace=port.meta.get("colorspace"),
             ui=port.meta.get("ui"), initializer=initializer,

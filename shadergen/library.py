@@ -248,12 +248,16 @@ def write_atomically(path: str | os.PathLike, data: bytes) -> None:
 def collection_paused():
     """The cyclic garbage collector paused: a library is tens of thousands of new containers and
     no cycles, which the collector would otherwise rescan every few hundred allocations (a cold
-    `generate` of carpaint ran half of its collections while loading the library)."""
+    `generate` of carpaint ran half of its collections while loading the library). What is alive
+    when it resumes is frozen (gc.freeze: moved where collections never scan), or the first
+    collection after the load would scan all of it (a tenth of a cold `generate`) and every full
+    one after that again; reference counting still frees any of it that is dropped."""
     enabled = gc.isenabled()
     gc.disable()
     try:
         yield
     finally:
+        gc.freeze()
         if enabled:
             gc.enable()
 

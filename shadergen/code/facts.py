@@ -58,6 +58,26 @@ class Facts:
     __slots__ = ("callees", "calls", "builtins", "names", "uniforms", "types", "members", "stores", "whole",
                  "writes_params", "writes_outside", "derivatives", "forwards")
 
+    # Pickled with the library's items (code/library.py), whose cache must be the same bytes however
+    # the library was read: a set's order depends on how it was filled, so sets go as sorted tuples.
+    SETS = frozenset({"builtins", "uniforms", "whole"})
+
+    def __getstate__(self):
+        state = {name: getattr(self, name) for name in self.__slots__}
+        for name in self.SETS:
+            state[name] = _sorted(state[name])
+        state["stores"] = tuple(s._replace(members=_sorted(s.members)) for s in self.stores)
+        return state
+
+    def __setstate__(self, state):
+        for name, value in state.items():
+            setattr(self, name, frozenset(value) if name in self.SETS else value)
+        self.stores = tuple(s._replace(members=frozenset(s.members)) for s in self.stores)
+
+
+def _sorted(values) -> tuple:
+    return tuple(sorted(values, key=repr))  # repr: a member's struct may be None
+
 
 def facts(item: ir.Item) -> Facts:
     """The facts of a top-level item (Function, Struct, Constant, Global), memoised on it

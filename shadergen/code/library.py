@@ -15,12 +15,14 @@ every node's `where`, and the pickle does not depend on where the library lies.
 import hashlib
 import os
 import pickle
+import re
 
 from ..errors import ShaderGenError
 from ..fingerprint import library_files
 from ..library import Library, cache_dir, collection_paused, read_source, write_atomically
 from . import ir
 from .check import check_expression, check_modules, flat_items, library_symbols
+from .facts import facts
 from .generated import check_generated
 from .instantiate import maker
 from .parse import parse_expression, parse_module
@@ -29,7 +31,9 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-1"
+CACHE_FORMAT = b"shadergen-code-2"
+# an identifier as the libraries' sources spell one (comments and strings included: only ever more)
+_SOURCE_IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
 
 
 def _running_ir() -> bytes:
@@ -42,16 +46,22 @@ def _running_ir() -> bytes:
 
 
 RUNNING_IR = _running_ir()
+STATE_SIZE = 6  # the fields of CodeLibrary.state()
 MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
 
 
 class CodeLibrary:
-    """The typed IR of a library's code, with its symbol table (see the module's doc)."""
-    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "typed", "parsed", "makers")
+    """The typed IR of a library's code, with its symbol table (see the module's doc), and every
+    identifier its sources spell (`identifiers`): WGSL reads a uniform through its buffer wherever
+    its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
+    with anything there."""
+    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "typed", "parsed",
+                 "makers")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
-        self.key, self.modules, self.symbols, self.templates, self.externals = state
+        self.key, self.modules, self.symbols, self.templates, self.externals, identifiers = state
+        self.identifiers = frozenset(identifiers)
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
@@ -72,7 +82,8 @@ class CodeLibrary:
 
     def state(self) -> tuple:
         """What the cache holds (equal for equal libraries, whatever order they were read in)."""
-        return (self.key, self.modules, self.symbols, self.templates, self.externals)
+        # the identifiers as a sorted tuple: a set's order depends on how it was filled
+        return (self.key, self.modules, self.symbols, self.templates, self.externals, tuple(sorted(self.identifiers)))
 
     # -- lookups -----------------------------------------------------------------------------------
     def module(self, path: str) -> ir.Module:
@@ -180,15 +191,23 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
     """The cache's state: parsed and checked modules, the symbol table, the inline templates."""
     root = library.root
     modules = {PRELUDE: parse_module(PRELUDE, read_source(PRELUDE_PATH))}
+    identifiers = set()
     for relative in sorted(source_files(root)):
-        modules[relative] = parse_module(relative, read_source(os.path.join(root, relative)))
+        text = read_source(os.path.join(root, relative))
+        modules[relative] = parse_module(relative, text)
+        identifiers.update(_SOURCE_IDENTIFIER.findall(text))
     symbols = library_symbols(check_modules(modules, externals, (PRELUDE,)))
     symbols.items = top_level_items(modules)
     templates = {}
     for text, where in inline_sources(library):
         if text not in templates:
             templates[text] = parse_expression(text, where)
-    return (key, modules, symbols, templates, dict(sorted(externals.items())))
+    for module in modules.values():  # read now, they are pickled with the items: a cold process reads none
+        for item in flat_items(module.items):
+            facts(item)
+    # WGSL spells a library name that is one of its reserved words `<name>_` (targets/wgsl)
+    identifiers = tuple(sorted(identifiers | {f"{n}_" for n in identifiers}))
+    return (key, modules, symbols, templates, dict(sorted(externals.items())), identifiers)
 
 
 def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:
@@ -218,7 +237,7 @@ def read_cache(path: str, key: str) -> tuple | None:
         if data[64:65] != b"\n" or hashlib.sha256(body).hexdigest().encode() != digest:
             return None
         state = pickle.loads(body)
-        return state if isinstance(state, tuple) and len(state) == 5 and state[0] == key else None
+        return state if isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key else None
     except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
 

@@ -13,9 +13,7 @@ it by the listing in any of them:
 - RESERVED holds the keywords and reserved words of each language, the built-in functions and
   types a name would shadow, and the names the targets and the libraries write themselves.
 """
-import glob
 import hashlib
-import os
 import re
 from functools import lru_cache
 
@@ -136,19 +134,3 @@ def _spell(match: re.Match) -> str:
     c = match.group()
     return f"_u{ord(c):04X}_" if ord(c) > 127 else "_"
 
-
-_SOURCE_IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
-
-
-@lru_cache(maxsize=4)
-def library_identifiers(root: str) -> frozenset[str]:
-    """Every identifier the libraries' GLSL sources under `root` spell, and the form the WGSL
-    translation gives those that are WGSL reserved words (`<name>_`): WGSL reads a uniform through
-    its buffer wherever its name stands (`pu.name`), inside library functions too, so a uniform
-    must not share a name with anything there. (The translation's parameter copies are
-    `<name>__in`, a form no namer's name takes.)"""
-    found = set()
-    for path in sorted(glob.glob(os.path.join(root, "**", "genglsl", "**", "*.glsl"), recursive=True)):
-        with open(path, encoding="utf-8") as f:
-            found.update(_SOURCE_IDENTIFIER.findall(f.read()))
-    return frozenset(found | {f"{n}_" for n in found})
