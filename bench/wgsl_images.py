@@ -1,12 +1,12 @@
-"""Our WGSL drawn by WebGPU against our GLSL drawn by GL, same scene (issue 12): every renderable
-element of the documents given (default: the Examples materials of the corpus), generated for wgsl
-and for glsl with the same interface, drawn by WgpuRenderer (wgpu on Vulkan: lavapipe without a GPU)
-and by Renderer (moderngl on EGL: llvmpipe) on the same sphere, procedural sky, textures and
-optional light rig. PSNR over the linear RGBA framebuffers (peak 1.0), as bench/accuracy.py.
+"""Our WGSL (or, with --target vulkan, our Vulkan GLSL's SPIR-V) drawn by WebGPU against our GLSL
+drawn by GL, same scene (issues 12, 24): every renderable element of the documents given (default:
+the Examples materials of the corpus), generated for the target and for glsl with the same
+interface, drawn by WgpuRenderer (wgpu on Vulkan: lavapipe without a GPU) and by Renderer
+(moderngl on EGL: llvmpipe) on the same sphere, procedural sky, textures and optional light rig. PSNR over the linear RGBA framebuffers (peak 1.0), as bench/accuracy.py.
 Prints a row per element, then the minimum, the median and the worst five, and the share >= 40 dB.
 
-    .venv/bin/python bench/wgsl_images.py [DOC.mtlx ...] [--corpus ../shared/corpus] [--size 128]
-        [--interface specialized] [--lights rig.mtlx] [--save DIR]
+    .venv/bin/python bench/wgsl_images.py [DOC.mtlx ...] [--target wgsl|vulkan] [--corpus ../shared/corpus]
+        [--size 128] [--interface specialized] [--lights rig.mtlx] [--save DIR]
 """
 import argparse
 import glob
@@ -23,7 +23,7 @@ from accuracy import fmt_db, psnr  # noqa: E402 - the same PSNR as the other acc
 
 from shadergen.api import generate_file  # noqa: E402
 from shadergen.render import Renderer  # noqa: E402
-from shadergen.render.wgpu_renderer import WgpuRenderer  # noqa: E402
+from shadergen.render.wgpu_renderer import WGPU_TARGETS, WgpuRenderer  # noqa: E402
 
 PASS_DB = 40.0
 
@@ -32,6 +32,7 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("documents", nargs="*")
     p.add_argument("--corpus", default=os.path.join(os.path.dirname(os.path.dirname(HERE)), "shared", "corpus"))
+    p.add_argument("--target", choices=WGPU_TARGETS, default="wgsl", help="what WebGPU draws")
     p.add_argument("--size", type=int, default=128)
     p.add_argument("--interface", default="specialized")
     p.add_argument("--lights", help="a light rig both renderers use")
@@ -39,23 +40,24 @@ def main() -> int:
     a = p.parse_args()
     documents = a.documents or sorted(glob.glob(os.path.join(a.corpus, "resources/Materials/Examples/StandardSurface/*.mtlx")))
     roots = [a.corpus]
-    renderers = {"glsl": Renderer(search_paths=roots, confined=False), "wgsl": WgpuRenderer(search_paths=roots, confined=False)}
+    ours = a.target
+    renderers = {"glsl": Renderer(search_paths=roots, confined=False), ours: WgpuRenderer(search_paths=roots, confined=False)}
     print(f"{'document':<44} {'element':<28} {'PSNR dB':>8} {'max diff':>9} {'compile s wgpu/gl':>18} {'first frame s wgpu/gl':>22}")
     rows = []
     for document in documents:
         records = {t: {r.get("element"): r for r in generate_file(document, target=t, all=True, interface=a.interface)}
                    for t in renderers}
-        for element, wgsl in records["wgsl"].items():
+        for element, theirs in records[ours].items():
             name = os.path.basename(document)
             glsl = records["glsl"].get(element)
-            failed = next((r["error"]["message"] for r in (wgsl, glsl) if r is None or "error" in r), None) \
+            failed = next((r["error"]["message"] for r in (theirs, glsl) if r is None or "error" in r), None) \
                 if glsl is not None else "no glsl record"
             if failed:
                 rows.append({"document": name, "element": element, "psnr": float("nan"), "error": failed})
                 print(f"{name:<44} {str(element):<28} {'error':>8}  {failed[:80]}")
                 continue
             images, compile_s, first_s = {}, {}, {}
-            for target, record in (("wgsl", wgsl), ("glsl", glsl)):
+            for target, record in ((ours, theirs), ("glsl", glsl)):
                 result = renderers[target].render(record, size=a.size, lights=a.lights)
                 images[target] = result.rgba
                 compile_s[target] = result.timings_ms["compile_link"] / 1e3
@@ -64,11 +66,11 @@ def main() -> int:
                 os.makedirs(a.save, exist_ok=True)
                 for target, image in images.items():
                     np.save(os.path.join(a.save, f"{os.path.splitext(name)[0]}.{target}.npy"), image)
-            score = psnr(images["wgsl"], images["glsl"])
-            diff = float(np.nanmax(np.abs(images["wgsl"] - images["glsl"])))
+            score = psnr(images[ours], images["glsl"])
+            diff = float(np.nanmax(np.abs(images[ours] - images["glsl"])))
             rows.append({"document": name, "element": element, "psnr": score})
             print(f"{name:<44} {str(element):<28} {fmt_db(score):>8} {diff:>9.4f} "
-                  f"{compile_s['wgsl']:>9.1f}/{compile_s['glsl']:<8.1f} {first_s['wgsl']:>11.1f}/{first_s['glsl']:<10.1f}",
+                  f"{compile_s[ours]:>9.1f}/{compile_s['glsl']:<8.1f} {first_s[ours]:>11.1f}/{first_s['glsl']:<10.1f}",
                   flush=True)
     scored = sorted((r for r in rows if not math.isnan(r["psnr"])), key=lambda r: r["psnr"])
     values = [r["psnr"] for r in scored]
