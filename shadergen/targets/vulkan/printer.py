@@ -12,6 +12,10 @@ that combined sampler branches (`?:`): the OpSampledImage lands in another block
 which spirv-val refuses. In a texture call's arguments a selection is therefore written as GLSL
 4.50's selecting `mix(if_false, if_true, condition)` (an OpSelect); the library's texture
 coordinates have no side effects, so evaluating both sides changes nothing.
+
+A section on GL_ES takes its ESSL side, as WGSL's printer does: naga has no OpImageQueryLod
+(`textureQueryLod`), so the level of detail comes from the derivatives there too. Every other
+section stays a preprocessor section.
 """
 from ...code import ir
 from ...code.passes.rewrite import rebuild_list
@@ -49,6 +53,12 @@ class VulkanPrinter(GlslPrinter):
             else:
                 args.append(a)
         return args
+
+    def section(self, s: ir.Section, body_lines, lines: list[str]) -> None:
+        if s.macro != "GL_ES":
+            super().section(s, body_lines, lines)
+        else:  # taken as defined
+            lines.extend(body_lines(s.body if s.defined else (s.other or [])))
 
     @staticmethod
     def texture_name(e) -> ir.Name:
