@@ -38,7 +38,7 @@ Keep = Annotated[Text, StringConstraints(min_length=1, max_length=1024)]
 class GenerateRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
-    target: Text = Field("glsl", max_length=64, description="glsl, essl or wgsl")
+    target: Text = Field("glsl", max_length=64, description="glsl, essl, wgsl or vulkan")
     element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
     interface: Interface = Field("complete", description=INTERFACE_DOC)
     keep: list[Keep] = Field(default_factory=list, max_length=256,
@@ -144,8 +144,11 @@ class ShaderRecord(BaseModel):
     timings_ms: dict[str, float] = Field(default_factory=dict)
     warnings: list[Any] = Field(default_factory=list)
     layout: dict[str, Any] | None = Field(None, description=(
-        "wgsl only: per stage, the uniform buffer (group, binding 0, size) with each member's byte offset "
-        "by WGSL's alignment rules, and each texture's texture and sampler bindings"))
+        "wgsl and vulkan: per stage, the uniform buffer (wgsl group, vulkan set; binding 0; size) with each "
+        "member's byte offset by WGSL's alignment rules (vulkan: std140, the same offsets), and each texture's "
+        "texture and sampler bindings"))
+    spirv: dict[str, str] | None = Field(None, description="vulkan only: each stage's SPIR-V module "
+                                         "(glslangValidator -V, Vulkan 1.0), base64")
 
 
 class JobAccepted(BaseModel):

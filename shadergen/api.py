@@ -106,6 +106,9 @@ class Prepared:
         stages = emit_shader(ctx, self.graph)
         blocks = {name: st.listing() for name, st in ctx.stages.items()}
         layout = ctx.target.layout(ctx)
+        # what a target compiles its stages to (vulkan: SPIR-V), for a record with its source
+        compiled = getattr(ctx.target, "compiled", None)
+        binaries = compiled(stages) if compiled is not None and source else {}
         if self.document.labels:  # variables name their inputs as the source document does
             for variable in (v for block in blocks.values() for vs in block.values() for v in vs):
                 variable["path"] = self.document.label(variable["path"])
@@ -119,7 +122,7 @@ class Prepared:
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
         } | ({"layout": layout} if layout is not None else {}) \
           | ({"environment": self.graph.environment} if self.graph.environment is not None else {}) \
-          | ({"lights": False} if not self.graph.lights else {})
+          | ({"lights": False} if not self.graph.lights else {}) | binaries
 
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,

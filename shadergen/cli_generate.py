@@ -1,4 +1,5 @@
 """`shadergen generate`: JSON Lines records on stdout, or stage files and listings under --out."""
+import base64
 import json
 import os
 import sys
@@ -11,14 +12,16 @@ EXAMPLES = """examples:
   shadergen generate --all --target essl --out shaders/ a.mtlx b.mtlx
   cat doc.mtlx | shadergen generate -                             # the document on stdin
 
---out DIR writes DIR/<document>/<element>.<target>.vert, .frag and .json (the listings), so
-documents, elements and targets never overwrite each other's files."""
+--out DIR writes DIR/<document>/<element>.<target>.vert, .frag and .json (the listings; vulkan also
+.vert.spv and .frag.spv, the SPIR-V), so documents, elements and targets never overwrite each
+other's files."""
 
 
 def add_arguments(p) -> None:
     p.add_argument("documents", nargs="+", metavar="DOC.mtlx",
                    help="MaterialX documents; - reads one from stdin (its includes relative to the current folder)")
-    p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es) or wgsl (WebGPU)")
+    p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es), wgsl (WebGPU) or "
+                                                      "vulkan (#version 450 for Vulkan, with each stage's SPIR-V)")
     p.add_argument("--element", metavar="NAMEPATH",
                    help="name path of the element to generate (default: the first renderable element)")
     p.add_argument("--all", action="store_true", help="every renderable element instead of the first")
@@ -63,7 +66,9 @@ class OutputFiles:
         folder = os.path.join(self.out_dir, name)
         stem = os.path.join(folder, f"{(record['element'] or 'shader').replace('/', '_')}.{record['target']}")
         files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage)}": src for stage, src in record["stages"].items()}
-        files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k != "stages"}, indent=1)
+        for stage, module in record.get("spirv", {}).items():  # vulkan: each stage's SPIR-V as it is
+            files[f"{stem}.{STAGE_SUFFIX.get(stage, stage)}.spv"] = base64.b64decode(module)
+        files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k not in ("stages", "spirv")}, indent=1)
         owner = f"{document} {record['element']}"
         taken = next((f for f in files if self.written.get(f, owner) != owner), None)
         if taken is not None:
@@ -71,9 +76,9 @@ class OutputFiles:
                 "code": "output_collision", "message": f"{taken} was already written for {self.written[taken]}",
                 "where": taken}}
         os.makedirs(folder, exist_ok=True)
-        for path, text in files.items():
-            with open(path, "w") as f:
-                f.write(text)
+        for path, content in files.items():
+            with open(path, "wb" if isinstance(content, bytes) else "w") as f:
+                f.write(content)
             self.written[path] = owner
         return None
 

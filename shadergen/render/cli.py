@@ -13,7 +13,7 @@ from .imageio import write_image
 from .renderer import ENV_METHODS
 
 # backend -> the target a document is generated for
-BACKENDS = {"gl": "glsl", "wgpu": "wgsl"}
+BACKENDS = {"gl": "glsl", "wgpu": "wgsl", "vulkan": "vulkan"}
 
 
 TEXTURE_ROOTS_VARIABLE = "SHADERGEN_TEXTURE_ROOTS"
@@ -44,7 +44,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--element", metavar="NAMEPATH", help="renderable element (default: the first)")
     parser.add_argument("--backend", choices=tuple(BACKENDS), default="gl",
                         help="gl: our GLSL drawn with OpenGL on EGL; wgpu: our WGSL drawn with WebGPU on Vulkan "
-                             "(lavapipe without a GPU), same scene")
+                             "(lavapipe without a GPU); vulkan: our Vulkan GLSL's SPIR-V drawn by the same WebGPU "
+                             "device; the same scene in all three")
     parser.add_argument("--interface",
                         help="interface of the generated shader (default specialized: values folded into the code, "
                              "the same image as complete, the smallest shader; with --batch complete, one program per "
@@ -136,7 +137,7 @@ def _environment(args) -> Environment:
 def _renderer(args):
     env_roots = [p for p in os.environ.get(TEXTURE_ROOTS_VARIABLE, "").split(os.pathsep) if p]
     renderer_class = Renderer
-    if args.backend == "wgpu":
+    if args.backend in ("wgpu", "vulkan"):
         from .wgpu_renderer import WgpuRenderer as renderer_class  # imports wgpu only when asked for
     return renderer_class(texture_roots=args.texture_root + env_roots, search_paths=args.search_path + env_roots,
                           confined=args.confine)

@@ -22,7 +22,8 @@ def check_record(record, targets: tuple[str, ...] = RENDERABLE_TARGETS) -> tuple
                           f"{error.get('code', 'error')}: {error.get('message', '')}", where)
     target = record.get("target", "glsl")
     if target not in targets:
-        hint = " (wgsl records are drawn by the wgpu backend)" if target == "wgsl" else ""
+        hint = {"wgsl": " (wgsl records are drawn by the wgpu backend)",
+                "vulkan": " (vulkan records are drawn by the vulkan backend)"}.get(target, "")
         raise RenderError("unsupported_target", f"this renderer draws {' or '.join(targets)}, not {target!r}{hint}",
                           where)
     stages = record.get("stages")

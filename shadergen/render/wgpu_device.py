@@ -53,9 +53,9 @@ def wgpu_device(lp_threads: int | None = None):
     return _device
 
 
-def shader_module(device, source: str, label: str):
-    """The compiled module, or RenderError(compile_error) with naga's message; `where` is
-    "label:LINE" of the first error when naga gives one."""
+def shader_module(device, source: str | bytes, label: str):
+    """The compiled module from WGSL text or SPIR-V bytes, or RenderError(compile_error) with
+    naga's message; `where` is "label:LINE" of the first WGSL error when naga gives one."""
     try:
         return device.create_shader_module(label=label, code=source)
     except Exception as exc:  # wgpu's GPUValidationError carries naga's report
@@ -66,7 +66,8 @@ def shader_module(device, source: str, label: str):
         if marker >= 0 and text[marker + 5:].split(":")[0].isdigit():
             line = text[marker + 5:].split(":")[0]
             break
-    raise RenderError("compile_error", f"WGSL {label} stage rejected: {message.strip()}",
+    language = "SPIR-V" if isinstance(source, bytes) else "WGSL"
+    raise RenderError("compile_error", f"{language} {label} stage rejected: {message.strip()}",
                       f"{label}:{line}" if line else label)
 
 

@@ -1,15 +1,20 @@
-"""A WGSL record's render pipeline: its two modules, bind group layouts read from the record's
-`layout` (group 0 the vertex stage's, group 1 the pixel stage's: binding 0 the uniform buffer,
-then a texture and its sampler per filename uniform), vertex buffers fed from the AppData
-listing in location order, and uniform buffers packed at the layout's byte offsets.
+"""The render pipeline of a record WebGPU draws: a WGSL record's two modules (`vertexMain`,
+`fragmentMain`), or a Vulkan record's SPIR-V (its `spirv`, base64; `main` in each; naga reads it
+into the same pipeline). Both targets publish the same `layout` (group or set 0 the vertex stage's,
+1 the pixel stage's: binding 0 the uniform buffer, then a texture and its sampler per filename
+uniform; Vulkan's std140 offsets are WGSL's, targets/vulkan/layout.py), so bind group layouts,
+vertex buffers fed from the AppData listing in location order, and uniform buffers packed at the
+layout's byte offsets are made alike.
 """
+import base64
+import binascii
 import struct
 import time
 
 import numpy as np
 
 from ..targets.closures import LIGHT_DATA_MEMBERS
-from ..targets.wgsl.layout import struct_members
+from ..targets.wgsl.layout import MEMBER, struct_members
 from .errors import RenderError
 from .geometry import Mesh
 from .wgpu_device import shader_module
@@ -20,22 +25,29 @@ COLOR_FORMAT, DEPTH_FORMAT = "rgba32float", "depth32float"
 VERTEX_FORMATS = {"float": (1, "float32"), "vector2": (2, "float32x2"), "vector3": (3, "float32x3"),
                   "color3": (3, "float32x3"), "vector4": (4, "float32x4"), "color4": (4, "float32x4"),
                   "integer": (1, "sint32")}
-# Member types of the uniform buffer: (struct format of one column, columns, bytes between columns).
+# target -> (vertex, pixel) entry points
+ENTRY_POINTS = {"wgsl": ("vertexMain", "fragmentMain"), "vulkan": ("main", "main")}
+# Member types of the uniform buffer as WGSL names them (MEMBER: both targets' MaterialX types):
+# (struct format of one column, columns, bytes between columns).
 COLUMNS = {"f32": ("f", 1, 4), "i32": ("i", 1, 4), "vec2f": ("2f", 1, 8), "vec3f": ("3f", 1, 12),
            "vec4f": ("4f", 1, 16), "mat3x3f": ("3f", 3, 16), "mat4x4f": ("4f", 4, 16)}
 LIGHT_DATA, LIGHT_DATA_SIZE = struct_members(LIGHT_DATA_MEMBERS)
 
 
-class WgslPipeline:
+class WgpuPipeline:
     def __init__(self, device, record: dict, element: str | None = None):
         import wgpu
 
+        target = record.get("target")
         layout = record.get("layout")
         if not isinstance(layout, dict) or not all(isinstance(layout.get(s), dict) for s in STAGES):
-            raise RenderError("invalid_record", "a wgsl record needs its 'layout' (uniform offsets and bindings)", element)
+            raise RenderError("invalid_record", f"a {target} record needs its 'layout' (uniform offsets and bindings)",
+                              element)
         self.layout = layout
         start = time.perf_counter()
-        modules = {s: shader_module(device, record["stages"][s], s) for s in STAGES}
+        code = _stage_code(record, element)
+        modules = {s: shader_module(device, code[s], s) for s in STAGES}
+        entry_points = dict(zip(STAGES, ENTRY_POINTS[target]))
         self.bind_group_layouts = [device.create_bind_group_layout(entries=self._layout_entries(layout[s]))
                                    for s in STAGES]
         self.app_data = [(v["name"], *VERTEX_FORMATS[v["type"]])
@@ -46,13 +58,13 @@ class WgslPipeline:
         try:
             self.pipeline = device.create_render_pipeline(
                 layout=device.create_pipeline_layout(bind_group_layouts=self.bind_group_layouts),
-                vertex={"module": modules["vertex"], "entry_point": "vertexMain", "buffers": vertex_buffers},
+                vertex={"module": modules["vertex"], "entry_point": entry_points["vertex"], "buffers": vertex_buffers},
                 primitive={"topology": wgpu.PrimitiveTopology.triangle_list, "cull_mode": wgpu.CullMode.none},
                 depth_stencil={"format": DEPTH_FORMAT, "depth_write_enabled": True, "depth_compare": "less"},
-                fragment={"module": modules["pixel"], "entry_point": "fragmentMain",
+                fragment={"module": modules["pixel"], "entry_point": entry_points["pixel"],
                           "targets": [{"format": COLOR_FORMAT}]})
         except Exception as exc:  # wgpu's validation error: stages or bindings that do not fit together
-            raise RenderError("compile_error", f"{element + ': ' if element else ''}WGSL pipeline rejected: {exc}",
+            raise RenderError("compile_error", f"{element + ': ' if element else ''}{target} pipeline rejected: {exc}",
                               "link") from exc
         self.compile_link_ms = (time.perf_counter() - start) * 1e3
         self._vertex_buffers: dict[str, tuple[list, object, int]] = {}
@@ -79,8 +91,8 @@ class WgslPipeline:
         for m in self.layout[stage]["members"]:
             if m["type"] == "LightData":
                 self._pack_lights(buffer, m["offset"], m["size"] // LIGHT_DATA_SIZE, values, warnings)
-            elif m["wgsl"] in COLUMNS and m["name"] in values:
-                _pack(buffer, m["offset"], m["wgsl"], values[m["name"]], m["name"], warnings)
+            elif MEMBER.get(m["type"], ("",))[0] in COLUMNS and m["name"] in values:
+                _pack(buffer, m["offset"], MEMBER[m["type"]][0], values[m["name"]], m["name"], warnings)
         return bytes(buffer)
 
     @staticmethod
@@ -114,6 +126,18 @@ class WgslPipeline:
             for buffer in [*buffers, index]:
                 buffer.destroy()
         self._vertex_buffers.clear()
+
+
+def _stage_code(record: dict, element: str | None) -> dict:
+    """Each stage's module as wgpu takes it: WGSL text, or SPIR-V bytes."""
+    if record.get("target") != "vulkan":
+        return record["stages"]
+    spirv = record.get("spirv")
+    try:
+        return {s: base64.b64decode(spirv[s], validate=True) for s in STAGES}
+    except (TypeError, KeyError, binascii.Error):
+        raise RenderError("invalid_record", "a vulkan record needs its 'spirv': each stage's module, base64",
+                          element) from None
 
 
 def _pack(buffer: bytearray, offset: int, wgsl: str, value, name: str, warnings: list[str]) -> None:

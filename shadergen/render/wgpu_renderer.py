@@ -1,7 +1,7 @@
-"""WgpuRenderer: draws WGSL shader records with WebGPU (the `wgpu` package on Vulkan; Mesa's lavapipe
+"""WgpuRenderer: draws WGSL and Vulkan (SPIR-V) shader records with WebGPU (the `wgpu` package on Vulkan; Mesa's lavapipe
 without a GPU) in the same scene as the GL renderer: the same meshes, camera, environment, light
 rigs, values and file textures (base.py and inputs.py hold what both share), so an image of our
-WGSL can be compared pixel for pixel with one of our GLSL.
+WGSL or Vulkan GLSL can be compared pixel for pixel with one of our GLSL.
 
 Differences from GL that the scene absorbs: clip-space depth runs 0..1 (the projection is
 remapped, x and y untouched); framebuffer rows come back top first; mipmaps are built here (WebGPU
@@ -21,9 +21,9 @@ from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, r
 from .record import check_record, source_digest
 from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling, mip_chain, opaque
 from .wgpu_device import wgpu_device
-from .wgpu_program import COLOR_FORMAT, DEPTH_FORMAT, STAGES, WgslPipeline
+from .wgpu_program import COLOR_FORMAT, DEPTH_FORMAT, STAGES, WgpuPipeline
 
-WGPU_TARGETS = ("wgsl",)
+WGPU_TARGETS = ("wgsl", "vulkan")
 ADDRESS_MODES = {GL_REPEAT: "repeat", GL_MIRRORED_REPEAT: "mirror-repeat", GL_CLAMP_TO_EDGE: "clamp-to-edge"}
 ENV_SAMPLING = Sampling(wrap_v=GL_CLAMP_TO_EDGE)  # lat-long: around in longitude, stopped at the poles
 
@@ -41,7 +41,7 @@ class WgpuTexture:
 
 
 class WgpuRenderer(SceneRenderer):
-    """Renders WGSL records; the arguments are SceneRenderer's."""
+    """Renders WGSL and Vulkan records; the arguments are SceneRenderer's."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -61,7 +61,7 @@ class WgpuRenderer(SceneRenderer):
                               element)
         device = wgpu_device(self.lp_threads)
         program, compile_link_ms, reused = self._program(source_digest(vertex, pixel),
-                                                         lambda: WgslPipeline(device, record, element))
+                                                         lambda: WgpuPipeline(device, record, element))
         vertex_buffers, index_buffer, index_count = program.vertex_buffers(device, *self._mesh(mesh, record))
         make = functools.partial(upload, device)
         environment, env_textures = self._environment(env, make)
@@ -110,7 +110,7 @@ class WgpuRenderer(SceneRenderer):
         rgba = np.frombuffer(raw, "f4").reshape(side, side, 4)  # WebGPU's first row is the top
         return self._result(rgba, size, supersample, frame_ms, start, compile_link_ms, reused, warnings)
 
-    def _bind_group(self, device, program: WgslPipeline, group: int, stage: str, values: dict, textures: dict,
+    def _bind_group(self, device, program: WgpuPipeline, group: int, stage: str, values: dict, textures: dict,
                     warnings: list[str]):
         """Group `group`: the stage's uniform buffer, then each of its textures and samplers; a
         sampler the record does not describe gets black."""

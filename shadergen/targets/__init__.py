@@ -8,7 +8,7 @@ from ..errors import ShaderGenError
 # name -> (module, class). A target's module is imported when it is first asked for: a process
 # writing GLSL never loads the WGSL printer.
 TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "essl": (".glsl.target", "EsslTarget"),
-                                       "wgsl": (".wgsl.target", "WgslTarget")}
+                                       "wgsl": (".wgsl.target", "WgslTarget"), "vulkan": (".vulkan.target", "VulkanTarget")}
 
 
 def target_for(name: str):
@@ -18,3 +18,13 @@ def target_for(name: str):
         raise ShaderGenError("unsupported_target", f"unknown target '{name}'; supported: "
                              + ", ".join(sorted(TARGETS)), name) from None
     return getattr(importlib.import_module(module, __package__), cls)()
+
+
+def checker_for(name: str):
+    """The target's checker module (`targets/<package>/check.py`: `errors(shaders)`, see
+    targets/checking.py); ShaderGenError(unsupported_target) for a target the registry lacks,
+    ModuleNotFoundError for a registered target without a checker."""
+    if name not in TARGETS:
+        target_for(name)  # raises the unknown target's error
+    package = TARGETS[name][0].rsplit(".", 1)[0]
+    return importlib.import_module(package + ".check", __package__)

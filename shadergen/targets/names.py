@@ -57,6 +57,16 @@ interpolateAtCentroid interpolateAtSample interpolateAtOffset noise1 noise2 nois
 EndPrimitive EmitStreamVertex EndStreamPrimitive barrier memoryBarrier
 """.split())
 
+# GL_KHR_vulkan_glsl's types (textures and samplers apart, subpass inputs) and GLSL 4.50's built-ins
+VULKAN_GLSL_NAMES = set("""
+sampler samplerShadow texture1D texture2D texture3D textureCube texture2DRect texture1DArray texture2DArray
+textureBuffer texture2DMS texture2DMSArray textureCubeArray itexture1D itexture2D itexture3D itextureCube
+itexture2DRect itexture1DArray itexture2DArray itextureBuffer itexture2DMS itexture2DMSArray itextureCubeArray
+utexture1D utexture2D utexture3D utextureCube utexture2DRect utexture1DArray utexture2DArray utextureBuffer
+utexture2DMS utexture2DMSArray utextureCubeArray subpassInput isubpassInput usubpassInput subpassInputMS
+isubpassInputMS usubpassInputMS subpassLoad textureSamples textureQueryLevels imageSize imageSamples
+""".split())
+
 # WGSL's predeclared functions and types (a declaration of that name hides them)
 WGSL_BUILTINS = set("""
 all any select arrayLength abs acos acosh asin asinh atan atanh atan2 ceil clamp cos cosh countLeadingZeros
@@ -99,7 +109,8 @@ u_envLightIntensity u_refractionTwoSided u_numActiveLightSources u_lightData u_t
 i_position i_normal i_tangent i_bitangent
 """.split())
 
-RESERVED = frozenset(GLSL_KEYWORDS | GLSL_BUILTINS | WGSL_RESERVED | WGSL_BUILTINS | TARGET_NAMES | SEED_NAMES)
+RESERVED = frozenset(GLSL_KEYWORDS | GLSL_BUILTINS | VULKAN_GLSL_NAMES | WGSL_RESERVED | WGSL_BUILTINS | TARGET_NAMES
+                     | SEED_NAMES)
 # gl_ is GLSL's; the seed's numbered and named streams and ESSL's vertex data (`vd_<member>`) are
 # named by the targets; mx_ and MX_ begin the libraries' functions and constants
 RESERVED_PREFIXES = ("gl_", "__", "vd_", "i_texcoord_", "i_color_", "i_geomprop_", "u_geomprop_", "mx_", "MX_")

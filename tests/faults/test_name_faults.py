@@ -25,8 +25,8 @@ def server(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def checker():
-    from required_tools import require_wgpu, tool_path
-    return ShaderChecker(tool_path("glslangValidator"), require_wgpu())
+    from required_tools import missing
+    return ShaderChecker(on_missing=missing)
 
 
 def unicode_layer() -> bytes:

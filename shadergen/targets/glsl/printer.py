@@ -149,7 +149,7 @@ class GlslPrinter:
             inner = self.precedence(e.operand) <= UNARY  # also `-(-x)`: `--x` is a decrement
             return e.op + self.operand(e.operand, None if column is None else column + len(e.op), indent, inner)
         if cls is ir.Call:
-            return self.call(e.name, e.args, column, indent)
+            return self.call(e.name, self.call_arguments(e), column, indent)
         if cls is ir.Construct:
             return self.call(e.type, e.args, column, indent)  # IR types are GLSL's spellings
         if cls is ir.Field:
@@ -200,6 +200,10 @@ class GlslPrinter:
         if not parenthesised:
             return self.render(e, column, indent)
         return "(" + self.render(e, None if column is None else column + 1, indent) + ")"
+
+    def call_arguments(self, e: ir.Call) -> list:
+        """A call's arguments as written (Vulkan's printer passes a texture with its sampler)."""
+        return e.args
 
     def call(self, name: str, args, column, indent) -> str:
         if column is None:
@@ -370,8 +374,12 @@ class GlslPrinter:
 
     def signature(self, f: ir.Function) -> str:
         head = f"{f.returns} {f.name}("
-        params = [self.parameter(p) for p in f.params]
+        params = [text for p in f.params for text in self.parameters(p)]
         return head + arguments(lambda text, column, indent: text, params, len(head), 0) + ")"
+
+    def parameters(self, p: ir.Param) -> list[str]:
+        """The declarations one IR parameter is written as (Vulkan's texture: two)."""
+        return [self.parameter(p)]
 
     def parameter(self, p: ir.Param) -> str:
         qualifier = "" if p.qualifier == "in" else p.qualifier + " "

@@ -29,9 +29,10 @@ class GlslTarget:
     # one spelling of every name in every target (names.py): a client binds the same names in each
     reserved, reserved_prefixes, reserved_suffixes = RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
     closures = ClosureConvention()
+    printer_class = GlslPrinter
 
     def __init__(self):
-        self.printer = GlslPrinter(self.dialect, self.spell)
+        self.printer = self.printer_class(self.dialect, self.spell)
 
     def spell(self, name: ir.Name) -> str:
         if name.kind == "vertexdata":
@@ -62,8 +63,8 @@ class GlslTarget:
             w.line()
         self._uniforms(ctx.pixel, w)
         self._vertex_data(ctx.pixel, w, "in")
-        for v in ctx.pixel.blocks["Outputs"]:
-            w.line(f"out vec4 {v.name};")
+        for location, v in enumerate(ctx.pixel.blocks["Outputs"]):
+            w.line(f"{self.io('out', location)} vec4 {v.name};")
         w.line()
         for function in code.functions:
             w.extend(self.item(function))
@@ -74,8 +75,8 @@ class GlslTarget:
     def assemble_vertex(self, ctx) -> str:
         w = self._start()
         self._uniforms(ctx.vertex, w)
-        for v in ctx.vertex.blocks["AppData"]:
-            w.line(f"in {_type(v)} {v.name};")
+        for location, v in enumerate(ctx.vertex.blocks["AppData"]):
+            w.line(f"{self.io('in', location)} {listed_type(v)} {v.name};")
         w.line()
         self._vertex_data(ctx.vertex, w, "out")
         self._main(ctx.pixel.code.vertex_main, w)
@@ -87,6 +88,11 @@ class GlslTarget:
             w.line(line)
         w.line()
         return w
+
+    @staticmethod
+    def io(direction: str, location: int) -> str:
+        """A stage input's or output's qualifiers: GLSL matches them by name."""
+        return direction
 
     def _main(self, body: ir.Block, w: Writer) -> None:
         w.line("void main()")
@@ -101,7 +107,7 @@ class GlslTarget:
                     init = None
                     if self.uniform_initializers and v.initializer is not None and v.type not in ("filename", "LightData"):
                         init = value_expr(v.type, v.initializer, {"enum": ""})  # listing values of enums are indices
-                    w.line(self.printer.global_declaration(ir.Global(_type(v), v.name, "uniform", None, init)))
+                    w.line(self.printer.global_declaration(ir.Global(listed_type(v), v.name, "uniform", None, init)))
                 w.line()
 
     def _vertex_data(self, stage, w: Writer, direction: str) -> None:
@@ -109,14 +115,14 @@ class GlslTarget:
         if not members:
             return
         if self.vertex_data_block:
-            w.line(f"{direction} VertexData")
+            w.line(f"{self.io(direction, 0)} VertexData")
             w.line("{")
             for v in members:
-                w.line(f"    {_type(v)} {v.name};")
+                w.line(f"    {listed_type(v)} {v.name};")
             w.line("} vd;")
         else:
-            for v in members:
-                w.line(f"{direction} {_type(v)} vd_{v.name};")
+            for location, v in enumerate(members):
+                w.line(f"{self.io(direction, location)} {listed_type(v)} vd_{v.name};")
         w.line()
 
 
@@ -125,7 +131,7 @@ def printed(target_class, item) -> tuple[str, ...]:
     return tuple(target_class().printer.item(item))
 
 
-def _type(v) -> str:
+def listed_type(v) -> str:
     """A listed variable's IR type, which GLSL spells as it is (the light array's length is the
     prelude's MAX_LIGHT_SOURCES)."""
     return "LightData[MAX_LIGHT_SOURCES]" if v.type == "LightData" else ir_type(v.type)

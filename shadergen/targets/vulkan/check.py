@@ -1,0 +1,33 @@
+"""The Vulkan checker (targets/checking.py): glslangValidator -V compiling each stage to SPIR-V
+for Vulkan 1.0 (the same compile as the record's, spirv.py), then spirv-val (Debian spirv-tools),
+the Khronos validator of SPIR-V modules, on what it wrote."""
+import os
+import subprocess
+import tempfile
+
+from ...errors import ShaderGenError
+from ..checking import Unavailable, tool
+from .spirv import TARGET_ENV, compile_stage
+
+
+def errors(shaders: dict[str, tuple[str, str]]) -> dict[str, str]:
+    tool("glslangValidator", "glslang-tools")
+    spirv_val = tool("spirv-val", "spirv-tools")
+    found = {}
+    with tempfile.TemporaryDirectory(prefix="shadergen-spirv-val-") as folder:
+        for k, (label, (stage, source)) in enumerate(shaders.items()):
+            try:
+                module = compile_stage(stage, source)
+            except ShaderGenError as exc:
+                if exc.code == "missing_tool":
+                    raise Unavailable("glslangValidator", exc.message) from None
+                found[label] = exc.message[:600]
+                continue
+            path = os.path.join(folder, f"s{k}.spv")
+            with open(path, "wb") as f:
+                f.write(module)
+            run = subprocess.run([spirv_val, "--target-env", TARGET_ENV, path], capture_output=True, text=True,
+                                 errors="replace")
+            if run.returncode != 0:
+                found[label] = f"spirv-val: {(run.stderr or run.stdout).strip()[:600]}"
+    return found

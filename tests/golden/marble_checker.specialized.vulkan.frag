@@ -1,0 +1,112 @@
+#version 450
+
+layout(std140, set = 1, binding = 0) uniform PixelUniforms
+{
+    float u_n2_in2;  // offset 0
+};
+
+layout(location = 0) in vec3 vd_positionObject;
+layout(location = 1) in vec2 vd_texcoord_0;
+
+layout(location = 0) out vec4 out1;
+
+uint mx_hn_rotl(uint x, uint k)
+{
+    return (x << k) | (x >> (32u - k));
+}
+
+// lookup3 final(): avalanche a, b, c into c.
+uint mx_hn_final(uint a, uint b, uint c)
+{
+    c = (c ^ b) - mx_hn_rotl(b, 14u);
+    a = (a ^ c) - mx_hn_rotl(c, 11u);
+    b = (b ^ a) - mx_hn_rotl(a, 25u);
+    c = (c ^ b) - mx_hn_rotl(b, 16u);
+    a = (a ^ c) - mx_hn_rotl(c, 4u);
+    b = (b ^ a) - mx_hn_rotl(a, 14u);
+    c = (c ^ b) - mx_hn_rotl(b, 24u);
+    return c;
+}
+
+uint mx_hn_hash(int x, int y, int z)
+{
+    uint s = 0xdeadbeefu + 25u;
+    return mx_hn_final(s + uint(x), s + uint(y), s + uint(z));
+}
+
+float mx_pn_fade(float t)
+{
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+vec3 mx_pn_fade(vec3 t)
+{
+    return vec3(mx_pn_fade(t.x), mx_pn_fade(t.y), mx_pn_fade(t.z));
+}
+
+// 3D: the low 4 hash bits choose one of the 12 cube-edge gradients (4 of them repeated).
+float mx_pn_grad(uint h, vec3 f)
+{
+    h &= 15u;
+    float u = (h < 8u) ? f.x : f.y;
+    float v = (h < 4u) ? f.y : (h == 12u || h == 14u) ? f.x : f.z;
+    return (((h & 1u) != 0u) ? -u : u) + (((h & 2u) != 0u) ? -v : v);
+}
+
+float mx_pn_perlin(vec3 p)
+{
+    vec3 fl = floor(p);
+    ivec3 i = ivec3(fl);
+    vec3 f = p - fl;
+    vec3 w = mx_pn_fade(f);
+    float n000 = mx_pn_grad(mx_hn_hash(i.x, i.y, i.z), f);
+    float n100 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y, i.z), f - vec3(1.0, 0.0, 0.0));
+    float n010 = mx_pn_grad(mx_hn_hash(i.x, i.y + 1, i.z), f - vec3(0.0, 1.0, 0.0));
+    float n110 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z), f - vec3(1.0, 1.0, 0.0));
+    float n001 = mx_pn_grad(mx_hn_hash(i.x, i.y, i.z + 1), f - vec3(0.0, 0.0, 1.0));
+    float n101 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y, i.z + 1), f - vec3(1.0, 0.0, 1.0));
+    float n011 = mx_pn_grad(mx_hn_hash(i.x, i.y + 1, i.z + 1), f - vec3(0.0, 1.0, 1.0));
+    float n111 = mx_pn_grad(mx_hn_hash(i.x + 1, i.y + 1, i.z + 1), f - vec3(1.0, 1.0, 1.0));
+    float z0 = mix(mix(n000, n100, w.x), mix(n010, n110, w.x), w.y);
+    float z1 = mix(mix(n001, n101, w.x), mix(n011, n111, w.x), w.y);
+    return 0.9820 * mix(z0, z1, w.z);
+}
+
+float mx_pn_fractal(vec3 p, int octaves, float lacunarity, float diminish)
+{
+    float sum = 0.0;
+    float weight = 1.0;
+    for (int k = 0; k < octaves; k++)
+    {
+        sum += weight * mx_pn_perlin(p);
+        weight *= diminish;
+        p *= lacunarity;
+    }
+    return sum;
+}
+
+void mx_fractal3d_float(float amplitude, int octaves, float lacunarity, float diminish, vec3 position,
+                        out float result)
+{
+    result = mx_pn_fractal(position, octaves, lacunarity, diminish) * amplitude;
+}
+
+void main()
+{
+    vec3 n0_out = mix(vec3(0.9, 0.88, 0.85) / 12.92,
+                      pow(max(vec3(0.9, 0.88, 0.85) + 0.055, vec3(0.0)) / 1.055, vec3(2.4)),
+                      greaterThan(vec3(0.9, 0.88, 0.85), vec3(0.04045)));
+    vec3 n1_out = vd_positionObject;
+    vec3 n2_out = n1_out * u_n2_in2;
+    float n3_out;
+    mx_fractal3d_float(1.0, 4, 2.0, 0.5, n2_out, n3_out);
+    vec3 n4_out = mix(n0_out, vec3(0.25, 0.22, 0.2), n3_out);
+    vec2 n5_out = vd_texcoord_0;
+    vec2 n6_out = n5_out * vec2(8.0, 8.0);
+    vec2 n7_out = floor(n6_out);
+    float n8_out = dot(n7_out, vec2(1.0, 1.0));
+    float n9_out = mod(n8_out, 2.0);
+    vec3 n10_out = mix(vec3(0.0, 0.0, 0.0), vec3(1.0, 1.0, 1.0), n9_out);
+    vec3 n11_out = n4_out * n10_out;
+    out1 = vec4(n11_out, 1.0);
+}
