@@ -17,6 +17,7 @@ names`, whose kinds are (count, seed -> (label, body)) and (client, body -> answ
 `http_cases` and `post_case`, the answer judged by `judge_answer` (a compile failure is no HTTP
 status, so the contract's judge alone would not see it).
 """
+import importlib
 import os
 import random
 import shutil
@@ -29,6 +30,8 @@ from xml.sax.saxutils import quoteattr
 CONTENT_TYPES = {"mtlx": "application/xml", "usda": "model/vnd.usda"}
 TARGETS = ("glsl", "essl", "wgsl")
 INTERFACES = ("complete", "specialized")
+# targets checked by a module of their own: `errors(label -> (stage, source)) -> label -> message`
+CHECK_MODULES = {"hlsl": "shadergen.targets.hlsl.check", "slang": "shadergen.targets.slang.check"}
 
 UNICODE = ["Ω材質", "é", "Жёлтый", "名前", "ñandú", "σ", "Über", "ℕ", "ǅx", "مادة", "गुण", "Ωmega"]
 # keywords, reserved words, built-in functions and types of GLSL/ESSL and WGSL, and what the
@@ -199,15 +202,21 @@ class ShaderChecker:
 
     def problems(self, labelled_records) -> list[str]:
         """[(label, record)] -> a line per record that is an error or whose source a checker rejects."""
-        found, glsl, wgsl = [], {}, {}
+        found, glsl, wgsl, others = [], {}, {}, {}
         for label, record in labelled_records:
             if "error" in record:
                 found.append(f"{label}: {record['error']}")
                 continue
             for stage, source in record["stages"].items():
                 name = f"{label} {record['target']} {record['interface']} {record['element']} {stage}"
-                (wgsl if record["target"] == "wgsl" else glsl)[name] = (stage, source)
+                if record["target"] in CHECK_MODULES:
+                    others.setdefault(record["target"], {})[name] = (stage, source)
+                else:
+                    (wgsl if record["target"] == "wgsl" else glsl)[name] = (stage, source)
         found += self._glslang(glsl)
+        for target, shaders in others.items():
+            rejected = importlib.import_module(CHECK_MODULES[target]).errors(shaders)
+            found += [f"{name}: {message[:600]}" for name, message in rejected.items()]
         if wgsl:
             with self.wgsl_lock:
                 rejected = self.wgsl_errors({name: source for name, (_, source) in wgsl.items()})

@@ -8,7 +8,8 @@ from ..errors import ShaderGenError
 # name -> (module, class). A target's module is imported when it is first asked for: a process
 # writing GLSL never loads the WGSL printer.
 TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "essl": (".glsl.target", "EsslTarget"),
-                                       "wgsl": (".wgsl.target", "WgslTarget")}
+                                       "wgsl": (".wgsl.target", "WgslTarget"), "hlsl": (".hlsl.target", "HlslTarget"),
+                                       "slang": (".slang.target", "SlangTarget")}
 
 
 def target_for(name: str):

@@ -19,6 +19,7 @@ import os
 import re
 from functools import lru_cache
 
+from .cfamily.reserved import RESERVED_WORDS as CFAMILY_RESERVED
 from .wgsl.builtins import WGSL_RESERVED
 
 IDENTIFIER_LIMIT = 96
@@ -101,7 +102,8 @@ u_envLightIntensity u_refractionTwoSided u_numActiveLightSources u_lightData u_t
 i_position i_normal i_tangent i_bitangent
 """.split())
 
-RESERVED = frozenset(GLSL_KEYWORDS | GLSL_BUILTINS | WGSL_RESERVED | WGSL_BUILTINS | TARGET_NAMES | SEED_NAMES)
+RESERVED = frozenset(GLSL_KEYWORDS | GLSL_BUILTINS | WGSL_RESERVED | WGSL_BUILTINS | CFAMILY_RESERVED | TARGET_NAMES
+                     | SEED_NAMES)
 # gl_ is GLSL's; the seed's numbered and named streams and ESSL's vertex data (`vd_<member>`) are
 # named by the targets; mx_ and MX_ begin the libraries' functions and constants
 RESERVED_PREFIXES = ("gl_", "__", "vd_", "i_texcoord_", "i_color_", "i_geomprop_", "u_geomprop_", "mx_", "MX_")

@@ -1,7 +1,7 @@
 """Golden shaders (tests/golden/): generated code is reviewed as code. A failure here after an
 intended change: regenerate with `python -m tests.golden.cases` and review the diff. Every golden
 shader compiles with its target's own checker (glslangValidator for GLSL and ESSL, wgpu's naga
-for WGSL)."""
+for WGSL, the Slang compiler of slangpy for HLSL and Slang)."""
 import difflib
 
 import pytest
@@ -12,7 +12,8 @@ from tests.golden.cases import CASES, DOCUMENTS, VARIANTS, generate, golden_path
 
 @pytest.fixture(scope="module")
 def checker():
-    from required_tools import require_wgpu, tool_path
+    from required_tools import require_module, require_wgpu, tool_path
+    require_module("slangpy", "pip install -e '.[slang]'")
     return ShaderChecker(tool_path("glslangValidator"), require_wgpu())
 
 
@@ -31,7 +32,7 @@ def test_every_golden_source_compiles_with_its_checker(checker):
     assert not checker.problems(records)
 
 
-@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl"])
+@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl", "hlsl", "slang"])
 def test_specialized_golden_is_smaller_than_complete(target):
     for name in DOCUMENTS:
         complete, specialized, thumbnail = (len(golden_path(name, v, target).read_text().splitlines()) for v in VARIANTS)
