@@ -9,7 +9,7 @@ from ..errors import ShaderGenError
 # writing GLSL never loads the WGSL printer.
 TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "essl": (".glsl.target", "EsslTarget"),
                                        "wgsl": (".wgsl.target", "WgslTarget"), "hlsl": (".hlsl.target", "HlslTarget"),
-                                       "slang": (".slang.target", "SlangTarget")}
+                                       "slang": (".slang.target", "SlangTarget"), "msl": (".msl.target", "MslTarget")}
 
 
 def target_for(name: str):

@@ -357,7 +357,8 @@ class CFamilyPrinter(GlslPrinter):
         return ir_type
 
     def global_declaration(self, g: ir.Global) -> str:
-        text = f"{self.syntax.mutable_global} " + self.declarator(g.type, self.spell(ir.Name(g.name, "global")))
+        keyword = self.syntax.mutable_global
+        text = (keyword + " " if keyword else "") + self.declarator(g.type, self.spell(ir.Name(g.name, "global")))
         if g.init is not None:
             text += " = " + self.render(g.init, len(text) + 3, 0)
         return text + ";"

@@ -29,7 +29,7 @@ class Syntax:
     spread_written: bool  # scalars spread over vector parameters written out (MSL's templates deduce none)
     out_parameter: str  # format of an out/inout parameter: {qualifier} {type} {name}
     constant: str  # a module-scope constant's keyword
-    mutable_global: str  # a module-scope variable's keyword
+    mutable_global: str  # a module-scope variable's keyword ("": MSL has none, a member of the stage's struct)
     texture_calls: dict = field(default_factory=dict)  # GLSL texture built-in -> method format
 
 
@@ -63,4 +63,4 @@ HLSL = Syntax("HLSL", HLSL_RENAMED, "Texture2D", "SamplerState", True, "cast", "
 SLANG = Syntax("Slang", HLSL_RENAMED, "Texture2D", "SamplerState", True, "constructor", "constructor", "select", False,
                "{qualifier} {type} {name}", "static const", "static", HLSL_TEXTURES)
 MSL = Syntax("MSL", MSL_RENAMED, "texture2d<float>", "sampler", False, "constructor", "braces", "select_msl", True,
-             "thread {type}& {name}", "constant", "thread", MSL_TEXTURES)
+             "thread {type}& {name}", "constant", "", MSL_TEXTURES)

@@ -31,6 +31,9 @@ def device():
     with _LOCK:
         if not _DEVICE:
             import slangpy
+            # the compiler's warnings (HLSL 5's component-wise `?:`, deprecated in Slang) are no
+            # refusal: the log keeps errors only, which the load raises with anyway
+            slangpy.Logger.get().level = slangpy.LogLevel.error
             _DEVICE.append(slangpy.create_device(type=slangpy.DeviceType.cpu))
         return _DEVICE[0]
 
