@@ -6,7 +6,7 @@ checkers. (Until bench/targets.py holds every target's table.)
 
     .venv/bin/python bench/cfamily.py ../shared/corpus/resources/Materials/TestSuite/stdlib \
         ../shared/corpus/resources/Materials/TestSuite/pbrlib ../shared/corpus/resources/Materials/Examples \
-        [--targets hlsl,slang] [--interfaces complete,specialized] [--oracle] [--failures N]
+        [--targets hlsl,slang,msl] [--interfaces complete,specialized] [--oracle] [--failures N]
 
 Prints a row per target and interface (elements, generated %, validated % of generated) and
 ends with one line `cfamily: <target> <interface> gen% / valid% | ...`.
@@ -41,7 +41,10 @@ def measure(docs, target: str, interface: str, generate, reasons: collections.Co
     errors = importlib.import_module(f"shadergen.targets.{target}.check").errors
     elements = generated = valid = 0
     for doc in docs:
-        shaders, labels = {}, []
+        shaders, labels, wgsl = {}, [], {}
+        # MSL is cross-checked against naga's MSL of our WGSL for the same element (msl/check.py)
+        counterparts = {r["element"]: r for r in ours(doc, "wgsl", interface) if "error" not in r} \
+            if target == "msl" else {}
         for rec in generate(doc, target, interface):
             if rec.get("error", {}).get("code") == "no_renderable_element":
                 continue
@@ -54,7 +57,9 @@ def measure(docs, target: str, interface: str, generate, reasons: collections.Co
             labels.append(label)
             for stage in ("vertex", "pixel"):
                 shaders[f"{label} {stage}"] = (stage, rec["stages"][stage])
-        rejected = errors(shaders)
+                if rec["element"] in counterparts:
+                    wgsl[f"{label} {stage}"] = counterparts[rec["element"]]["stages"][stage]
+        rejected = errors(shaders, wgsl) if target == "msl" else errors(shaders)
         for message in rejected.values():
             reasons[f"{target} {interface} invalid: {message[:140]} ({doc.name})"] += 1
         valid += sum(1 for label in labels if not any(k.startswith(label + " ") for k in rejected))
@@ -65,7 +70,7 @@ def measure(docs, target: str, interface: str, generate, reasons: collections.Co
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("folders", nargs="+", type=Path)
-    parser.add_argument("--targets", default="hlsl,slang")
+    parser.add_argument("--targets", default="hlsl,slang,msl")
     parser.add_argument("--interfaces", default="complete,specialized")
     parser.add_argument("--oracle", action="store_true", help="the reference generator's output instead of ours")
     parser.add_argument("--failures", type=int, default=12)

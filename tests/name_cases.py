@@ -31,7 +31,9 @@ CONTENT_TYPES = {"mtlx": "application/xml", "usda": "model/vnd.usda"}
 TARGETS = ("glsl", "essl", "wgsl")
 INTERFACES = ("complete", "specialized")
 # targets checked by a module of their own: `errors(label -> (stage, source)) -> label -> message`
-CHECK_MODULES = {"hlsl": "shadergen.targets.hlsl.check", "slang": "shadergen.targets.slang.check"}
+# (MSL's read alone here: its cross-check against naga needs the WGSL, tests/core/test_cfamily_targets.py)
+CHECK_MODULES = {"hlsl": "shadergen.targets.hlsl.check", "slang": "shadergen.targets.slang.check",
+                 "msl": "shadergen.targets.msl.check"}
 
 UNICODE = ["Ω材質", "é", "Жёлтый", "名前", "ñandú", "σ", "Über", "ℕ", "ǅx", "مادة", "गुण", "Ωmega"]
 # keywords, reserved words, built-in functions and types of GLSL/ESSL and WGSL, and what the

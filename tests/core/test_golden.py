@@ -1,7 +1,8 @@
 """Golden shaders (tests/golden/): generated code is reviewed as code. A failure here after an
 intended change: regenerate with `python -m tests.golden.cases` and review the diff. Every golden
 shader compiles with its target's own checker (glslangValidator for GLSL and ESSL, wgpu's naga
-for WGSL, the Slang compiler of slangpy for HLSL and Slang)."""
+for WGSL, the Slang compiler of slangpy for HLSL and Slang; MSL, which nothing here compiles, is
+cross-checked against naga's MSL of the WGSL golden of the same case: tests/core/test_cfamily_targets.py)."""
 import difflib
 
 import pytest
@@ -32,7 +33,7 @@ def test_every_golden_source_compiles_with_its_checker(checker):
     assert not checker.problems(records)
 
 
-@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl", "hlsl", "slang"])
+@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl", "hlsl", "slang", "msl"])
 def test_specialized_golden_is_smaller_than_complete(target):
     for name in DOCUMENTS:
         complete, specialized, thumbnail = (len(golden_path(name, v, target).read_text().splitlines()) for v in VARIANTS)
