@@ -20,8 +20,9 @@ other's files."""
 def add_arguments(p) -> None:
     p.add_argument("documents", nargs="+", metavar="DOC.mtlx",
                    help="MaterialX documents; - reads one from stdin (its includes relative to the current folder)")
-    p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es), wgsl (WebGPU) or "
-                                                      "vulkan (#version 450 for Vulkan, with each stage's SPIR-V)")
+    p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es), wgsl (WebGPU), "
+                                                      "vulkan (#version 450 for Vulkan, with each stage's SPIR-V), hlsl "
+                                                      "(shader model 5+), slang or msl (Metal)")
     p.add_argument("--element", metavar="NAMEPATH",
                    help="name path of the element to generate (default: the first renderable element)")
     p.add_argument("--all", action="store_true", help="every renderable element instead of the first")

@@ -17,6 +17,7 @@ import hashlib
 import re
 from functools import lru_cache
 
+from .cfamily.reserved import RESERVED_WORDS as CFAMILY_RESERVED
 from .wgsl.builtins import WGSL_RESERVED
 
 IDENTIFIER_LIMIT = 96
@@ -109,7 +110,8 @@ u_envLightIntensity u_refractionTwoSided u_numActiveLightSources u_lightData u_t
 i_position i_normal i_tangent i_bitangent
 """.split())
 
-RESERVED = frozenset(GLSL_KEYWORDS | GLSL_BUILTINS | VULKAN_GLSL_NAMES | WGSL_RESERVED | WGSL_BUILTINS | TARGET_NAMES
+RESERVED = frozenset(GLSL_KEYWORDS | GLSL_BUILTINS | VULKAN_GLSL_NAMES | WGSL_RESERVED | WGSL_BUILTINS | CFAMILY_RESERVED
+                     | TARGET_NAMES
                      | SEED_NAMES)
 # gl_ is GLSL's; the seed's numbered and named streams and ESSL's vertex data (`vd_<member>`) are
 # named by the targets; mx_ and MX_ begin the libraries' functions and constants

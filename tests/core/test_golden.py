@@ -1,7 +1,9 @@
 """Golden shaders (tests/golden/): generated code is reviewed as code. A failure here after an
 intended change: regenerate with `python -m tests.golden.cases` and review the diff. Every golden
 shader compiles with its target's own checker (targets/<name>/check.py: glslangValidator for GLSL
-and ESSL, wgpu's naga for WGSL, glslangValidator -V and spirv-val for Vulkan)."""
+and ESSL, wgpu's naga for WGSL, glslangValidator -V and spirv-val for Vulkan, the Slang compiler of
+slangpy for HLSL and Slang; MSL, which nothing here compiles, is cross-checked against naga's MSL of
+the WGSL golden of the same case: tests/core/test_cfamily_targets.py)."""
 import difflib
 
 import pytest
