@@ -72,23 +72,25 @@ class RampCheck:
                                       document_dir=self.folder)
         return result.rgba, result.timings_ms
 
-    def error(self, space: str) -> tuple[float, bool]:
-        """(max absolute error of the GL draw against OCIO's CPU processor, whether the transform
-        samples a LUT) for the ramp in `space`."""
+    def error(self, space: str) -> tuple[float, float, bool]:
+        """(max absolute error of the GL draw against OCIO's CPU processor, the same error over
+        max(1, |expected|), whether the transform samples a LUT) for the ramp in `space`. The
+        second is the one float32 can meet where a log space's 1.0 is a linear 200."""
         drawn = self.draw(space)[0]
         covered = self.source[..., 3] > 0.5
         source = np.ascontiguousarray(self.source[covered][:, :3], "f4")
         expected = source.copy()
         transform = self.cms.transform_for(self.cms.require(space, "source", space),
                                            self.cms.require(self.working, "working", "ramp"))
-        if transform is None:
-            return float(np.abs(drawn[covered][:, :3] - source).max()), False
-        transform.cpu.applyRGB(expected)
-        return float(np.abs(drawn[covered][:, :3] - expected).max()), transform.has_luts
+        if transform is not None:
+            transform.cpu.applyRGB(expected)
+        difference = np.abs(drawn[covered][:, :3] - expected)
+        return (float(difference.max()), float((difference / np.maximum(1.0, np.abs(expected))).max()),
+                transform is not None and transform.has_luts)
 
     def folded(self, space: str) -> float:
-        """Max absolute difference of the values `specialized` folds (a constant of each test
-        colour in `space`) from OCIO's CPU processor applied to them."""
+        """Max difference, over max(1, |expected|), of the values `specialized` folds (a constant
+        of each test colour in `space`) from OCIO's CPU processor applied to them."""
         transform = self.cms.transform_for(self.cms.require(space, "source", space),
                                            self.cms.require(self.working, "working", "ramp"))
         worst = 0.0
@@ -106,5 +108,5 @@ class RampCheck:
             want = np.array(colour, "f4")[None].copy()
             if transform is not None:
                 transform.cpu.applyRGB(want)
-            worst = max(worst, float(np.abs(got - want[0]).max()))
+            worst = max(worst, float((np.abs(got - want[0]) / np.maximum(1.0, np.abs(want[0]))).max()))
         return worst

@@ -131,7 +131,7 @@ def ramp():
 def test_gl_draw_equals_ocio_cpu_processor(ramp, space, tolerance):
     """The ramp of test colours drawn through our shader against OCIO's CPU processor; ACEScc
     is the CG config's LUT transform."""
-    error, has_luts = ramp.error(space)
+    error, scaled, has_luts = ramp.error(space)
     assert has_luts == (space == "ACEScc")
     assert error <= tolerance, error
 
