@@ -155,3 +155,30 @@ def test_cli_generate_takes_the_options(tmp_path):
     out = subprocess.run([sys.executable, "-m", "shadergen.cli", "generate", "--cms", "ocio", "--ocio-config", CG,
                           str(path)], capture_output=True, text=True, timeout=120)
     assert out.returncode == 1 and json.loads(out.stdout)["error"]["code"] == "unknown_colorspace"
+
+
+def test_render_keeps_linear_working_values_and_shows_the_display(tmp_path):
+    """`render --cms ocio`: the .npy holds the working-space (ACEScg) values, the PNG the config's
+    default display and view of them."""
+    require_renderer()
+    from shadergen.render.imageio import read_image
+
+    path = tmp_path / "doc.mtlx"
+    path.write_text(constants(["sRGB - Texture"]))
+    npy, png = tmp_path / "out.npy", tmp_path / "out.png"
+    out = subprocess.run([sys.executable, "-m", "shadergen.cli", "render", str(path), "--mesh", "plane", "--size", "32",
+                          "--cms", "ocio", "--ocio-config", CG, "--npy", str(npy), "-o", str(png)],
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    rgba = np.load(npy)
+    centre = rgba[16, 16]
+    cfg = OCIO.Config.CreateFromFile(CG)
+    linear = np.array([[0.25, 0.5, 0.75]], "f4")
+    cfg.getProcessor("sRGB - Texture", "ACEScg").getDefaultCPUProcessor().applyRGB(linear)
+    assert centre[3] == 1.0 and np.abs(centre[:3] - linear[0]).max() <= 1e-4
+    display = cfg.getDefaultDisplay()
+    shown = linear.copy()
+    cfg.getProcessor(OCIO.DisplayViewTransform(src="ACEScg", display=display, view=cfg.getDefaultView(display))) \
+        .getDefaultCPUProcessor().applyRGB(shown)
+    pixel = read_image(str(png))[16, 16, :3]
+    assert np.abs(pixel - np.clip(shown[0], 0, 1)).max() <= 1.5 / 255.0
