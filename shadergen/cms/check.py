@@ -41,26 +41,32 @@ def _attribute(name: str, value: str | None) -> str:
 class RampCheck:
     """Draws the ramp through a config's transforms on GL; one folder, renderer and generator."""
 
-    def __init__(self, config: str, working: str, colours: np.ndarray | None = None, size: int = 64):
+    def __init__(self, config: str, working: str, colours: np.ndarray | None = None, size: int = 64,
+                 target: str = "glsl"):
+        """`target`: glsl (drawn by GL) or wgsl (drawn by WebGPU)."""
         from ..render import Renderer
         from ..render.imageio import write_image
         from .ocio import OcioCMS
 
-        self.config, self.working, self.size = config, working, size
+        self.config, self.working, self.size, self.target = config, working, size, target
         self.cms = OcioCMS.for_config(config)
         self.colours = test_colours() if colours is None else colours
         self.folder = tempfile.mkdtemp(prefix="shadergen-colour-")
         rgba = np.concatenate([self.colours, np.ones((len(self.colours), 1), "f4")], 1)[None]
         write_image(os.path.join(self.folder, "ramp.exr"), rgba)
         self.generator = Generator()
-        self.renderer = Renderer()
+        if target == "wgsl":
+            from ..render.wgpu_renderer import WgpuRenderer
+            self.renderer = WgpuRenderer()
+        else:
+            self.renderer = Renderer()
         self.source = self.draw(None)[0]  # what each pixel samples
 
-    def record(self, space: str | None, target: str = "glsl") -> dict:
+    def record(self, space: str | None) -> dict:
         path = os.path.join(self.folder, "ramp.mtlx")
         with open(path, "w") as f:
             f.write(RAMP.format(working=_attribute("colorspace", self.working), space=_attribute("colorspace", space)))
-        record = next(iter(self.generator.records(DocumentFile(path), target=target, interface="specialized",
+        record = next(iter(self.generator.records(DocumentFile(path), target=self.target, interface="specialized",
                                                   lights=False, cms="ocio", ocio_config=self.config)))
         if "error" in record:
             raise ShaderGenError(record["error"]["code"], record["error"]["message"], record["error"]["where"])

@@ -20,7 +20,7 @@ from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, r
 from .prefilter import prefiltered_chain
 from .program import Program
 from .record import check_record, source_digest
-from .textures import GL_CLAMP_TO_EDGE, Sampling, bind, upload, upload_lut
+from .textures import GL_CLAMP_TO_EDGE, MAX_LUTS, Sampling, bind, lut_key, upload, upload_lut
 
 # How the generated code lights with the environment, and the macros its pixel stage is compiled
 # with (shadergen/features.py): by filtered importance sampling of the radiance map
@@ -159,7 +159,7 @@ class Renderer(SceneRenderer):
 
 
     def _lut(self, ctx, entry: dict):
-        key = tuple(sorted((k, str(v)) for k, v in entry.items()))
+        key = lut_key(entry)
         if key not in self._luts:
             if len(self._luts) >= MAX_LUTS:
                 for texture in self._luts.values():
@@ -167,9 +167,6 @@ class Renderer(SceneRenderer):
                 self._luts.clear()
             self._luts[key] = upload_lut(ctx, entry)
         return self._luts[key]
-
-
-MAX_LUTS = 64  # colour transforms' LUT textures kept between renders
 
 
 def _with_define(source: str, name: str) -> str:

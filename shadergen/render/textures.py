@@ -234,6 +234,14 @@ def lut_image(entry: dict) -> np.ndarray:
     return values.reshape(int(entry["height"]), int(entry["width"]), int(entry["channels"]))
 
 
+def lut_key(entry: dict) -> tuple:
+    """What identifies a LUT's texture between renders (its description and texels)."""
+    return tuple(sorted((k, str(v)) for k, v in entry.items()))
+
+
+MAX_LUTS = 64  # colour transforms' LUT textures a renderer keeps between renders
+
+
 def upload_lut(ctx, entry: dict):
     """A LUT as a GL texture sampled as OCIO's code expects: its own filter, no mipmaps (a table,
     not an image: a coarser level would blur it), clamped at the edges."""

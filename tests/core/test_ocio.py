@@ -100,6 +100,15 @@ def test_every_space_of_the_aces_configs_compiles_in_every_target(gen, config):
     assert not checker.problems(records)
 
 
+def test_lut_transform_drawn_by_webgpu_equals_ocio_cpu_processor():
+    """The same LUT transform in our WGSL (OCIO's GLSL through the IR), drawn by wgpu."""
+    require_wgpu()
+    from shadergen.cms.check import RampCheck
+
+    error, scaled, has_luts = RampCheck(CG, "ACEScg", size=32, target="wgsl").error("ACEScc")
+    assert has_luts and error <= 2e-3, error
+
+
 def test_lut_transform_is_a_private_texture_with_its_texels(gen):
     rec = record(gen, constants(["ACEScc"]))
     samplers = [v["name"] for v in rec["blocks"]["pixel"]["PrivateUniforms"] if v["type"] == "filename"]
