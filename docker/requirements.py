@@ -5,7 +5,7 @@ list. Usage: python3 docker/requirements.py pyproject.toml"""
 import sys
 import tomllib
 
-IMAGE_EXTRAS = ["service", "render", "usd"]
+IMAGE_EXTRAS = ["service", "render", "usd", "ocio"]
 
 
 def requirements(pyproject: dict, extras: list[str]) -> list[str]:

@@ -9,7 +9,7 @@ mkdir -p out
 # compat: the checkout goes on sys.path through a plain .pth line; setuptools' default editable
 # install hooks a finder into every process start, which imports pathlib and re (a tenth of a
 # cold `shadergen generate`)
-.venv/bin/pip install -q -e ".[render,wgpu,service,usd]" --config-settings editable_mode=compat
+.venv/bin/pip install -q -e ".[render,wgpu,service,usd,ocio]" --config-settings editable_mode=compat
 # an editable install compiles nothing: write the bytecode now, or every cold process compiles it
 .venv/bin/python -m compileall -q shadergen service > /dev/null
 .venv/bin/shadergen generate examples/marble_checker.mtlx --out out/marble_checker > out/marble_checker.jsonl

@@ -5,7 +5,7 @@ cd "$(dirname "$0")/.."
 bash scripts/system-packages.sh --containers || exit 1
 [ -x .venv/bin/python ] || python3 -m venv .venv || exit 1
 .venv/bin/pip install -q --upgrade pip || exit 1
-.venv/bin/pip install -q -e ".[render,wgpu,service,usd,dev]" --config-settings editable_mode=compat || exit 1  # see install.sh
+.venv/bin/pip install -q -e ".[render,wgpu,service,usd,ocio,slang,dev]" --config-settings editable_mode=compat || exit 1  # see install.sh
 .venv/bin/python -m pytest -q "$@"
 rc=$?
 [ $rc -eq 5 ] && { echo "pytest collected no tests: failing"; exit 1; }

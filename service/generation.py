@@ -11,7 +11,10 @@ Two cache levels, both in the shared store:
 """
 import hashlib
 import json
+import os
 from dataclasses import dataclass
+
+from shadergen.cms import OCIO_CONFIG_ENV
 
 from .cache import CacheUnavailable, GuardedStore
 from .cache.entries import is_graph_hash, is_record, refusal
@@ -35,6 +38,8 @@ class GenerateParams:
     environment: str | None = None  # the environment lighting only (fis | prefilter | hybrid), for a thumbnail
     lights: bool = True  # False for a thumbnail, which draws no light rig: no light loop is written
     names: str = "structural"  # or "document": the document's element names in the source (shadergen/naming.py)
+    cms: str | None = None  # colour management: builtin | ocio (shadergen/cms/)
+    ocio_config: str | None = None  # an ocio:// built-in config; None: the server's SHADERGEN_OCIO_CONFIG
 
 
 def request_digest(output_key: str, params: GenerateParams, document: bytes) -> str:
@@ -42,10 +47,31 @@ def request_digest(output_key: str, params: GenerateParams, document: bytes) -> 
     h = hashlib.sha256()
     for part in (output_key, params.target, params.element or "", params.interface, params.document_format,
                  params.values, params.environment or "", "lights" if params.lights else "unlit", params.names,
-                 *sorted(set(params.keep))):
+                 params.cms or "", config_identity(params), *sorted(set(params.keep))):
         h.update(part.encode() + b"\0")
     h.update(document)
     return h.hexdigest()
+
+
+def config_identity(params: GenerateParams) -> str:
+    """What names the OCIO config a request is generated with, for its digest: the built-in
+    config's name, or the server's config file by its path and version (a file edited in place is
+    another config: the digest must not answer with the record of its old content)."""
+    spec = params.ocio_config or (os.environ.get(OCIO_CONFIG_ENV, "") if params.cms == "ocio" else "")
+    if not spec or spec.startswith("ocio://"):
+        return spec
+    try:
+        st = os.stat(spec)
+    except OSError:
+        return spec  # the generator refuses it
+    return f"{os.path.realpath(spec)} {st.st_mtime_ns} {st.st_size}"
+
+
+def check_config(params: GenerateParams) -> None:
+    """A request may name OCIO's built-in configs only: never a file of the server's."""
+    if params.ocio_config and not params.ocio_config.startswith("ocio://"):
+        raise ServiceError("invalid_request", "ocio_config must be one of OCIO's built-in configs (ocio://NAME); "
+                           "the server's own config is used when it is absent", where="ocio_config")
 
 
 def checked(raw_document: bytes, params: GenerateParams) -> bytes:
@@ -74,6 +100,7 @@ class GenerationService:
 
     async def generate(self, raw_document: bytes, params: GenerateParams) -> bytes:
         """The record as JSON bytes; raises ServiceError (a 4xx for anything the client sent)."""
+        check_config(params)
         document = checked(raw_document, params)
         digest = request_digest(self.library_hash, params, document)
         record = await self._cached(digest)
@@ -108,7 +135,7 @@ class GenerationService:
         request = {"op": "generate", "format": params.document_format, "target": params.target,
                    "element": params.element, "interface": params.interface, "keep": list(params.keep),
                    "values": params.values, "environment": params.environment, "lights": params.lights,
-                   "names": params.names,
+                   "names": params.names, "cms": params.cms, "ocio_config": params.ocio_config,
                    "digest": digest}
         context = {"element": params.element, "target": params.target}
         try:

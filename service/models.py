@@ -14,6 +14,12 @@ Names = Literal["structural", "document"]
 NAMES_DOC = ("structural: the source names nodes and uniforms by the graph's structure (u_n12_base_color), so materials "
              "that differ only in their element names share one source and topology hash (bind by the listing's "
              "paths); document: by the document's element names, for clients that bind uniforms by name")
+Cms = Literal["builtin", "ocio"]
+CMS_DOC = ("colour management system: builtin (the library's transforms to lin_rec709) or ocio (OpenColorIO: any "
+           "colour space of the config); default: ocio when ocio_config is given, else builtin")
+OCIO_CONFIG_DOC = ("with cms ocio: one of OCIO's built-in configs (ocio://default, "
+                   "ocio://cg-config-v2.1.0_aces-v1.3_ocio-v2.3, ...); the server's own config file (its "
+                   "SHADERGEN_OCIO_CONFIG) when absent. A request names no file of the server")
 Mesh = Literal["sphere", "plane"]
 EnvMethod = Literal["fis", "prefilter", "hybrid"]
 INTERFACE_DOC = ("complete: every input a uniform; reduced: only inputs bound to an interface and textures; "
@@ -46,6 +52,8 @@ class GenerateRequest(BaseModel):
                                          "uniforms and keep their lobes")
     values: Values = Field("listing", description=VALUES_DOC)
     names: Names = Field("structural", description=NAMES_DOC)
+    cms: Cms | None = Field(None, description=CMS_DOC)
+    ocio_config: Text | None = Field(None, max_length=256, description=OCIO_CONFIG_DOC)
     source: bool = Field(True, description="false: listings without stage source")
 
 

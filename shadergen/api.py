@@ -12,6 +12,7 @@ import json
 import os
 import time
 
+from .cms import system_for
 from .document import Document, parse_document, read_document
 from .element import Element
 from .errors import ShaderGenError
@@ -122,7 +123,8 @@ class Prepared:
             "timings_ms": {"generate": round(ms, 3)}, "passes": self.graph.passes, "warnings": self.warnings,
         } | ({"layout": layout} if layout is not None else {}) \
           | ({"environment": self.graph.environment} if self.graph.environment is not None else {}) \
-          | ({"lights": False} if not self.graph.lights else {}) | binaries
+          | ({"lights": False} if not self.graph.lights else {}) \
+          | ({"luts": ctx.luts} if ctx.luts else {}) | binaries
 
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,
@@ -190,8 +192,8 @@ class Generator:
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
                     interface: str = "complete", keep=(), values: str = "listing", environment: str | None = None,
-                    lights: bool = True, names: str = "structural",
-                    base_dir: str | None = None, allow_includes: bool = True,
+                    lights: bool = True, names: str = "structural", cms: str | None = None,
+                    ocio_config: str | None = None, base_dir: str | None = None, allow_includes: bool = True,
                     document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
@@ -203,8 +205,12 @@ class Generator:
         and the record says `"lights": false`. `names`: "structural" (the source names nodes and
         uniforms by the graph's structure, `u_n12_base_color`: materials that differ only in their
         element names share one source and topology hash; bind by the listing's paths) or
-        "document" (by the document's element names, as a client binding by name needs)."""
+        "document" (by the document's element names, as a client binding by name needs).
+        `cms`: the colour management system, builtin (the default) or ocio, with `ocio_config` a
+        config's path or `ocio://NAME` (default $SHADERGEN_OCIO_CONFIG, else OCIO's CG config);
+        a config alone means ocio (cms/__init__.py)."""
         target_for(target)  # unknown targets fail before any work
+        system = system_for(cms, ocio_config)
         if values not in VALUES:
             raise ShaderGenError("unsupported_values", f"unknown values '{values}'; supported: " + ", ".join(VALUES),
                                  "values")
@@ -231,7 +237,7 @@ class Generator:
             try:
                 if e.path in doc.failures:
                     raise doc.failures[e.path]
-                out.append(self._prepare(doc, scope, e, target, options, names))
+                out.append(self._prepare(doc, scope, e, target, options, names, system))
             except ELEMENT_FAILURES as exc:
                 out.append(element_error(exc, doc.label(e.path), doc))
         return out
@@ -288,10 +294,10 @@ class Generator:
         return [e]
 
     def _prepare(self, doc: Document, scope: Scope, elem: Element, target: str, options: Options,
-                 names: str) -> Prepared:
+                 names: str, system) -> Prepared:
         t0 = time.perf_counter()
         shading_language = target_for(target)
-        builder = GraphBuilder(scope, shading_language.library, doc.root)
+        builder = GraphBuilder(scope, shading_language.library, doc.root, cms=system)
         root = None
         if elem.category == "output":
             src = builder.source_of(elem)
@@ -311,7 +317,7 @@ class Generator:
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
         key = dict(element=doc.label(elem.path), target=target, interface=options.interface,
-                   library_hash=self.library.content_hash, local_ids=local, names=names)
+                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=system.identity)
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
@@ -332,8 +338,8 @@ def default_generator() -> Generator:
 
 def generate_file(path: str, *, target: str = "glsl", element: str | None = None, all: bool = False,
                   interface: str = "complete", keep=(), environment: str | None = None,
-                  lights: bool = True) -> list[dict]:
+                  lights: bool = True, cms: str | None = None, ocio_config: str | None = None) -> list[dict]:
     """Records for a document file (used by the renderer's CLI)."""
     return list(default_generator().records(DocumentFile(path), target=target, element=element, all=all,
                                             interface=interface, keep=keep, environment=environment,
-                                            lights=lights))
+                                            lights=lights, cms=cms, ocio_config=ocio_config))

@@ -47,8 +47,24 @@ def add_arguments(p) -> None:
     p.add_argument("--no-lights", action="store_true",
                    help="for a renderer that draws no light rig (thumbnails): no light loop is written (less code "
                         "to compile); the record says \"lights\": false")
+    add_cms_arguments(p)
     p.add_argument("--out", metavar="DIR", help="also write stage files and listings under DIR (see below)")
     p.add_argument("--no-source", action="store_true", help="records without stage source (listings only)")
+
+
+def add_cms_arguments(p) -> None:
+    """The colour management options `generate` and `render` share (shadergen/cms/)."""
+    p.add_argument("--cms", choices=("builtin", "ocio"), default=None,
+                   help="colour management system: builtin (default: the library's transforms to lin_rec709) or "
+                        "ocio (OpenColorIO: any colour space of the config; default when a config is named)")
+    p.add_argument("--ocio-config", metavar="PATH|ocio://NAME", default=None,
+                   help="OCIO config for --cms ocio: a file, or one of OCIO's built-in configs such as "
+                        "ocio://cg-config-v2.1.0_aces-v1.3_ocio-v2.3 (default: $SHADERGEN_OCIO_CONFIG, else "
+                        "ocio://default, OCIO's CG config)")
+
+
+def cms_options(args) -> dict:
+    return {"cms": args.cms, "ocio_config": args.ocio_config}
 
 
 class OutputFiles:
@@ -102,7 +118,7 @@ def run(args) -> int:
     for doc in args.documents:
         options = dict(target=args.target, element=args.element, all=args.all, interface=args.interface,
                        keep=keep_list(args.keep), values=args.values, environment=args.env_method,
-                       lights=not args.no_lights, names=args.names)
+                       lights=not args.no_lights, names=args.names, **cms_options(args))
         if doc == "-":
             records = gen.records(sys.stdin.buffer.read(), base_dir=os.getcwd(), **options)
         else:

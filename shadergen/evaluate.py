@@ -182,6 +182,9 @@ COMPOSITES = ("in", "mask", "out", "over", "matte")
 
 MULTIPLE_OUTPUTS = {"artistic_ior": lambda i: _artistic_ior(i["reflectivity"], i["edge_color"])}
 
+# Evaluators other modules register for the nodes they make (cms/ocio.py: its transform nodes,
+# computed by OCIO's CPU processor): category -> fn(inputs, output type) -> value.
+REGISTERED: dict = {}
 CONDITIONS = {"ifgreater": lambda a, b: a > b, "ifgreatereq": lambda a, b: a >= b, "ifequal": lambda a, b: a == b}
 
 UNARY = {
@@ -197,6 +200,8 @@ BINARY = {
 
 
 def _evaluate(category: str, i: dict, out_type: str):
+    if category in REGISTERED:
+        return REGISTERED[category](i, out_type)
     if category in UNARY:
         return componentwise(UNARY[category], i["in"])
     if category in BINARY:

@@ -90,6 +90,7 @@ class EmitContext:
         self.features: frozenset[str] | None = None  # library features the nodes need (None: all)
         self.macros: frozenset[tuple[str, bool]] = frozenset()  # compiler macros decided at generation
         self.lights = True  # whether the shader is drawn with a light rig (Graph.lights)
+        self.luts: dict[str, dict] = {}  # private texture uniform -> its texels (a colour transform's LUT)
 
     @property
     def pixel(self) -> Stage:

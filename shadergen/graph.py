@@ -10,6 +10,7 @@ from collections import namedtuple
 
 from . import types as T
 from .element import Element
+from .cms import BUILTIN
 from .errors import ShaderGenError
 from .library import Scope
 
@@ -19,10 +20,6 @@ BRANCH_INPUTS = {
     "ifgreater": ("in1", "in2"), "ifgreatereq": ("in1", "in2"), "ifequal": ("in1", "in2"),
     "switch": tuple(f"in{i}" for i in range(1, 11)),
 }
-# Names MaterialX's default colour management accepts for the spaces of its transforms.
-COLORSPACE_ALIASES = {"gamma18": "g18_rec709", "gamma22": "g22_rec709", "gamma24": "rec709_display",
-                      "lin_rec709_scene": "lin_rec709", "lin_ap1": "acescg", "lin_ap1_scene": "acescg",
-                      "none": "raw"}
 TARGET_UNITS = {"distance": "meter"}
 
 
@@ -201,8 +198,9 @@ class GraphBuilder:
     """Walks a document upstream from one renderable element and builds its ShaderGraph."""
 
     def __init__(self, scope: Scope, target: str, doc_root: Element, interface: dict[str, Socket] | None = None,
-                 instance: Instance | None = None):
+                 instance: Instance | None = None, cms=BUILTIN):
         self.scope = scope
+        self.cms = cms  # the colour management system (cms/): what colour-space transforms are
         self.instance = instance  # the nodegraph use being expanded; its nodes are named after the node it replaces
         self.prefix = f"{instance.node.name}_" if instance is not None else ""
         self.interface = interface  # nodedef inputs, when building a nodegraph implementation
@@ -395,12 +393,8 @@ class GraphBuilder:
 
     def colorspace_node(self, name: str, source: str | None, type_name: str, where: str) -> Node | None:
         """The working colour space is the document's own (MaterialX's rule): a document that names
-        none is not colour managed at all."""
-        working = COLORSPACE_ALIASES.get(self.doc_root.get("colorspace"), self.doc_root.get("colorspace"))
-        source = COLORSPACE_ALIASES.get(source, source)
-        if not working or not source or source in (working, "raw") or type_name not in ("color3", "color4"):
-            return None
-        return self.transform_node(name, f"ND_{source}_to_{working}_{type_name}", where)
+        none is not colour managed at all. The colour management system makes the node."""
+        return self.cms.transform(self, name, source, self.doc_root.get("colorspace"), type_name, where)
 
     def convert_colorspace(self, inp: Input) -> None:
         if inp.connection is not None or inp.socket is not None:

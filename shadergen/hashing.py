@@ -26,7 +26,7 @@ def _element_digest(e: Element) -> list:
 
 
 def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, library_hash: str,
-                 local_ids: set[int], names: str = "structural") -> tuple[str, str]:
+                 local_ids: set[int], names: str = "structural", cms: str | None = None) -> tuple[str, str]:
     """(hash, topology hash). `element`: the name path the record reports. `library_hash`: the
     library's output key (fingerprint.py), which covers the generator's code too. `local_ids`: ids
     of the implementation elements the document itself declares. The topology hash leaves out the
@@ -34,7 +34,9 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     name (a record of the same topology is rebound to both); the hash adds them. When the values are
     written into the source, the two are the same. `names`: "structural" leaves the nodes', outputs'
     and uniforms' names and paths out of the topology hash too (the source does not hold them);
-    "document" keeps them in it, as the source holds them."""
+    "document" keeps them in it, as the source holds them. `cms`: the colour management system's
+    identity (an OCIO config's name and content, cms/ocio.py); None for the built-in one, whose
+    keys stay what they were before systems existed."""
     document_names = names == "document"
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
@@ -85,7 +87,8 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
         {"target": target, "interface": interface, "library": library_hash, "values_in_source": graph.values_in_source,
          "environment": graph.environment, "lights": graph.lights,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
-         "nodes": nodes, "outputs": outputs, "uniforms": uniforms, "names": named if document_names else names})
+         "nodes": nodes, "outputs": outputs, "uniforms": uniforms, "names": named if document_names else names}
+        | ({"cms": cms} if cms is not None else {}))
     # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
     # in their names, with no public uniform to carry a path) still have records of their own
     values = _canonical([element, [p.value for p in graph.interface], named])

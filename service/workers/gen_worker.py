@@ -50,7 +50,8 @@ class GenerateHandler:
                 document, target=message["target"], element=message["element"], interface=message["interface"],
                 keep=message.get("keep", ()), values=message.get("values", "listing"),
                 environment=message.get("environment"), lights=message.get("lights", True),
-                names=message.get("names", "structural"), base_dir=None,
+                names=message.get("names", "structural"), cms=message.get("cms"),
+                ocio_config=message.get("ocio_config"), base_dir=None,
                 allow_includes=False, document_format=document_format,
             )
             key = "rec:" + prepared.hash

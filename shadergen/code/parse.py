@@ -1,6 +1,7 @@
 """Library source (the GLSL subset of the node libraries) -> untyped IR (code/ir.py).
 
-What it takes: structs, `const` globals and plain globals, functions (prototypes are skipped:
+What it takes: structs, `const` globals, plain globals and `uniform` declarations (an ir.Global of
+kind "uniform": the generator declares it as the stage's), functions (prototypes are skipped:
 the IR needs none), `#define NAME value` (a Constant; `#define NAME TYPE` too, which the checker
 takes for a type alias), `#include "file"` (Module.includes, resolved relative to the file),
 `#pragma shadergen feature ...` (Module.features), and `#ifdef`/`#ifndef`/`#else`/`#endif` around
@@ -663,6 +664,13 @@ class Parser:
             self.expect("}")
             self.expect(";")
             return ir.Struct(name, members, where=where)
+        if self.at("uniform"):  # a uniform the source declares (OCIO's LUT textures: cms/ocio.py)
+            self.next()
+            decls = self.declaration()
+            self.expect(";")
+            if len(decls) != 1 or decls[0].init is not None:
+                raise self.error("a uniform declaration is one name and no value", tok)
+            return ir.Global(decls[0].type, decls[0].name, kind="uniform", where=decls[0].where)
         if self.at("const") or not self.at("(", 2):
             decls = self.declaration()
             self.expect(";")

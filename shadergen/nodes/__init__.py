@@ -5,6 +5,6 @@ writes its code. Dynamic implementations are Python classes registered by implem
 their modules are imported here so that registering them is part of importing the package.
 """
 from .base import REGISTRY, NodeImpl, implementation_for
-from . import application, convolution, geometric, material, modifier, surface, transform  # noqa: F401  (registration)
+from . import application, colortransform, convolution, geometric, material, modifier, surface, transform  # noqa: F401  (registration)
 
 __all__ = ["NodeImpl", "implementation_for", "REGISTRY"]

@@ -154,12 +154,14 @@ def expand(instance: Instance, outer: GraphBuilder, graph: Graph, positions: dic
 def body_template(elem: Element, outer: GraphBuilder, node: Node) -> Body:
     """A body depends only on its definition and the target: built once per library (per document,
     when the document defines something that could change how it resolves), copied for each use."""
-    return outer.scope.library_fact(("body", id(elem), outer.target), lambda: build_body(elem, outer, node))
+    return outer.scope.library_fact(("body", id(elem), outer.target, outer.cms.identity),
+                                    lambda: build_body(elem, outer, node))
 
 
 def build_body(elem: Element, outer: GraphBuilder, node: Node) -> Body:
     interface = {inp.name: Socket(inp.name, inp.type) for inp in node.inputs.values()}
-    builder = GraphBuilder(outer.scope, outer.target, elem.parent if elem.parent is not None else elem, interface)
+    builder = GraphBuilder(outer.scope, outer.target, elem.parent if elem.parent is not None else elem, interface,
+                           cms=outer.cms)
     outputs = {}
     for out_elem in elem.children_of("output"):
         src = builder.source_of(out_elem)

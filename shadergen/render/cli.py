@@ -6,6 +6,7 @@ import os
 import sys
 from pathlib import Path
 
+from shadergen.cli_generate import add_cms_arguments, cms_options
 from shadergen.errors import ShaderGenError
 
 from . import Environment, RenderError, Renderer
@@ -76,6 +77,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--background", type=float, default=0.18, help="linear grey behind the object in the PNG")
     parser.add_argument("--repeat", type=int, default=1, metavar="N", help="draw N frames to time a steady frame")
     parser.add_argument("--json", action="store_true", help="print a JSON summary (or error) on stdout")
+    add_cms_arguments(parser)  # with ocio, the PNG shows the working space through the config's display and view
 
 
 def run(args) -> int:
@@ -108,7 +110,7 @@ def _run(args) -> int:
         return run_batch(args, _renderer(args), _environment(args), BACKENDS[args.backend])
     record = _record_from_file(args.record, args.element) if args.record \
         else _record_from_document(args.document, args.element, args.interface or "specialized",
-                                   BACKENDS[args.backend], args.env_method, bool(args.lights))
+                                   BACKENDS[args.backend], args.env_method, bool(args.lights), cms_options(args))
     env = _environment(args)
     document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
     renderer = _renderer(args)
@@ -116,8 +118,9 @@ def _run(args) -> int:
                              env_method=args.env_method,
                              lights=args.lights, supersample=args.ss, document_dir=document_dir,
                              frames=args.repeat)
-    for path in outputs:
-        write_image(path, result.rgba, background=args.background)
+    encode = _display_encoder(args)
+    for path in outputs:  # .exr and .npy keep the linear working-space values
+        write_image(path, result.rgba, background=args.background, encode=encode)
     for warning in result.warnings:
         print(f"shadergen render: warning: {warning}", file=sys.stderr)
     t = result.timings_ms
@@ -158,8 +161,23 @@ def _record_from_file(path: str, element: str | None) -> dict:
     return _choose(records, element, path)
 
 
+def _display_encoder(args):
+    """With OCIO, the PNG's encoding: the document's working space to the config's display and
+    view (cms/ocio.py); None (sRGB of linear Rec.709) with the built-in system."""
+    from shadergen.cms import system_for
+    from shadergen.document import read_document
+
+    try:
+        system = system_for(args.cms, args.ocio_config)
+        if system.name == "builtin":
+            return None
+        return system.display_encoder(read_document(args.document).colorspace if args.document else None)
+    except ShaderGenError as e:
+        raise RenderError(e.code, e.message, e.where) from None
+
+
 def _record_from_document(path: str, element: str | None, interface: str, target: str, env_method: str,
-                          lights: bool) -> dict:
+                          lights: bool, cms: dict) -> dict:
     """The document's record, generated for the environment lighting it is drawn with, and with a
     light loop only when a light rig is drawn."""
     try:
@@ -168,7 +186,7 @@ def _record_from_document(path: str, element: str | None, interface: str, target
         raise RenderError("unavailable", "this build has no generator (shadergen.api); render a record "
                           "with --record REC.json instead") from exc
     return _choose(generate_file(path, target=target, element=element, interface=interface, environment=env_method,
-                                 lights=lights), element, path)
+                                 lights=lights, **cms), element, path)
 
 
 def _choose(records: list, element: str | None, source: str) -> dict:

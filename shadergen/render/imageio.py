@@ -112,18 +112,20 @@ def srgb_encode(linear: np.ndarray) -> np.ndarray:
     return np.where(x <= 0.0031308, x * 12.92, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
 
 
-def to_srgb8(rgba: np.ndarray, background: float = BACKGROUND) -> np.ndarray:
+def to_srgb8(rgba: np.ndarray, background: float = BACKGROUND, encode=None) -> np.ndarray:
     """uint8 (h, w, 3) sRGB of a linear premultiplied RGBA image over a linear grey background.
-    NaN and Inf pixels become black rather than poisoning the conversion."""
+    NaN and Inf pixels become black rather than poisoning the conversion. `encode`: linear RGB
+    -> display values, instead of sRGB's transfer on Rec.709 (a colour management system's view
+    of another working space: cms/ocio.py display_encoder)."""
     rgba = np.nan_to_num(np.asarray(rgba, "f4"), nan=0.0, posinf=0.0, neginf=0.0)
     alpha = np.clip(rgba[..., 3:4], 0.0, 1.0)
     composite = rgba[..., :3] + background * (1.0 - alpha)
-    return (np.clip(srgb_encode(composite), 0.0, 1.0) * 255.0 + 0.5).astype("u1")
+    return (np.clip((encode or srgb_encode)(composite), 0.0, 1.0) * 255.0 + 0.5).astype("u1")
 
 
-def encode_png(rgba: np.ndarray, background: float = BACKGROUND) -> bytes:
+def encode_png(rgba: np.ndarray, background: float = BACKGROUND, encode=None) -> bytes:
     """PNG file bytes (8-bit sRGB RGB) of a linear RGBA render, composited over `background`."""
-    rgb = to_srgb8(rgba, background)
+    rgb = to_srgb8(rgba, background, encode)
     height, width = rgb.shape[:2]
     # Each scanline is preceded by its filter type; 0 (none) keeps the encoder trivial.
     raw = np.concatenate([np.zeros((height, 1), "u1"), rgb.reshape(height, width * 3)], 1).tobytes()
@@ -137,15 +139,15 @@ def encode_png(rgba: np.ndarray, background: float = BACKGROUND) -> bytes:
             + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
 
 
-def write_image(path: str, rgba: np.ndarray, background: float = BACKGROUND) -> None:
-    """Write a linear RGBA render by the file's extension: .png (sRGB over `background`),
-    .exr (linear RGBA float), .npy (the float32 array as is)."""
+def write_image(path: str, rgba: np.ndarray, background: float = BACKGROUND, encode=None) -> None:
+    """Write a linear RGBA render by the file's extension: .png (sRGB over `background`, or
+    `encode`d as to_srgb8 says), .exr (linear RGBA float), .npy (the float32 array as is)."""
     ext = os.path.splitext(path)[1].lower()
     rgba = np.ascontiguousarray(rgba, "f4")
     try:
         if ext == ".png":
             with open(path, "wb") as f:
-                f.write(encode_png(rgba, background))
+                f.write(encode_png(rgba, background, encode))
         elif ext == ".npy":
             np.save(path, rgba)
         elif ext == ".exr":

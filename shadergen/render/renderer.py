@@ -20,7 +20,7 @@ from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, r
 from .prefilter import prefiltered_chain
 from .program import Program
 from .record import check_record, source_digest
-from .textures import GL_CLAMP_TO_EDGE, Sampling, bind, upload
+from .textures import GL_CLAMP_TO_EDGE, MAX_LUTS, Sampling, bind, lut_key, upload, upload_lut
 
 # How the generated code lights with the environment, and the macros its pixel stage is compiled
 # with (shadergen/features.py): by filtered importance sampling of the radiance map
@@ -41,6 +41,7 @@ class Renderer(SceneRenderer):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self._framebuffers: dict[int, object] = {}
+        self._luts: dict[tuple, object] = {}  # a LUT's description -> its texture
 
     def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int | None = None,
                env_method: str = "fis", lights=None, supersample: int = 1, document_dir: str | None = None,
@@ -135,6 +136,10 @@ class Renderer(SceneRenderer):
         and a warning. Samplers the record does not describe get black."""
         warnings = []
         make = functools.partial(upload, ctx)
+        for name, entry in (record.get("luts") or {}).items():
+            if name in program.samplers and name not in units:
+                units[name] = len(units)
+                self._lut(ctx, entry).use(location=units[name])
         for request in texture_requests(record, document_dir, self.search_paths, self.texture_roots, self.confined):
             if request.name not in program.samplers or request.name in units:
                 continue
@@ -151,6 +156,17 @@ class Renderer(SceneRenderer):
         for name, unit in units.items():
             program.gl[name].value = unit
         return warnings
+
+
+    def _lut(self, ctx, entry: dict):
+        key = lut_key(entry)
+        if key not in self._luts:
+            if len(self._luts) >= MAX_LUTS:
+                for texture in self._luts.values():
+                    texture.release()
+                self._luts.clear()
+            self._luts[key] = upload_lut(ctx, entry)
+        return self._luts[key]
 
 
 def _with_define(source: str, name: str) -> str:

@@ -1,10 +1,11 @@
-"""File textures of a shader record: where a filename may be read from, how MaterialX says it is
+"""File textures (and colour transforms' LUTs) of a shader record: where a filename may be read from, how MaterialX says it is
 sampled, and the GL textures kept between renders.
 
 Images are uploaded top row first, untouched (float32, no colour conversion); the generated code
 flips v (MaterialX's fileTextureVerticalFlip) and converts colour spaces. A one-channel image is
 read as grey (swizzle RRR1), as MaterialX's GL texture handler does.
 """
+import base64
 import os
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -224,6 +225,37 @@ def _resample(image: np.ndarray, size: int, axis: int) -> np.ndarray:
     shape[axis] = size
     weight = weight.reshape(shape)
     return np.take(image, low, axis=axis) * (1 - weight) + np.take(image, high, axis=axis) * weight
+
+
+def lut_image(entry: dict) -> np.ndarray:
+    """A record's LUT (an entry of its `luts`: a colour transform's table, cms/ocio.py) as a
+    float32 (h, w, c) image, first row first."""
+    values = np.frombuffer(base64.b64decode(entry["data"]), "<f4")
+    return values.reshape(int(entry["height"]), int(entry["width"]), int(entry["channels"]))
+
+
+def lut_key(entry: dict) -> tuple:
+    """What identifies a LUT's texture between renders (its description and texels)."""
+    return tuple(sorted((k, str(v)) for k, v in entry.items()))
+
+
+MAX_LUTS = 64  # colour transforms' LUT textures a renderer keeps between renders
+
+
+def upload_lut(ctx, entry: dict):
+    """A LUT as a GL texture sampled as OCIO's code expects: its own filter, no mipmaps (a table,
+    not an image: a coarser level would blur it), clamped at the edges."""
+    import moderngl
+
+    image = lut_image(entry)
+    if image.shape[2] == 3:
+        image = opaque(image)
+    texture = ctx.texture((image.shape[1], image.shape[0]), image.shape[2], np.ascontiguousarray(image).tobytes(),
+                          dtype="f4")
+    filtering = moderngl.LINEAR if entry.get("filter") == "linear" else moderngl.NEAREST
+    texture.filter = (filtering, filtering)
+    texture.repeat_x = texture.repeat_y = False
+    return texture
 
 
 def bind(texture, unit: int, sampling: Sampling) -> None:

@@ -19,13 +19,16 @@ from .base import RenderResult, SceneRenderer
 from .errors import RenderError
 from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, record_values, texture_requests
 from .record import check_record, source_digest
-from .textures import GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, Sampling, mip_chain, opaque
+from .textures import (GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, MAX_LUTS, Sampling, lut_image, lut_key,
+                       mip_chain, opaque)
 from .wgpu_device import wgpu_device
 from .wgpu_program import COLOR_FORMAT, DEPTH_FORMAT, STAGES, WgpuPipeline
 
 WGPU_TARGETS = ("wgsl", "vulkan")
 ADDRESS_MODES = {GL_REPEAT: "repeat", GL_MIRRORED_REPEAT: "mirror-repeat", GL_CLAMP_TO_EDGE: "clamp-to-edge"}
 ENV_SAMPLING = Sampling(wrap_v=GL_CLAMP_TO_EDGE)  # lat-long: around in longitude, stopped at the poles
+# a LUT (filter linear or not): clamped at its edges, as OCIO's code expects
+LUT_SAMPLING = {linear: Sampling(GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE, not linear) for linear in (False, True)}
 
 
 @dataclass
@@ -47,6 +50,7 @@ class WgpuRenderer(SceneRenderer):
         super().__init__(*args, **kwargs)
         self._targets: dict[int, tuple] = {}
         self._samplers: dict[Sampling, object] = {}
+        self._luts: dict[tuple, WgpuTexture] = {}  # a LUT's description -> its texture
 
     def render(self, record: dict, *, size: int = 256, mesh: str = "sphere", env=None, env_samples: int | None = None,
                env_method: str = "fis", lights=None, supersample: int = 1, document_dir: str | None = None,
@@ -77,6 +81,8 @@ class WgpuRenderer(SceneRenderer):
         self._textures.trim()
         textures = {"u_envRadiance": (env_textures.radiance, ENV_SAMPLING),
                     "u_envIrradiance": (env_textures.irradiance, ENV_SAMPLING)}
+        for name, entry in (record.get("luts") or {}).items():  # colour transforms' tables (cms/ocio.py)
+            textures[name] = (self._lut(device, entry), LUT_SAMPLING[entry.get("filter") == "linear"])
         for request in texture_requests(record, document_dir, self.search_paths, self.texture_roots, self.confined):
             if request.name not in textures:
                 texture, warning = self._textures.texture(make, request)
@@ -131,6 +137,16 @@ class WgpuRenderer(SceneRenderer):
             entries.append({"binding": t["sampler_binding"], "resource": self._sampler(device, sampling)})
         return device.create_bind_group(layout=program.bind_group_layouts[group], entries=entries)
 
+    def _lut(self, device, entry: dict) -> WgpuTexture:
+        key = lut_key(entry)
+        if key not in self._luts:
+            if len(self._luts) >= MAX_LUTS:
+                for texture in self._luts.values():
+                    texture.release()
+                self._luts.clear()
+            self._luts[key] = upload(device, lut_image(entry), mipmaps=False)
+        return self._luts[key]
+
     def _sampler(self, device, sampling: Sampling):
         """MaterialX's sampler state as WebGPU has it: trilinear or nearest; a border clamps to the
         edge here (the generated code returns the border colour itself)."""
@@ -155,15 +171,15 @@ class WgpuRenderer(SceneRenderer):
         return self._targets[side]
 
 
-def upload(device, image: np.ndarray) -> WgpuTexture:
+def upload(device, image: np.ndarray, mipmaps: bool = True) -> WgpuTexture:
     """A float32 (h, w, c) image, top row first, as an rgba32float texture with its mip chain
     (row 0 at v = 0, as GL's upload puts it: the generated code flips v). Grey images read as
-    grey, as the GL renderer's swizzle makes them."""
+    grey, as the GL renderer's swizzle makes them. A LUT has no mipmaps (a table, not an image)."""
     import wgpu
 
     rgba = _rgba(np.asarray(image, "f4"))
     height, width = rgba.shape[:2]
-    levels = mip_chain(rgba)
+    levels = mip_chain(rgba) if mipmaps else [rgba]
     texture = device.create_texture(size=(width, height, 1), format="rgba32float", mip_level_count=len(levels),
                                     usage=wgpu.TextureUsage.TEXTURE_BINDING | wgpu.TextureUsage.COPY_DST)
     for level, data in enumerate(levels):

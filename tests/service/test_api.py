@@ -83,6 +83,29 @@ def test_specialized_with_keep_leaves_chosen_inputs_live(client):
     assert folded["blocks"]["pixel"]["PublicUniforms"] == [] and kept["hash"] != folded["hash"]
 
 
+ACES_DOC = ('<?xml version="1.0"?><materialx version="1.39" colorspace="acescg"><nodegraph name="g">'
+            '<constant name="c" type="color3"><input name="value" type="color3" value="0.5, 0.5, 0.5" '
+            'colorspace="{space}" /></constant><output name="out" type="color3" nodename="c" /></nodegraph>'
+            '</materialx>')
+CG_CONFIG = "ocio://cg-config-v2.1.0_aces-v1.3_ocio-v2.3"
+
+
+def test_ocio_colour_management_by_json_and_query(client):
+    """cms and ocio_config reach the generator and its cache key; a space the config lacks is a 422
+    unknown_colorspace; a config file a request names is refused (the server reads none)."""
+    text = ACES_DOC.format(space="ACEScc")
+    managed = generate(client, text, cms="ocio", ocio_config=CG_CONFIG)
+    assert managed.status_code == 200, managed.text
+    rec = managed.json()
+    assert rec["luts"] and "cm_acescc_to_acescg" in rec["stages"]["pixel"]
+    builtin = generate(client, text).json()
+    assert builtin["hash"] != rec["hash"] and "luts" not in builtin
+    query = client.post(f"/v1/generate?cms=ocio&ocio_config={CG_CONFIG}", content=text, headers=XML).json()
+    assert query["hash"] == rec["hash"]
+    assert_error(generate(client, ACES_DOC.format(space="Made Up"), cms="ocio"), 422, "unknown_colorspace")
+    assert_error(generate(client, text, cms="ocio", ocio_config="/etc/passwd"), 422, "invalid_request")
+
+
 def test_get_shader_by_hash(client):
     rec = generate(client, "ramp.mtlx", target="essl").json()
     got = client.get(f"/v1/shaders/{rec['hash']}", params={"target": "essl"})
