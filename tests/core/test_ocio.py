@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from .conftest import doc
-from required_tools import missing, require_module, require_renderer, require_wgpu, tool_path
+from required_tools import missing, require_module, require_renderer, require_wgpu
 from shadergen.targets import TARGETS
 
 OCIO = require_module("PyOpenColorIO", "pip install -e '.[ocio]'")
