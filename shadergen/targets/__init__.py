@@ -8,7 +8,7 @@ from ..errors import ShaderGenError
 # name -> (module, class). A target's module is imported when it is first asked for: a process
 # writing GLSL never loads the WGSL printer.
 TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "essl": (".glsl.target", "EsslTarget"),
-                                       "wgsl": (".wgsl.target", "WgslTarget")}
+                                       "wgsl": (".wgsl.target", "WgslTarget"), "osl": (".osl.target", "OslTarget")}
 
 
 def target_for(name: str):
