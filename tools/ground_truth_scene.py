@@ -126,16 +126,17 @@ def scene_xml(surface: str, background: str, background_params: dict, surface_pa
 """
 
 
-def render(xml: str, folder: str, side: int, samples: int, timeout: float = 3600) -> np.ndarray:
+def render(xml: str, folder: str, side: int, samples: int, timeout: float = 3600, cwd: str | None = None) -> np.ndarray:
     """testrender's float image of the scene `xml` (shaders searched in `folder`) at `side` x `side`
-    with `samples` samples per pixel (rounded up to a square: testrender takes aa x aa)."""
+    with `samples` samples per pixel (rounded up to a square: testrender takes aa x aa); relative
+    texture file names are read from `cwd` (default `folder`)."""
     scene_path = os.path.join(folder, "scene.xml")
     out = os.path.join(folder, "out.exr")
     with open(scene_path, "w", encoding="utf-8") as f:
         f.write(xml)
     aa = max(1, math.ceil(math.sqrt(samples)))
     done = subprocess.run(["nice", testrender(), "--path", folder, "-r", str(side), str(side), "-aa", str(aa),
-                           scene_path, out], capture_output=True, text=True, timeout=timeout, cwd=folder)
+                           scene_path, out], capture_output=True, text=True, timeout=timeout, cwd=cwd or folder)
     if done.returncode != 0 or not os.path.exists(out):
         raise RuntimeError(f"testrender failed ({done.returncode}): {(done.stdout + done.stderr).strip()[-2000:]}")
     from shadergen.render.imageio import read_image
@@ -161,12 +162,16 @@ def psnr_viewed(x: np.ndarray, y: np.ndarray, mask: np.ndarray | None = None) ->
     return float("inf") if mse == 0 else 10.0 * math.log10(1.0 / mse)
 
 
-def sphere_mask(side: int) -> np.ndarray:
-    """The pixels whose centre sees the unit sphere (exactly, by the camera's rays)."""
+def sphere_mask(side: int, inset: float = 0.0) -> np.ndarray:
+    """The pixels whose centre sees the unit sphere (exactly, by the camera's rays); `inset` pixels
+    inside its silhouette with inset > 0 (pixels whose filter footprint holds no background, and
+    which our tessellated sphere covers too)."""
     d = camera_rays(side)
     eye = np.asarray(scene.EYE, "f8")
-    b = d @ eye
-    return b * b - (eye @ eye - 1.0) > 0
+    # distance of the ray from the centre, against the radius less `inset` pixels at the centre's depth
+    closest = np.linalg.norm(np.cross(d, -eye), axis=-1)
+    pixel = 2.0 * math.tan(math.radians(scene.FOV_Y_DEGREES) / 2.0) * np.linalg.norm(eye) / side
+    return closest < 1.0 - inset * pixel
 
 
 def camera_rays(side: int) -> np.ndarray:
@@ -216,6 +221,7 @@ class Scene:
             if (message := compile_osl(source, self.folder, name)) is not None:
                 raise RuntimeError(f"scene shader {name}: {message}")
         self.intensity = intensity
+        self.radiance = radiance
         self.map_path = None
         if radiance is not None:
             self.map_path = os.path.join(self.folder, "environment.exr")
