@@ -42,6 +42,7 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 from accuracy import SHARED  # noqa: E402
 from accuracy_time import SAMPLE_COUNTS, fmt, label, points, psnr, records  # noqa: E402
 import ground_truth_scene as gts  # noqa: E402
+from shadergen.render.inputs import ENV_SAMPLES  # noqa: E402 - a thumbnail's FIS samples
 
 EXAMPLES = "resources/Materials/Examples/StandardSurface"
 GOAL_DB = 35.0
@@ -148,8 +149,9 @@ def layered_scene_xml(material: str, output: str, background: str, background_pa
     return xml.replace('<Shader name="closure_to_ci" layer="surface"/>', group)
 
 
-def scene_checks(world: gts.Scene, renderer, args) -> list[str]:
-    """The scene against answers known without testrender's materials."""
+def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
+    """The scene against answers known without testrender's materials; and the converged
+    testrender image of the Oren-Nayar check (a scene shader of the same closure as DIFFUSE_CHECK)."""
     from shadergen.api import Generator
 
     lines = []
@@ -166,10 +168,16 @@ def scene_checks(world: gts.Scene, renderer, args) -> list[str]:
                      args.size, args)
     gl = renderer.render(Generator().prepare(DIFFUSE_CHECK).emit(), size=args.size, env_samples=1024).rgba
     rgb = truth["rgb"]
+    exact = gts.lambert_image(world.radiance, args.size, 0.8)
+    inner = gts.sphere_mask(args.size, SILHOUETTE_INSET)
+    lines.append(f"Oren-Nayar diffuse 0.8 (roughness 0: Lambert) by direct quadrature of the map's irradiance: "
+                 f"testrender {gts.psnr_viewed(rgb, exact, inner):.1f} dB from it, our GL "
+                 f"{gts.psnr_viewed(gl, exact, inner):.1f} dB, our irradiance map (order-2 spherical harmonics) "
+                 f"x 0.8 read at the normals {gts.psnr_viewed(0.8 * gts.lookup(world.irradiance, gts.sphere_normals(args.size)), exact, inner):.1f} dB")
     lines.append(f"Oren-Nayar diffuse 0.8: our GL (fis 1024) against testrender ({truth['samples']} spp, halves "
                  f"{truth['halves_db']:.1f} dB): {psnr(gl, truth_rgba(rgb)):.1f} dB; against it mirrored left-right "
                  f"{psnr(gl, truth_rgba(rgb[:, ::-1])):.1f} dB, upside down {psnr(gl, truth_rgba(rgb[::-1])):.1f} dB")
-    return lines
+    return lines, truth
 
 
 def measure(document: str, truth: np.ndarray, renderers: dict, args) -> list[dict]:
@@ -209,7 +217,7 @@ def summary(material: dict) -> dict:
     ref16 = next((r for r in reference if r["samples"] == 16), None)
     in_budget = [r for r in ours if ref16 and r["frame_ms"] <= ref16["frame_ms"]]
     thumbnail = next((r for r in ours if r["shader"] == "ours GL" and r["interface"] == "specialized"
-                      and r["method"] == "fis" and r["samples"] == 64), None)
+                      and r["method"] == "fis" and r["samples"] == ENV_SAMPLES), None)
     return {"ours_best": max(r["psnr"] for r in ours), "reference_best": max(r["psnr"] for r in reference),
             "ref16": ref16["psnr"] if ref16 else float("nan"),
             "ours_in_budget": max((r["psnr"] for r in in_budget), default=float("nan")),
@@ -223,7 +231,7 @@ def write_table(path: str, checks: list[str], materials: list[dict], args, last_
              "(tools/ground_truth_scene.py); PSNR over the sphere's pixels, clipped to [0, 1], sRGB-encoded, peak 1.",
              "", "## Scene checks", ""] + [f"- {c}" for c in checks] + ["", "## Materials", "",
              "| material | truth spp | halves dB | ours best dB | ours <= ref-16 time dB | reference 16 dB | "
-             "reference best dB | ours thumbnail (specialized fis 64) dB | note |",
+             f"reference best dB | ours thumbnail (specialized fis {ENV_SAMPLES}) dB | note |",
              "|---|---|---|---|---|---|---|---|---|"]
     for m in materials:
         if "error" in m:
@@ -256,7 +264,7 @@ def plot(materials: list[dict], path: str, args) -> None:
     measured = [m for m in materials if "rows" in m]
     if not measured:
         return
-    columns = 4
+    columns = min(4, len(measured))
     fig, axes = plt.subplots(math.ceil(len(measured) / columns), columns, figsize=(4.2 * columns, 3.4 * math.ceil(
         len(measured) / columns)), squeeze=False)
     styles = {("ours GL", "complete"): "tab:blue", ("ours GL", "specialized"): "tab:cyan",
@@ -313,11 +321,23 @@ def main() -> int:
                  "wgpu": WgpuRenderer(search_paths=[args.corpus], confined=False)}
     with tempfile.TemporaryDirectory(prefix="ground-truth-") as folder:
         world = gts.Scene(folder, environment.radiance)
+        world.irradiance = environment.irradiance
         if (message := world.add_surface(CLOSURE_TO_CI, "closure_to_ci")) is not None:
             raise SystemExit(f"closure_to_ci: {message}")
-        checks = scene_checks(world, renderers["gl"], args)
+        checks, diffuse = scene_checks(world, renderers["gl"], args)
         for line in checks:
             print(line, flush=True)
+        # the table's machinery on the check: every real-time image of DIFFUSE_CHECK against testrender's
+        # image of the same closure (a scene shader, not our OSL: it is not counted with the materials)
+        check_document = os.path.join(folder, "oren_nayar_check.mtlx")
+        with open(check_document, "w", encoding="utf-8") as f:
+            f.write(DIFFUSE_CHECK)
+        check = {"name": "check: oren_nayar_diffuse_bsdf 0.8", "truth": {**diffuse, "cached": False},
+                 "rows": measure(check_document, truth_rgba(diffuse["rgb"]), renderers, args),
+                 "cause": "truth: testrender's oren_nayar_diffuse_bsdf (a scene shader), not our OSL"}
+        s = summary(check)
+        print(f"{check['name']}: ours best {fmt(s['ours_best'])} dB, reference best {fmt(s['reference_best'])} dB",
+              flush=True)
         materials = []
         for document in documents:
             name = os.path.splitext(os.path.basename(document))[0]
@@ -351,8 +371,8 @@ def main() -> int:
     below = sum(v < GOAL_DB for v in ours)
     last = (f"ground truth: {len(measured)} materials | ours {stats(ours)} | reference {stats(reference)} | "
             f"ours below {GOAL_DB:.0f} dB: {below} | no ground truth: {len(materials) - len(measured)} of {len(materials)}")
-    write_table(args.table, checks, materials, args, last)
-    plot(materials, args.plot, args)
+    write_table(args.table, checks, [check] + materials, args, last)
+    plot([check] + materials, args.plot, args)
     print(last)
     return 0
 

@@ -199,6 +199,30 @@ def mirror_image(radiance: np.ndarray, side: int) -> np.ndarray:
     return lookup(radiance, direction)
 
 
+def sphere_normals(side: int) -> np.ndarray:
+    """The unit sphere's normal at each pixel centre's hit (the far side's where the ray misses)."""
+    d = camera_rays(side)
+    eye = np.asarray(scene.EYE, "f8")
+    b = d @ eye
+    t = -b - np.sqrt(np.maximum(b * b - (eye @ eye - 1.0), 0.0))
+    return eye + t[..., None] * d
+
+
+def lambert_image(radiance: np.ndarray, side: int, albedo: float, rows: int = 64) -> np.ndarray:
+    """A Lambertian sphere of `albedo` in the lat-long map, by direct quadrature of the irradiance
+    over every texel of the map (box-reduced to `rows` rows, which keeps its integral): an answer
+    independent of testrender's sampling and of our spherical-harmonic irradiance map."""
+    from shadergen.render.environment import _box_reduce, map_directions
+
+    radiance = _box_reduce(np.asarray(radiance, "f8")[..., :3], rows)
+    h, w = radiance.shape[:2]
+    map_dir, lat = map_directions(h, w)
+    world = (map_dir * np.asarray(ENV_DIAGONAL)).reshape(-1, 3)  # the diagonal u_envMatrix is its own inverse
+    solid_angle = ((np.pi / h) * (2.0 * np.pi / w) * np.cos(lat)).reshape(-1, 1)
+    cosine = np.maximum(sphere_normals(side).reshape(-1, 3) @ world.T, 0.0)
+    return (albedo / np.pi * cosine @ (radiance.reshape(-1, 3) * solid_angle)).reshape(side, side, 3)
+
+
 def lookup(radiance: np.ndarray, direction: np.ndarray) -> np.ndarray:
     m = direction * np.asarray(ENV_DIAGONAL)
     lat = np.arcsin(np.clip(m[..., 1], -1.0, 1.0))
