@@ -26,7 +26,6 @@ import glob
 import math
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -53,15 +52,6 @@ DIFFUSE_CHECK = '''<?xml version="1.0"?>
   <surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" nodename="surf"/></surfacematerial>
 </materialx>
 '''
-# A scene shader (not a material): our material shader's closure output as the surface's Ci.
-CLOSURE_TO_CI = """\
-surface closure_to_ci(closure color surface = 0)
-{
-    Ci = surface;
-}
-"""
-
-
 # Pixels within this many of the silhouette are not compared: testrender's pixel filter blends them
 # with the sky, our thumbnail draws them uncovered or covered by a tessellated sphere.
 SILHOUETTE_INSET = 2.0
@@ -103,17 +93,6 @@ def cached_truth(key: str, compute, cache: str) -> dict:
     return {**result, "cached": False}
 
 
-def closure_output(oso_folder: str, name: str) -> str | None:
-    """The name of the shader's first closure output parameter (oslinfo)."""
-    done = subprocess.run([gts.tool("oslinfo"), "-v", os.path.join(oso_folder, f"{name}.oso")],
-                          capture_output=True, text=True, timeout=60)
-    for line in done.stdout.splitlines():
-        words = line.split()
-        if "output" in words and "closure" in words and len(words) >= 4 and words[0].startswith('"'):
-            return words[0].strip('"')
-    return None
-
-
 def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
     """The ground truth of the document's first renderable element, or {"error": message}."""
     from shadergen.api import generate_file
@@ -125,28 +104,18 @@ def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
     name = f"material_{gts.digest(source)}"
     if (message := world.add_surface(source, name)) is not None:
         return {"error": f"oslc: {message.splitlines()[0]}", "element": record.get("element")}
-    output = closure_output(world.folder, name)
+    output = world.closure_output(name)
     if output is None:
         return {"error": "the OSL shader has no closure output", "element": record.get("element")}
-    xml_probe = gts.scene_xml(name, *world.environment())
+    # the scene as it renders, less the temporary folder it lies in
+    xml_probe = gts.scene_xml(world.material_group(name, output), *world.environment()).replace(world.folder, "")
     key = gts.digest(record["hash"], source, xml_probe, env_key, str(args.size), str(args.converged_db),
                      str(args.max_samples), open(gts.__file__, "rb").read())
 
     def render(side, samples):
-        background, params = world.environment()
-        xml = layered_scene_xml(name, output, background, params)
-        return gts.render(xml, world.folder, side, samples, cwd=os.path.dirname(document))
+        return world.render_material(name, output, side, samples, cwd=os.path.dirname(document))
 
     return {**cached_truth(key, lambda: converge(render, args.size, args), args.cache), "element": record.get("element")}
-
-
-def layered_scene_xml(material: str, output: str, background: str, background_params: dict) -> str:
-    """scene_xml with the surface a group of two layers: the material shader, its closure output
-    connected to closure_to_ci's input."""
-    xml = gts.scene_xml("closure_to_ci", background, background_params)
-    group = (f'<Shader name="{material}" layer="material"/><Shader name="closure_to_ci" layer="surface"/>'
-             f'<ConnectShaders srclayer="material" srcparam="{output}" dstlayer="surface" dstparam="surface"/>')
-    return xml.replace('<Shader name="closure_to_ci" layer="surface"/>', group)
 
 
 def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
@@ -322,8 +291,6 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="ground-truth-") as folder:
         world = gts.Scene(folder, environment.radiance)
         world.irradiance = environment.irradiance
-        if (message := world.add_surface(CLOSURE_TO_CI, "closure_to_ci")) is not None:
-            raise SystemExit(f"closure_to_ci: {message}")
         checks, diffuse = scene_checks(world, renderers["gl"], args)
         for line in checks:
             print(line, flush=True)

@@ -66,6 +66,13 @@ surface white_lambert(color albedo = 1)
     Ci = oren_nayar_diffuse_bsdf(N, albedo, 0.0);
 }
 """,
+    "closure_to_ci": """\
+// A material shader's closure output (connected to `surface`) as the surface's Ci.
+surface closure_to_ci(closure color surface = 0)
+{
+    Ci = surface;
+}
+""",
     "mirror": """\
 // A perfect mirror: the environment reflected, known without a path tracer.
 surface mirror()
@@ -103,14 +110,16 @@ def write_map(radiance: np.ndarray, path: str) -> None:
     out.close()
 
 
-def scene_xml(surface: str, background: str, background_params: dict, surface_params: dict | None = None,
-              max_bounces: int = 16, background_resolution: int = 1024) -> str:
-    """A testrender World: the thumbnail camera, the unit sphere with `surface` (a compiled shader's
-    name on the search path) and `background` lighting it. Parameters are testrender's strings
-    ("float 1", "color 1 1 1", a bare string)."""
-    def parameters(params):
-        return "".join(f'<Parameter {name}="{value}"/>' for name, value in (params or {}).items())
+def parameters(params: dict | None) -> str:
+    """testrender's Parameter elements: values as its strings ("float 1", "color 1 1 1", a bare string)."""
+    return "".join(f'<Parameter {name}="{value}"/>' for name, value in (params or {}).items())
 
+
+def scene_xml(surface_group: str, background: str, background_params: dict, max_bounces: int = 16,
+              background_resolution: int = 1024) -> str:
+    """A testrender World: the thumbnail camera, the unit sphere with `surface_group` (the body of
+    its ShaderGroup: Parameter, Shader and ConnectShaders elements of compiled shaders on the
+    search path) and `background` lighting it."""
     eye, target, up = (", ".join(f"{c:g}" for c in v) for v in (scene.EYE, scene.TARGET, scene.UP))
     # testrender's image spans tan(fov / 2) / 2 either side of the centre (raytracer.h, Camera::get):
     # the field of view it is given is the one whose half tangent is twice ours
@@ -118,9 +127,9 @@ def scene_xml(surface: str, background: str, background_params: dict, surface_pa
     return f"""<World>
   <Option max_bounces="int {max_bounces}" rr_depth="int {max_bounces}"/>
   <Camera eye="{eye}" look_at="{target}" up="{up}" fov="{fov:.6f}"/>
-  <ShaderGroup type="surface">{parameters(background_params)}<Shader name="{background}" layer="env"/></ShaderGroup>
+  <ShaderGroup>{parameters(background_params)}<Shader name="{background}" layer="env"/></ShaderGroup>
   <Background resolution="{background_resolution}"/>
-  <ShaderGroup type="surface">{parameters(surface_params)}<Shader name="{surface}" layer="surface"/></ShaderGroup>
+  <ShaderGroup>{surface_group}</ShaderGroup>
   <Sphere center="0, 0, 0" radius="1"/>
 </World>
 """
@@ -264,8 +273,29 @@ class Scene:
 
     def render(self, surface: str, side: int, samples: int, constant: float | None = None,
                surface_params: dict | None = None, max_bounces: int = 16) -> np.ndarray:
-        background, params = self.environment(constant)
-        return render(scene_xml(surface, background, params, surface_params, max_bounces), self.folder, side, samples)
+        group = f'{parameters(surface_params)}<Shader name="{surface}" layer="surface"/>'
+        return render(scene_xml(group, *self.environment(constant), max_bounces), self.folder, side, samples)
+
+    def closure_output(self, name: str) -> str | None:
+        """The name of compiled shader `name`'s first closure output parameter (oslinfo)."""
+        done = subprocess.run([tool("oslinfo"), "-v", os.path.join(self.folder, f"{name}.oso")],
+                              capture_output=True, text=True, timeout=60)
+        for line in done.stdout.splitlines():
+            words = line.split()  # '"name" "output pointer"': oslinfo's spelling of an output closure
+            if len(words) >= 3 and words[0].startswith('"') and words[1:3] in (['"output', 'pointer"'], ['"output', 'closure']):
+                return words[0].strip('"')
+        return None
+
+    def render_material(self, material: str, output: str, side: int, samples: int, cwd: str | None = None) -> np.ndarray:
+        """The sphere's surface a group of two layers: compiled shader `material`, its closure
+        output parameter `output` connected to closure_to_ci's input."""
+        return render(scene_xml(self.material_group(material, output), *self.environment()), self.folder, side,
+                      samples, cwd=cwd)
+
+    @staticmethod
+    def material_group(material: str, output: str) -> str:
+        return (f'<Shader name="{material}" layer="material"/><Shader name="closure_to_ci" layer="surface"/>'
+                f'<ConnectShaders srclayer="material" srcparam="{output}" dstlayer="surface" dstparam="surface"/>')
 
     def close(self):
         if self._tmp:

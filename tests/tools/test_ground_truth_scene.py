@@ -67,3 +67,17 @@ def test_orientation_matches_our_thumbnail(world):
     assert as_drawn > 30.0
     assert as_drawn - gts.psnr_viewed(ours, mean[:, ::-1], mask) > 10.0
     assert as_drawn - gts.psnr_viewed(ours, mean[::-1], mask) > 10.0
+
+
+def test_a_material_shaders_closure_output_is_the_surface(world):
+    """A material shader (as the OSL target writes one: its closure an output parameter, no Ci)
+    drawn through render_material gives what the same closure as Ci gives."""
+    source = "shader material(output closure color result = 0)\n{\n    result = oren_nayar_diffuse_bsdf(N, color(0.5), 0.0);\n}\n"
+    assert world.add_surface(source, "material_probe") is None
+    output = world.closure_output("material_probe")
+    assert output == "result"
+    layered = world.render_material("material_probe", output, 16, 16)
+    direct = world.render("white_lambert", 16, 16, surface_params={"albedo": "color 0.5 0.5 0.5"})
+    mask = gts.sphere_mask(16)
+    assert layered[mask].mean() > 0.05
+    np.testing.assert_allclose(layered, direct, atol=1e-6)
