@@ -40,7 +40,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-SHARED = os.path.join(os.path.dirname(ROOT), "shared")
+# ../shared beside the checkout; $SHADERGEN_SHARED where the checkout is elsewhere (a git worktree)
+SHARED = os.environ.get("SHADERGEN_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
 ORACLE_PY = os.path.join(os.environ.get("ORACLE_VENV", os.path.expanduser("~/.cache/mx-oracle/venv")), "bin", "python")
 ORACLE = os.path.join(SHARED, "oracle", "mx_oracle.py")
 REFRENDER = os.path.join(SHARED, "oracle", "mx_refrender.py")

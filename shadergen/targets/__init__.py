@@ -10,7 +10,7 @@ from ..errors import ShaderGenError
 TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "essl": (".glsl.target", "EsslTarget"),
                                        "wgsl": (".wgsl.target", "WgslTarget"), "vulkan": (".vulkan.target", "VulkanTarget"),
                                        "hlsl": (".hlsl.target", "HlslTarget"), "slang": (".slang.target", "SlangTarget"),
-                                       "msl": (".msl.target", "MslTarget")}
+                                       "msl": (".msl.target", "MslTarget"), "osl": (".osl.target", "OslTarget")}
 
 
 def target_for(name: str):

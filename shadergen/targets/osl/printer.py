@@ -1,0 +1,334 @@
+"""Typed IR (code/ir.py) printed as OSL 1.13.
+
+OSL is C-like, so the GLSL printer's statements, precedence and wrapping serve (its subclass
+below); what differs is settled by the IR's types:
+- types: `vec3` is OSL's `vector`; `vec2` and `vec4` are the `vector2` and `vector4` structs of
+  OSL's own `vector2.h` and `vector4.h` (their operators and maths functions come with them),
+  `mat4` is `matrix`, `mat3` the `matrix33` struct of `matrix33.h`; `bool` and `uint` are `int`
+  (OSL has neither), a texture is its file name (`string`);
+- components: a `vector`'s are indexed (`v[0]`), the structs' are fields (`.x`); a swizzle of
+  several components is a constructor of them; a write to several is one write per component;
+- constructors take every component (OSL spreads no vector into another), a scalar spread over a
+  struct is written once per component;
+- a matrix holds GLSL's column-major values in OSL's row-major order, so it is the transpose of
+  GLSL's: `M * v` is `transform(M, v)`, `v * M` is `transform(transpose(M), v)`, `A * B` is `B * A`;
+- `out` and `inout` parameters are `output`; `const` is dropped (OSL has none);
+- built-ins are renamed (`atan(y, x)` -> `atan2`, `dFdx` -> `Dx`, `fwidth` -> `filterwidth`);
+  those OSL lacks (`fract`, `step` of a vector2, a texture read as a vector4) are helper functions
+  (`HELPERS`), written once by the assembler where a shader calls them;
+- a library name that is an OSL keyword or global (`color`, `point`, `N`, `u`) gets a `_` after it
+  (`safe_name`), as in WGSL.
+What has no OSL form raises ShaderGenError("unsupported_node", ...).
+"""
+from ...code import ir
+from ...code.types import array_element, array_size, is_array, is_matrix, size_of
+from ...errors import ShaderGenError
+from ..glsl.printer import GlslPrinter, literal_text
+from ..printing import INDENT
+
+# OSL's keywords, reserved words, shader globals and the standard library's functions a library
+# name would hide or misuse
+OSL_RESERVED = frozenset("""
+and break closure color continue do else emit float for if illuminance illuminate int matrix normal not or
+output point public return string struct vector void while shader surface displacement volume
+bool case catch char class const delete default double enum extern false friend goto inline long new
+operator private protected short signed sizeof static switch template this throw true try typedef uniform
+union unsigned varying virtual
+P I N Ng u v dPdu dPdv Ps time dtime dPdtime Ci
+vector2 vector4 color2 color4 matrix33 transform transformu texture texture3d environment gettextureinfo
+noise pnoise snoise psnoise cellnoise hashnoise filterwidth Dx Dy Dz area calculatenormal backfacing
+raytype getattribute setmessage getmessage trace surfacearea displace bump luminance blackbody wavelength_color
+step linearstep smooth_linearstep smoothstep mix select hypot inversesqrt cbrt logb exp2 expm1 log10 fabs
+fmod erf erfc round trunc isfinite sincos radians degrees atan2 determinant transpose rotate faceforward
+reflect refract fresnel distance ptlined ptlinefar concat endswith format getchar hash regex_match
+regex_search startswith stof stoi strlen substr split printf warning error fprintf exit spline splineinverse
+dielectric_bsdf conductor_bsdf generalized_schlick_bsdf translucent_bsdf transparent_bsdf subsurface_bsdf
+sheen_bsdf oren_nayar_diffuse_bsdf burley_diffuse_bsdf chiang_hair_bsdf uniform_edf anisotropic_vdf
+medium_vdf layer diffuse oren_nayar phong ward microfacet reflection refraction transparent translucent
+emission background holdout debug subsurface isotropic henyey_greenstein absorption
+M_PI M_PI_2 M_2PI M_4PI M_2_PI M_1_PI M_2_SQRTPI M_E M_LN2 M_LN10 M_LOG2E M_LOG10E M_SQRT2 M_SQRT1_2
+""".split())
+
+TYPES = {"float": "float", "int": "int", "uint": "int", "bool": "int", "vec2": "vector2", "vec3": "vector",
+         "vec4": "vector4", "mat4": "matrix", "mat3": "matrix33", "sampler2D": "string", "void": "void"}
+STRUCT_FIELDS = "xyzw"  # the members of vector2 and vector4
+COMPONENTS = {c: i for names in ("xyzw", "rgba", "stpq") for i, c in enumerate(names)}
+RENAMED = {"dFdx": "Dx", "dFdy": "Dy", "fwidth": "filterwidth"}
+# helper functions OSL lacks, by the IR call and argument types they stand for: name -> source
+HELPERS = {
+    "osl_fract": ("float osl_fract(float x) { return x - floor(x); }",
+                  "vector osl_fract(vector x) { return x - floor(x); }",
+                  "vector2 osl_fract(vector2 x) { return x - floor(x); }",
+                  "vector4 osl_fract(vector4 x) { return x - floor(x); }"),
+    "osl_step": ("vector2 osl_step(vector2 edge, vector2 x) { return vector2(step(edge.x, x.x), step(edge.y, x.y)); }",
+                 "vector4 osl_step(vector4 edge, vector4 x)",
+                 "{",
+                 "    return vector4(step(edge.x, x.x), step(edge.y, x.y), step(edge.z, x.z), step(edge.w, x.w));",
+                 "}"),
+    # GL's texture coordinates start at the bottom row, OSL's `t` at the top
+    "osl_texture": ("vector4 osl_texture(string file, vector2 uv)",
+                    "{",
+                    "    float alpha = 1.0;",
+                    "    color rgb = texture(file, uv.x, 1.0 - uv.y, \"alpha\", alpha, \"missingcolor\", color(0.0),",
+                    "                        \"missingalpha\", 0.0);",
+                    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
+                    "}"),
+}
+STRUCT_TYPES = ("vec2", "vec4")
+
+
+def unsupported(what: str, node) -> ShaderGenError:
+    where = getattr(node, "where", None)
+    return ShaderGenError("unsupported_node", f"no OSL form for {what}",
+                          None if where is None else f"{where[0]}:{where[1]}:{where[2]}")
+
+
+def safe_name(name: str) -> str:
+    return f"{name}_" if name in OSL_RESERVED else name
+
+
+def osl_type(ir_type: str) -> str:
+    if ir_type in TYPES:
+        return TYPES[ir_type]
+    if ir_type[:4] in ("ivec", "uvec", "bvec") or ir_type == "mat2":
+        raise ShaderGenError("unsupported_node", f"no OSL form for a {ir_type}")
+    return ir_type  # a struct's own name
+
+
+def helpers(items) -> list[str]:
+    """The helper functions printing `items` calls, in a fixed order, for the assembler to write once."""
+    wanted = set()
+    for item in items:
+        for node in ir.walk(item):
+            if type(node) is ir.Call and node.builtin and node.callee is None:
+                name = helper_of(node)
+                if name is not None:
+                    wanted.add(name)
+    return [line for name, text in HELPERS.items() if name in wanted for line in [*text, ""]]
+
+
+def helper_of(call: ir.Call) -> str | None:
+    if call.name == "fract":
+        return "osl_fract"
+    if call.name == "step" and call.type in STRUCT_TYPES:
+        return "osl_step"
+    if call.name == "texture":
+        return "osl_texture"
+    return None
+
+
+class OslPrinter(GlslPrinter):
+    """`item`, `statements` and `expression` of typed IR as OSL text; `spell(name_node)` decides
+    how a Name is written (the assembler's shader globals for vertex data)."""
+    __slots__ = ()
+
+    def __init__(self, spell=None):
+        super().__init__("glsl", spell)
+
+    # -- expressions -------------------------------------------------------------------------------
+    def render(self, e, column, indent) -> str:
+        cls = type(e)
+        if cls is str:  # a component already written (components())
+            return e
+        if cls is ir.Name:
+            return self.spell(e) if self.spell is not None else safe_name(e.name)
+        if cls is ir.Literal:
+            return self.literal(e)
+        if cls is ir.Construct:
+            return self.construct(e, column, indent)
+        if cls is ir.Field and e.swizzle:
+            return self.swizzle(e, column, indent)
+        if cls is ir.Field:
+            return self.operand(e.base, column, indent, self.precedence(e.base) < 15) + "." + safe_name(e.name)
+        if cls is ir.Call:
+            return self.call_of(e, column, indent)
+        if cls is ir.Convert:
+            return self.convert(e, column, indent)
+        if cls is ir.Binary and e.op == "*" and (is_matrix(e.left.type or "") or is_matrix(e.right.type or "")):
+            return self.product(e, column, indent)
+        return super().render(e, column, indent)
+
+    @staticmethod
+    def literal(e: ir.Literal) -> str:
+        if e.type == "bool" or isinstance(e.value, bool):
+            return "1" if e.value else "0"
+        text = literal_text(e)
+        if e.type == "uint" and text[-1] in "uU":
+            return text[:-1]
+        if e.type == "float" and text[-1] in "fF" and not text.startswith(("0x", "0X")):
+            return text[:-1]
+        return text
+
+    def components(self, e) -> list:
+        """`e`'s components as expressions (text or IR), in order."""
+        t = e.type
+        if t is None or size_of(t) == 1:
+            return [e]
+        if is_matrix(t):
+            raise unsupported(f"a {t} spread into a constructor", e)
+        return [self.component(e, i) for i in range(size_of(t))]
+
+    def component(self, base, i: int) -> str:
+        text = self.operand(base, None, 0, self.precedence(base) < 15)
+        if base.type in STRUCT_TYPES:
+            return f"{text}.{STRUCT_FIELDS[i]}"
+        return f"{text}[{i}]"
+
+    def construct(self, e: ir.Construct, column, indent) -> str:
+        t = e.type
+        if is_array(t):
+            return "{" + ", ".join(self.render(a, None, indent) for a in e.args) + "}"
+        if t not in TYPES and not t.startswith(("ivec", "uvec", "bvec", "mat")):  # a struct
+            return self.call(safe_name(t), e.args, column, indent)
+        name = osl_type(t)
+        if t == "mat4":
+            if len(e.args) == 1 and size_of(e.args[0].type) == 1:
+                return self.call("matrix", e.args, column, indent)
+            if len(e.args) == 1:  # from a mat3
+                raise unsupported("a mat4 of a mat3", e)
+            return self.call("matrix", [c for a in e.args for c in self.components(a)], column, indent)
+        if t == "mat3":
+            if len(e.args) == 1 and size_of(e.args[0].type) == 1:
+                s = e.args[0]
+                zero = ir.Literal(0.0, "0.0", type="float")
+                one = ir.Literal(1.0, "1.0", type="float")
+                return self.call("matrix33", [ir.Construct("mat4", [s, zero, zero, zero, zero, s, zero, zero, zero, zero, s,
+                                                                    zero, zero, zero, zero, one])], column, indent)
+            values = [c for a in e.args for c in self.components(a)]
+            if len(values) != 9:
+                raise unsupported("a mat3 of a matrix", e)
+            zero, one = "0.0", "1.0"
+            rows = values[0:3] + [zero] + values[3:6] + [zero] + values[6:9] + [zero, zero, zero, zero, one]
+            return "matrix33(" + self.call("matrix", rows, None, indent) + ")"
+        n = size_of(t)
+        args = e.args
+        if len(args) == 1 and size_of(args[0].type) == 1:
+            if t == "vec3":
+                return self.call("vector", args, column, indent)
+            return self.call(name, list(args) * n, column, indent)
+        if len(args) == 1 and args[0].type == t:
+            return self.render(args[0], column, indent)
+        values = [c for a in args for c in self.components(a)][:n]
+        return self.call(name, values, column, indent)
+
+    def swizzle(self, e: ir.Field, column, indent) -> str:
+        indices = [COMPONENTS[c] for c in e.name]
+        if len(indices) == 1:
+            return self.component(e.base, indices[0])
+        parts = [self.component(e.base, i) for i in indices]
+        return self.call(osl_type(e.type), parts, column, indent)
+
+    def convert(self, e: ir.Convert, column, indent) -> str:
+        target, source = e.type, e.operand.type
+        if target == source or osl_type(target) == osl_type(source or target):
+            return self.render(e.operand, column, indent)
+        if target == "bool":
+            return f"({self.render(e.operand, None, indent)} != 0)"
+        if size_of(target) == 1:
+            return self.call(osl_type(target), [e.operand], column, indent)
+        if source is not None and size_of(source) == 1:  # a scalar spread
+            return self.construct(ir.Construct(target, [e.operand]), column, indent)
+        if source is not None and size_of(source) == size_of(target):
+            return self.render(e.operand, column, indent)
+        raise unsupported(f"a conversion of a {source} to a {target}", e)
+
+    def product(self, e: ir.Binary, column, indent) -> str:
+        left, right = e.left, e.right
+        if is_matrix(left.type) and is_matrix(right.type):  # transposed storage: (AB)' = B'A'
+            return super().render(ir.Binary("*", right, left, type=e.type), column, indent)
+        if is_matrix(left.type):
+            return self.call("transform", [left, right], column, indent)
+        return self.call("transform", [ir.Call("transpose", [right], type=right.type, builtin=True), left],
+                         column, indent)
+
+    def call_of(self, e: ir.Call, column, indent) -> str:
+        if e.callee is not None or not e.builtin:
+            return self.call(safe_name(e.name), e.args, column, indent)
+        helper = helper_of(e)
+        if helper is not None:
+            return self.call(helper, e.args, column, indent)
+        name, args = e.name, list(e.args)
+        if name == "atan" and len(args) == 2:
+            return self.call("atan2", args, column, indent)
+        if name == "inverse":
+            return "1.0 / " + self.operand(args[0], None, indent, True)
+        if name in ("textureLod", "textureSize", "texelFetch", "textureQueryLod", "textureQueryLevels",
+                    "floatBitsToInt", "floatBitsToUint", "intBitsToFloat", "uintBitsToFloat",
+                    "lessThan", "lessThanEqual", "greaterThan", "greaterThanEqual", "equal", "notEqual",
+                    "any", "all", "not", "matrixCompMult", "outerProduct"):
+            raise unsupported(f"the built-in '{name}'", e)
+        return self.call(RENAMED.get(name, name), args, column, indent)
+
+    # -- statements --------------------------------------------------------------------------------
+    def simple(self, s, column, indent) -> str:
+        cls = type(s)
+        if cls is ir.Declare:
+            name = self.spell(ir.Name(s.name, "local")) if self.spell is not None else safe_name(s.name)
+            head = self.declarator(self.sized(s.type, s.init), name)
+            if s.init is None:
+                return head
+            return head + " = " + self.render(s.init, None if column is None else column + len(head) + 3, indent)
+        if cls is ir.Discard:
+            return "exit()"
+        return super().simple(s, column, indent)
+
+    def statement(self, s, depth: int, lines: list[str]) -> None:
+        if type(s) is ir.Assign and type(s.target) is ir.Field and s.target.swizzle and len(s.target.name) > 1:
+            self.swizzle_assign(s, depth, lines)
+            return
+        super().statement(s, depth, lines)
+
+    def swizzle_assign(self, s: ir.Assign, depth: int, lines: list[str]) -> None:
+        """`v.xy = e`: one write per component, of `e` evaluated once before them."""
+        pad = INDENT * depth
+        target = s.target
+        value = s.value
+        if type(value) not in (ir.Name, ir.Literal):
+            lines.append(f"{pad}{{")
+            temp = ir.Name("swizzled", "local", type=value.type)
+            lines.append(f"{pad}{INDENT}{self.declarator(value.type, 'swizzled')} = {self.render(value, None, 0)};")
+            self.swizzle_assign(ir.replace(s, value=temp), depth + 1, lines)
+            lines.append(f"{pad}}}")
+            return
+        spread = value.type is not None and size_of(value.type) > 1
+        for i, c in enumerate(target.name):
+            source = self.component(value, i) if spread else self.render(value, None, 0)
+            lines.append(f"{pad}{self.component(target.base, COMPONENTS[c])} {s.op} {source};")
+
+    @staticmethod
+    def sized(ir_type: str, value) -> str:
+        if is_array(ir_type) and array_size(ir_type) is None and type(value) is ir.Construct:
+            return f"{array_element(ir_type)}[{len(value.args)}]"
+        return ir_type
+
+    def declarator(self, ir_type: str, name: str) -> str:
+        if is_array(ir_type):
+            size = ir_type[ir_type.rindex('['):]
+            return f"{osl_type(array_element(ir_type))} {name}{size}"
+        return f"{osl_type(ir_type)} {name}"
+
+    # -- items -------------------------------------------------------------------------------------
+    def item(self, item) -> list[str]:
+        cls = type(item)
+        if cls is ir.Constant and item.type is not None:
+            if is_array(item.type):
+                raise unsupported("a constant array at file scope", item)
+            return [*([f"// {item.comment}"] if isinstance(getattr(item, "comment", None), str) else []),
+                    f"#define {safe_name(item.name)} {self.render(item.value, None, 0)}"]
+        if cls is ir.Struct:
+            lines = [f"struct {safe_name(item.name)}", "{"]
+            lines.extend(f"{INDENT}{self.declarator(t, safe_name(n))};" for t, n in item.members)
+            return lines + ["};"]
+        return super().item(item)
+
+    def signature(self, f: ir.Function) -> str:
+        from ..printing import arguments
+        head = f"{osl_type(f.returns)} {safe_name(f.name)}("
+        params = [self.parameter(p) for p in f.params]
+        return head + arguments(lambda text, column, indent: text, params, len(head), 0) + ")"
+
+    def parameter(self, p: ir.Param) -> str:
+        qualifier = "" if p.qualifier == "in" else "output "
+        name = self.spell(ir.Name(p.name, "param")) if self.spell is not None else safe_name(p.name)
+        return qualifier + self.declarator(p.type, name)
+

@@ -1,0 +1,164 @@
+"""The OSL target: the printer (printer.py), the shader assembler below, and OSL's closure
+convention (closures.py).
+
+One `.osl` shader per element, in the record's pixel stage (OSL has no vertex stage: the vertex
+stage is absent). It is written in this order: OSL's own headers for the vector2/vector4/matrix33
+structs, the structs and constants the code passes kept, the helper functions, the library and
+generated functions, then `shader shadergen(...)`: its parameters the public uniforms (the
+listing's names and types, initialised as GLSL initialises its uniforms, the ui hints as OSL
+metadata), the private uniforms a renderer sets (no shader global holds them), and one output
+parameter per pixel output: a colour and its alpha (`<output>_alpha`) for a value, a
+`closure color` for a shader. The geometric streams the GL targets interpolate are the shader
+globals (`P`, `N`, `u`, `v`, `dPdu`, `dPdv`), object space through `transform("object", ...)`.
+"""
+from ...code import ir
+from ...code.values import value_expr
+from ...shader import Writer
+from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+from ..printing import INDENT
+from .closures import OslClosureConvention
+from .printer import OslPrinter, helpers, osl_type, safe_name
+
+SHADER_NAME = "shadergen"
+HEADERS = ("vector2.h", "vector4.h", "matrix33.h")
+# MaterialX type -> OSL parameter type
+PARAMETER_TYPES = {"float": "float", "integer": "int", "boolean": "int", "color3": "color", "vector3": "vector",
+                   "vector2": "vector2", "vector4": "vector4", "color4": "vector4", "matrix33": "matrix33",
+                   "matrix44": "matrix", "filename": "string", "string": "string"}
+# the vertex data members the GL targets interpolate -> the shader globals that hold them
+GEOMETRY = {"positionWorld": "P", "positionObject": 'transform("object", P)', "normalWorld": "N",
+            "normalObject": 'transform("object", N)', "tangentWorld": "normalize(dPdu)",
+            "tangentObject": 'transform("object", normalize(dPdu))', "bitangentWorld": "normalize(dPdv)",
+            "bitangentObject": 'transform("object", normalize(dPdv))'}
+# private uniforms a shader global holds
+GLOBALS = {"u_time": "time", "u_viewPosition": 'point("camera", 0, 0, 0)',
+           "u_worldMatrix": 'matrix("object", "common")', "u_worldInverseMatrix": 'matrix("common", "object")'}
+# ui hint -> OSL metadata (the names OSL's documentation and renderers read)
+METADATA = (("name", "label", "string"), ("folder", "page", "string"), ("min", "min", None), ("max", "max", None),
+            ("softmin", "slidermin", None), ("softmax", "slidermax", None), ("doc", "help", "string"))
+
+
+class OslTarget:
+    name = "osl"
+    library = "genglsl"  # the node libraries' implementations, printed from their IR
+    reserved, reserved_prefixes, reserved_suffixes = RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+    closures = OslClosureConvention()
+
+    def __init__(self):
+        self.printer = OslPrinter(self.spell)
+
+    def layout(self, ctx) -> dict | None:
+        return None  # parameters are bound by name
+
+    def spell(self, name: ir.Name) -> str:
+        if name.kind == "vertexdata":
+            return self.geometry(name)
+        if name.kind == "builtin":
+            return {"gl_FrontFacing": "!backfacing()"}.get(name.name, name.name)
+        if name.kind == "uniform" and name.name in GLOBALS:
+            return GLOBALS[name.name]
+        return safe_name(name.name)
+
+    @staticmethod
+    def geometry(name: ir.Name) -> str:
+        member = name.name
+        if member in GEOMETRY:
+            return GEOMETRY[member]
+        if member.startswith("texcoord_"):
+            return "vector2(u, v)"
+        # colours and geometric properties no global holds: the type's zero (a renderer's
+        # attribute lookup would go here)
+        return OslPrinter().render(value_expr({"vec4": "vector4", "vec2": "vector2", "vec3": "vector3"}.get(
+            name.type, "float"), None), None, 0)
+
+    # -- assembly ----------------------------------------------------------------------------------
+    def assemble_vertex(self, ctx) -> None:
+        return None
+
+    def assemble_pixel(self, ctx) -> str:
+        code = ctx.pixel.code
+        w = Writer()
+        for header in HEADERS:
+            w.line(f'#include "{header}"')
+        w.line()
+        for item in code.structs + code.constants:
+            w.extend(self.printer.item(item))
+        if code.structs or code.constants:
+            w.line()
+        w.extend(helpers(list(code.functions) + [code.main]))
+        for function in code.functions:
+            w.extend(self.printer.item(function))
+            w.line()
+        self.shader(ctx, w)
+        return w.text()
+
+    def shader(self, ctx, w: Writer) -> None:
+        stage = ctx.pixel
+        parameters = []
+        for block in ("PublicUniforms", "PrivateUniforms"):
+            for v in stage.blocks[block]:
+                if v.name not in GLOBALS and v.type != "LightData":
+                    parameters.append(self.parameter(v))
+        outputs = {}
+        for v in stage.blocks["Outputs"]:
+            closure = self.closures.output_closure(ctx, v.name)
+            outputs[v.name] = closure
+            if closure:
+                parameters.append(f"output closure color {v.name} = 0")
+            else:
+                parameters.append(f"output color {v.name} = 0")
+                parameters.append(f"output float {v.name}_alpha = 1")
+        w.line(f"shader {SHADER_NAME}(")
+        for i, p in enumerate(parameters):
+            w.line(INDENT + p + ("," if i + 1 < len(parameters) else ""))
+        w.line(")")
+        main = code_main(stage.code.main, outputs)
+        w.extend(self.printer.statements([main], 0))
+
+    def parameter(self, v) -> str:
+        osl = PARAMETER_TYPES.get(v.type) or osl_type(v.type)
+        if v.type in ("filename", "string") and not isinstance(v.initializer, (int, float)):
+            default = ir.Literal(None, '"' + str(v.initializer or "").replace('"', '\\"') + '"', type="string")
+            text = self.printer.render(default, None, 0)
+        else:
+            listing_type = "integer" if v.type == "string" else v.type
+            text = self.printer.render(value_expr(listing_type, v.initializer), None, 0)
+            if osl in ("vector2", "vector4", "matrix33") and text.startswith(osl + "("):
+                text = "{" + text[len(osl) + 1:-1] + "}"  # a struct parameter's default is a list
+        metadata = [m for m in (self.metadata(hint, key, kind, v) for hint, key, kind in METADATA) if m]
+        hints = f" [[ {', '.join(metadata)} ]]" if metadata else ""
+        return f"{osl} {v.name} = {text}{hints}"
+
+    @staticmethod
+    def metadata(hint: str, key: str, kind, v) -> str | None:
+        value = (v.ui or {}).get(hint)
+        if value is None or isinstance(value, (tuple, list)):  # OSL metadata of vectors: not written
+            return None
+        if kind == "string" or isinstance(value, str):
+            text = str(value).replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ")
+            return f'string {key} = "{text}"'
+        if isinstance(value, bool):
+            return f"int {key} = {int(value)}"
+        if isinstance(value, int) and v.type in ("integer", "string"):
+            return f"int {key} = {value}"
+        return f"float {key} = {float(value)!r}"
+
+
+def code_main(main: ir.Block, outputs: dict[str, bool]) -> ir.Block:
+    """main's body with each write of a vec4 pixel output split into the colour and alpha
+    parameters (closure outputs are written by the closure convention as they are)."""
+    body = []
+    for s in main.body:
+        if type(s) is ir.Assign and type(s.target) is ir.Name and s.target.kind == "output" \
+                and not outputs.get(s.target.name):
+            name = s.target.name
+            rgba = ir.Name(f"{name}_rgba", "local", type="vec4")
+            body.append(ir.Declare("vec4", rgba.name, s.value, False))
+            body.append(ir.Assign("=", ir.Name(name, "output", type="vec3"),
+                                  ir.Field(rgba, "xyz", type="vec3", swizzle=True)))
+            body.append(ir.Assign("=", ir.Name(f"{name}_alpha", "output", type="float"),
+                                  ir.Field(rgba, "w", type="float", swizzle=True)))
+        else:
+            body.append(s)
+    return ir.replace(main, body=body, scoped=True)
+
