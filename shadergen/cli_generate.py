@@ -18,7 +18,7 @@ documents, elements and targets never overwrite each other's files."""
 def add_arguments(p) -> None:
     p.add_argument("documents", nargs="+", metavar="DOC.mtlx",
                    help="MaterialX documents; - reads one from stdin (its includes relative to the current folder)")
-    p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es) or wgsl (WebGPU)")
+    p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es), wgsl (WebGPU) or osl (OSL 1.13: one .osl shader, compiled by oslc)")
     p.add_argument("--element", metavar="NAMEPATH",
                    help="name path of the element to generate (default: the first renderable element)")
     p.add_argument("--all", action="store_true", help="every renderable element instead of the first")
@@ -62,7 +62,8 @@ class OutputFiles:
         name = os.path.splitext(os.path.basename(document))[0] if document != "-" else "stdin"
         folder = os.path.join(self.out_dir, name)
         stem = os.path.join(folder, f"{(record['element'] or 'shader').replace('/', '_')}.{record['target']}")
-        files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage)}": src for stage, src in record["stages"].items()}
+        files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage) if record['target'] != 'osl' else 'osl'}": src
+                 for stage, src in record["stages"].items() if src is not None}
         files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k != "stages"}, indent=1)
         owner = f"{document} {record['element']}"
         taken = next((f for f in files if self.written.get(f, owner) != owner), None)
