@@ -4,6 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/system-packages.sh
 [ -x .venv/bin/python ] || python3 -m venv .venv
+bash scripts/osl.sh  # oslc & co. for the OSL target, built once into ~/.cache/shadergen
 mkdir -p out
 .venv/bin/pip install -q --upgrade pip
 # compat: the checkout goes on sys.path through a plain .pth line; setuptools' default editable

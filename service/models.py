@@ -44,7 +44,7 @@ Keep = Annotated[Text, StringConstraints(min_length=1, max_length=1024)]
 class GenerateRequest(BaseModel):
     model_config = ConfigDict(extra="forbid")
     document: Text = Field(min_length=1, description="the MaterialX document (XML text)")
-    target: Text = Field("glsl", max_length=64, description="glsl, essl, wgsl, vulkan, hlsl, slang or msl")
+    target: Text = Field("glsl", max_length=64, description="glsl, essl, wgsl, vulkan, hlsl, slang, msl or osl")
     element: Text | None = Field(None, max_length=1024, description="name path; default: the first renderable")
     interface: Interface = Field("complete", description=INTERFACE_DOC)
     keep: list[Keep] = Field(default_factory=list, max_length=256,

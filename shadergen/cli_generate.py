@@ -22,7 +22,8 @@ def add_arguments(p) -> None:
                    help="MaterialX documents; - reads one from stdin (its includes relative to the current folder)")
     p.add_argument("--target", default="glsl", help="glsl (desktop #version 400), essl (#version 300 es), wgsl (WebGPU), "
                                                       "vulkan (#version 450 for Vulkan, with each stage's SPIR-V), hlsl "
-                                                      "(shader model 5+), slang or msl (Metal)")
+                                                      "(shader model 5+), slang, msl (Metal) or osl (OSL 1.13: one .osl "
+                                                      "shader, compiled by oslc)")
     p.add_argument("--element", metavar="NAMEPATH",
                    help="name path of the element to generate (default: the first renderable element)")
     p.add_argument("--all", action="store_true", help="every renderable element instead of the first")
@@ -82,7 +83,8 @@ class OutputFiles:
         name = os.path.splitext(os.path.basename(document))[0] if document != "-" else "stdin"
         folder = os.path.join(self.out_dir, name)
         stem = os.path.join(folder, f"{(record['element'] or 'shader').replace('/', '_')}.{record['target']}")
-        files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage)}": src for stage, src in record["stages"].items()}
+        files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage) if record['target'] != 'osl' else 'osl'}": src
+                 for stage, src in record["stages"].items() if src is not None}
         for stage, module in record.get("spirv", {}).items():  # vulkan: each stage's SPIR-V as it is
             files[f"{stem}.{STAGE_SUFFIX.get(stage, stage)}.spv"] = base64.b64decode(module)
         files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k not in ("stages", "spirv")}, indent=1)

@@ -362,7 +362,8 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)
     finish(ctx, graph.interface_mode == "specialized", graph.passes)
-    return {VERTEX: ctx.target.assemble_vertex(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
+    stages = {VERTEX: ctx.target.assemble_vertex(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
+    return {name: text for name, text in stages.items() if text is not None}  # OSL has no vertex stage
 
 
 def finish(ctx: EmitContext, variables: bool, counts: dict) -> None:

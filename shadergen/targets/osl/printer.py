@@ -15,7 +15,7 @@ below); what differs is settled by the IR's types:
 - `out` and `inout` parameters are `output`; `const` is dropped (OSL has none);
 - built-ins are renamed (`atan(y, x)` -> `atan2`, `dFdx` -> `Dx`, `fwidth` -> `filterwidth`);
   those OSL lacks (`fract`, `step` of a vector2, a texture read as a vector4) are helper functions
-  (`HELPERS`), written once by the assembler where a shader calls them;
+  (`helpers()`), written once by the assembler where a shader calls them;
 - a library name that is an OSL keyword or global (`color`, `point`, `N`, `u`) gets a `_` after it
   (`safe_name`), as in WGSL.
 What has no OSL form raises ShaderGenError("unsupported_node", ...).
@@ -54,29 +54,18 @@ TYPES = {"float": "float", "int": "int", "uint": "int", "bool": "int", "vec2": "
 STRUCT_FIELDS = "xyzw"  # the members of vector2 and vector4
 COMPONENTS = {c: i for names in ("xyzw", "rgba", "stpq") for i, c in enumerate(names)}
 RENAMED = {"dFdx": "Dx", "dFdy": "Dy", "fwidth": "filterwidth"}
-# helper functions OSL lacks, by the IR call and argument types they stand for: name -> source
-HELPERS = {
-    "osl_fract": ("float osl_fract(float x) { return x - floor(x); }",
-                  "vector osl_fract(vector x) { return x - floor(x); }",
-                  "vector2 osl_fract(vector2 x) { return x - floor(x); }",
-                  "vector4 osl_fract(vector4 x) { return x - floor(x); }"),
-    "osl_step": ("vector2 osl_step(vector2 edge, vector2 x) { return vector2(step(edge.x, x.x), step(edge.y, x.y)); }",
-                 "vector4 osl_step(vector4 edge, vector4 x)",
-                 "{",
-                 "    return vector4(step(edge.x, x.x), step(edge.y, x.y), step(edge.z, x.z), step(edge.w, x.w));",
-                 "}"),
-    # GL's texture coordinates start at the bottom row, OSL's `t` at the top
-    "osl_texture": ("vector4 osl_texture(string file, vector2 uv)",
-                    "{",
-                    "    float alpha = 1.0;",
-                    "    color rgb = texture(file, uv.x, 1.0 - uv.y, \"alpha\", alpha, \"missingcolor\", color(0.0),",
-                    "                        \"missingalpha\", 0.0);",
-                    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
-                    "}"),
-}
+# the struct overloads OSL's vector2.h and vector4.h declare (S: either struct)
+PROVIDED = frozenset(f"{name}({args})".replace("S", struct) for struct in ("vector2", "vector4") for name, args in (
+    ("abs", "S"), ("ceil", "S"), ("floor", "S"), ("sqrt", "S"), ("exp", "S"), ("log", "S"), ("log2", "S"),
+    ("mix", "S,S,float"), ("dot", "S,S"), ("length", "S"), ("smoothstep", "S,S,S"), ("smoothstep", "float,float,S"),
+    ("clamp", "S,S,S"), ("clamp", "S,float,float"), ("max", "S,S"), ("min", "S,S"), ("min", "S,float"),
+    ("max", "S,float"), ("normalize", "S"), ("fmod", "S,S"), ("fmod", "S,float"), ("pow", "S,S"), ("pow", "S,float"),
+    ("sign", "S"), ("sin", "S"), ("cos", "S"), ("tan", "S"), ("asin", "S"), ("acos", "S"), ("atan2", "S,float"),
+    ("atan2", "S,S"))) | {"mod(vector2,vector2)"}
+# GLSL built-ins taken component by component: on a struct OSL lacks, a helper overload of the name
+COMPONENTWISE = frozenset("""abs sign floor ceil trunc round fract mod min max clamp mix step smoothstep pow exp exp2
+log log2 sqrt inversesqrt sin cos tan asin acos atan2 sinh cosh tanh radians degrees fmod""".split())
 STRUCT_TYPES = ("vec2", "vec4")
-
-
 def unsupported(what: str, node) -> ShaderGenError:
     where = getattr(node, "where", None)
     return ShaderGenError("unsupported_node", f"no OSL form for {what}",
@@ -96,25 +85,81 @@ def osl_type(ir_type: str) -> str:
 
 
 def helpers(items) -> list[str]:
-    """The helper functions printing `items` calls, in a fixed order, for the assembler to write once."""
+    """The helper functions printing `items` calls, in a fixed order, for the assembler to write
+    once: component-wise overloads of built-ins OSL lacks, a ternary of structs, a component of a
+    value that is not a variable."""
     wanted = set()
     for item in items:
         for node in ir.walk(item):
-            if type(node) is ir.Call and node.builtin and node.callee is None:
-                name = helper_of(node)
-                if name is not None:
-                    wanted.add(name)
-    return [line for name, text in HELPERS.items() if name in wanted for line in [*text, ""]]
+            cls = type(node)
+            if cls is ir.Call and node.builtin and node.callee is None:
+                helper = builtin_helper(node)
+                if helper is not None:
+                    wanted.add(helper)
+            elif cls is ir.Select and node.type in STRUCT_TYPES + ("mat3",):
+                wanted.add(("osl_select", ("int", osl_type(node.type), osl_type(node.type)), osl_type(node.type)))
+            elif cls is ir.Construct:  # components of a value that is not a variable (component())
+                for arg in node.args:
+                    if arg.type in STRUCT_TYPES + ("vec3",) and not lvalue(arg) and arg.type != node.type:
+                        wanted.add(("osl_component", (osl_type(arg.type), "int"), "float"))
+            elif (cls is ir.Field and node.swizzle) or cls is ir.Index:
+                base = node.base
+                if base.type in STRUCT_TYPES + ("vec3",) and (not lvalue(base) or (
+                        cls is ir.Index and base.type in STRUCT_TYPES and type(node.index) is not ir.Literal)):
+                    wanted.add(("osl_component", (osl_type(base.type), "int"), "float"))
+    if any(h[0] == "osl_fract" and h[2] in ("vector2", "vector4") for h in wanted):
+        wanted.add(("osl_fract", ("float",), "float"))
+    return [line for helper in sorted(wanted, key=lambda h: (h[0], h[2] != "float", h))
+            for line in [*helper_text(*helper), ""]]
 
 
-def helper_of(call: ir.Call) -> str | None:
-    if call.name == "fract":
-        return "osl_fract"
-    if call.name == "step" and call.type in STRUCT_TYPES:
-        return "osl_step"
-    if call.name == "texture":
-        return "osl_texture"
+def lvalue(e) -> bool:
+    """Whether OSL may index `e` or read its members (a variable, a member, an element)."""
+    while type(e) is ir.Field or type(e) is ir.Index:
+        e = e.base
+    return type(e) is ir.Name
+
+
+def builtin_helper(call: ir.Call):
+    """(name, OSL argument types, OSL return type) of the helper a built-in call needs, or None."""
+    name = "atan2" if call.name == "atan" and len(call.args) == 2 else call.name
+    types = tuple(osl_type(a.type) for a in call.args)
+    if name == "fract":  # (a struct's calls the float one: helper_text)
+        return "osl_fract", types, osl_type(call.type)
+    if name == "texture":
+        return "osl_texture", ("string", "vector2"), "vector4"
+    if name == "distance" and types[0] in ("vector2", "vector4"):
+        return "distance", types, "float"
+    if name in COMPONENTWISE and any(t in ("vector2", "vector4") for t in types) \
+            and f"{name}({','.join(types)})" not in PROVIDED:
+        return name, types, osl_type(call.type)
     return None
+
+
+def helper_text(name: str, types: tuple, returns: str) -> list[str]:
+    params = ", ".join(f"{t} {p}" for t, p in zip(types, "abcd"))
+    head = f"{returns} {name}({params})"
+    if name == "osl_texture":  # GL's texture coordinates start at the bottom row, OSL's `t` at the top
+        return [head, "{", "    float alpha = 1.0;",
+                '    color rgb = texture(a, b.x, 1.0 - b.y, "alpha", alpha, "missingcolor", color(0.0), "missingalpha", 0.0);',
+                "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
+    if name == "osl_select":
+        return [head, "{", "    if (a)", "        return b;", "    return c;", "}"]
+    if name == "osl_component":
+        if types[0] == "vector":
+            return [head, "{", "    return a[b];", "}"]
+        fields = "xyzw"[:2 if types[0] == "vector2" else 4]
+        lines = [head, "{"] + [f"    if (b == {i})\n        return a.{c};" for i, c in enumerate(fields[:-1])]
+        return [line for text in lines for line in text.split("\n")] + [f"    return a.{fields[-1]};", "}"]
+    if name == "distance":
+        return [head, "{", "    return length(a - b);", "}"]
+    inner = "osl_fract" if name == "osl_fract" else name
+    if returns in ("float", "vector"):  # fract of a float or a triple
+        return [head, "{", "    return a - floor(a);", "}"]
+    fields = "xyzw"[:2 if returns == "vector2" else 4]
+    parts = [f"{inner}({', '.join(f'{p}.{c}' if t == returns else p for t, p in zip(types, 'abcd'))})"
+             for c in fields]
+    return [head, "{", f"    return {returns}({', '.join(parts)});", "}"]
 
 
 class OslPrinter(GlslPrinter):
@@ -142,6 +187,13 @@ class OslPrinter(GlslPrinter):
             return self.operand(e.base, column, indent, self.precedence(e.base) < 15) + "." + safe_name(e.name)
         if cls is ir.Call:
             return self.call_of(e, column, indent)
+        if cls is ir.Select and e.type in STRUCT_TYPES + ("mat3",):  # OSL's ?: takes no struct
+            return self.call("osl_select", [e.condition, e.if_true, e.if_false], column, indent)
+        if cls is ir.Index and e.base.type in STRUCT_TYPES + ("vec3",):
+            if type(e.index) is ir.Literal and lvalue(e.base):
+                return self.component(e.base, int(e.index.value))
+            if e.base.type in STRUCT_TYPES or not lvalue(e.base):
+                return self.call("osl_component", [e.base, e.index], column, indent)
         if cls is ir.Convert:
             return self.convert(e, column, indent)
         if cls is ir.Binary and e.op == "*" and (is_matrix(e.left.type or "") or is_matrix(e.right.type or "")):
@@ -169,6 +221,8 @@ class OslPrinter(GlslPrinter):
         return [self.component(e, i) for i in range(size_of(t))]
 
     def component(self, base, i: int) -> str:
+        if base.type in STRUCT_TYPES + ("vec3",) and not lvalue(base):
+            return f"osl_component({self.render(base, None, 0)}, {i})"
         text = self.operand(base, None, 0, self.precedence(base) < 15)
         if base.type in STRUCT_TYPES:
             return f"{text}.{STRUCT_FIELDS[i]}"
@@ -244,9 +298,9 @@ class OslPrinter(GlslPrinter):
     def call_of(self, e: ir.Call, column, indent) -> str:
         if e.callee is not None or not e.builtin:
             return self.call(safe_name(e.name), e.args, column, indent)
-        helper = helper_of(e)
+        helper = builtin_helper(e)
         if helper is not None:
-            return self.call(helper, e.args, column, indent)
+            return self.call(helper[0], e.args, column, indent)
         name, args = e.name, list(e.args)
         if name == "atan" and len(args) == 2:
             return self.call("atan2", args, column, indent)

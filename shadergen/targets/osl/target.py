@@ -12,6 +12,7 @@ parameter per pixel output: a colour and its alpha (`<output>_alpha`) for a valu
 globals (`P`, `N`, `u`, `v`, `dPdu`, `dPdv`), object space through `transform("object", ...)`.
 """
 from ...code import ir
+from ...code.types import is_array
 from ...code.values import value_expr
 from ...shader import Writer
 from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
@@ -81,13 +82,18 @@ class OslTarget:
         for header in HEADERS:
             w.line(f'#include "{header}"')
         w.line()
-        for item in code.structs + code.constants:
+        arrays = {c.name: c for c in code.constants if type(c) is ir.Constant and c.type and is_array(c.type)}
+        items = code.structs + [c for c in code.constants if not (type(c) is ir.Constant and c.name in arrays)]
+        for item in items:
             w.extend(self.printer.item(item))
-        if code.structs or code.constants:
+        if items:
             w.line()
-        w.extend(helpers(list(code.functions) + [code.main]))
+        w.extend(helpers([f for f in code.functions if getattr(f, "name", None) not in OWN_FUNCTIONS] + [code.main]))
         for function in code.functions:
-            w.extend(self.printer.item(function))
+            if type(function) is ir.Function and function.name in OWN_FUNCTIONS:
+                w.extend(OWN_FUNCTIONS[function.name])
+            else:
+                w.extend(self.printer.item(with_arrays(function, arrays)))
             w.line()
         self.shader(ctx, w)
         return w.text()
@@ -142,6 +148,37 @@ class OslTarget:
         if isinstance(value, int) and v.type in ("integer", "string"):
             return f"int {key} = {value}"
         return f"float {key} = {float(value)!r}"
+
+
+def with_arrays(function, arrays: dict):
+    """`function` declaring the constant arrays it reads as its first locals: OSL has no variables
+    at file scope."""
+    if type(function) is not ir.Function or not arrays:
+        return function
+    read = sorted({n.name for n in ir.walk(function.body) if type(n) is ir.Name and n.kind == "global"
+                   and n.name in arrays})
+    if not read:
+        return function
+    body = function.body.body if type(function.body) is ir.Block else [function.body]
+    declared = [ir.Declare(arrays[n].type, n, arrays[n].value, False) for n in read]
+    return ir.replace(function, body=ir.Block(declared + list(body), True))
+
+
+# Library functions OSL writes its own way: an image is read by OSL's texture(), which wraps and
+# filters itself (address modes: constant, clamp, periodic, mirror; filters: closest, linear,
+# cubic), where the GL library reads texels to wrap and filter them
+OWN_FUNCTIONS = {"mx_image_fetch": (
+    "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
+    "{",
+    "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
+    "        return dflt;",
+    '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
+    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "bilinear" : "bicubic";',
+    "    float alpha = dflt.w;",
+    '    color rgb = texture(tex, uv.x, 1.0 - uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
+    '                        "alpha", alpha, "missingcolor", color(dflt.x, dflt.y, dflt.z), "missingalpha", dflt.w);',
+    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
+    "}")}
 
 
 def code_main(main: ir.Block, outputs: dict[str, bool]) -> ir.Block:

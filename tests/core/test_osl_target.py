@@ -1,0 +1,84 @@
+"""The OSL target: its shaders compile with oslc (scripts/osl.sh builds it), and the listing is
+what oslinfo reads from the compiled shader (names, types, defaults, ui metadata)."""
+import pytest
+
+from shadergen.api import default_generator
+from shadergen.targets.osl import check
+from shadergen.targets.osl.target import PARAMETER_TYPES
+from tests.required_tools import missing
+
+DOCUMENT = """<?xml version="1.0"?>
+<materialx version="1.39">
+  <nodegraph name="g">
+    <texcoord name="uv" type="vector2"/>
+    <separate2 name="sep" type="multioutput"><input name="in" type="vector2" nodename="uv"/></separate2>
+    <constant name="tint" type="color3"><input name="value" type="color3" value="0.8, 0.4, 0.2"/></constant>
+    <multiply name="scaled" type="color3">
+      <input name="in1" type="color3" nodename="tint"/>
+      <input name="in2" type="float" nodename="sep" output="outx"/>
+    </multiply>
+    <mix name="mixed" type="vector4">
+      <input name="fg" type="vector4" value="1, 0, 0, 1"/>
+      <input name="bg" type="vector4" value="0, 0, 1, 1"/>
+      <input name="mix" type="vector4" value="0.5, 0.5, 0.5, 0.5"/>
+    </mix>
+    <fract name="fractional" type="vector2"><input name="in" type="vector2" nodename="uv"/></fract>
+    <output name="color_out" type="color3" nodename="scaled"/>
+    <output name="mixed_out" type="vector4" nodename="mixed"/>
+    <output name="fract_out" type="vector2" nodename="fractional"/>
+  </nodegraph>
+</materialx>
+"""
+
+
+@pytest.fixture(scope="module")
+def oslc():
+    if check.tool("oslc") is None or check.tool("oslinfo") is None:
+        missing("oslc and oslinfo", "scripts/osl.sh builds them")
+
+
+def records(interface="complete"):
+    return list(default_generator().records(DOCUMENT.encode(), target="osl", all=True, interface=interface))
+
+
+@pytest.mark.parametrize("interface", ["complete", "reduced", "specialized"])
+def test_every_output_compiles(oslc, interface):
+    shaders = {}
+    for rec in records(interface):
+        assert "error" not in rec, rec
+        assert set(rec["stages"]) == {"pixel"}  # OSL has no vertex stage
+        shaders[rec["element"]] = ("pixel", rec["stages"]["pixel"])
+    assert len(shaders) == 3
+    assert check.errors(shaders) == {}
+
+
+def test_oslc_rejects_a_broken_shader(oslc):
+    failed = check.errors({"broken": ("pixel", "shader s(output float x = 0) { x = nothing; }")})
+    assert "nothing" in failed["broken"]
+
+
+def test_listing_is_what_oslinfo_reads(oslc):
+    for rec in records():
+        info = check.oslinfo(rec["stages"]["pixel"])
+        public = rec["blocks"]["pixel"]["PublicUniforms"]
+        assert public
+        for v in public:
+            osl_type = PARAMETER_TYPES[v["type"]]
+            shown = f'"{v["name"]}" "struct {osl_type}"' if osl_type in ("vector2", "vector4") \
+                else f'"{v["name"]}" "{osl_type}"'
+            assert shown in info, (v, info)
+        for name in rec["blocks"]["pixel"]["Outputs"]:
+            assert f'"{name["name"]}" "output color"' in info
+            assert f'"{name["name"]}_alpha" "output float"' in info
+
+
+def test_ui_hints_are_osl_metadata(oslc):
+    doc = DOCUMENT.replace('<mix name="mixed" type="vector4">', '<mix name="mixed" type="vector4">'
+                           '<input name="mix" type="float" value="0.25"/>').replace(
+        '<input name="mix" type="vector4" value="0.5, 0.5, 0.5, 0.5"/>', "").encode()
+    rec = next(r for r in default_generator().records(doc, target="osl", all=True) if r["element"] == "g/mixed_out")
+    info = check.oslinfo(rec["stages"]["pixel"])
+    weight = next(v for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["path"].endswith("mixed/mix"))
+    assert weight["value"] == 0.25 and weight["ui"] == {"softmin": 0.0, "softmax": 1.0}
+    assert f'"{weight["name"]}" "float"' in info
+    assert "metadata: float slidermin = 0" in info and "metadata: float slidermax = 1" in info
