@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Debian packages the project needs: Mesa EGL (llvmpipe) for headless thumbnails (moderngl's EGL
 # back end loads libEGL.so.1 and libGL.so.1: libegl1, libgl1), glslang-tools to validate generated
-# GLSL/ESSL, mesa-vulkan-drivers (lavapipe, with libvulkan1) for wgpu, which validates and draws
+# GLSL/ESSL and compile Vulkan GLSL to SPIR-V, spirv-tools (spirv-val) to validate that SPIR-V, mesa-vulkan-drivers (lavapipe, with libvulkan1) for wgpu, which validates and draws
 # generated WGSL, redis-server for the multi-machine back ends' tests, chromium and chromium-driver for
 # the web editor's browser tests (WebGL2 on SwiftShader), and what scripts/osl.sh builds
 # OpenShadingLanguage with, unless an oslc >= 1.13 is on PATH (LLVM and clang 15, OpenImageIO 2.4,
@@ -10,7 +10,7 @@
 # container test needs: a Docker engine and compose (any already installed, such as Docker's own
 # docker-ce, is used as it is) and debootstrap.
 set -euo pipefail
-pkgs=(libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri libgbm1 mesa-vulkan-drivers glslang-tools redis-server python3-venv chromium chromium-driver)
+pkgs=(libegl1 libgl1 libegl-mesa0 libgl1-mesa-dri libgbm1 mesa-vulkan-drivers glslang-tools spirv-tools redis-server python3-venv chromium chromium-driver)
 if ! bash "$(dirname "$0")/osl.sh" --have; then
   pkgs+=(cmake g++ make curl flex bison llvm-15-dev clang-15 libclang-15-dev libclang-cpp15-dev
     libopenimageio-dev openimageio-tools libopencv-core-dev libimath-dev libopenexr-dev
