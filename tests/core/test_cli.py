@@ -72,7 +72,7 @@ def test_dash_reads_the_document_from_stdin():
 
 
 @pytest.mark.parametrize("option, value, listed", [("--interface", "full", "complete, reduced"),
-                                                   ("--target", "hlsl", "essl, glsl")])
+                                                   ("--target", "mdl", "essl, glsl")])
 def test_unsupported_options_list_the_valid_values(tmp_path, option, value, listed):
     (tmp_path / "d.mtlx").write_text(SIN)
     rec = json.loads(run("generate", option, value, str(tmp_path / "d.mtlx")).stdout)

@@ -186,7 +186,7 @@ def test_generation_is_deterministic(gen):
 
 def test_unknown_target(gen):
     with pytest.raises(ShaderGenError) as e:
-        gen.prepare(doc('<sin name="s" type="float"/><output name="o" type="float" nodename="s"/>'), target="hlsl")
+        gen.prepare(doc('<sin name="s" type="float"/><output name="o" type="float" nodename="s"/>'), target="mdl")
     assert e.value.code == "unsupported_target"
 
 
