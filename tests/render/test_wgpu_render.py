@@ -116,13 +116,17 @@ def test_records_go_to_the_renderer_of_their_target(renderer, wgpu_renderer):
 
 
 def test_a_vulkan_record_without_its_spirv_is_refused_and_bad_spirv_is_a_compile_error(wgpu_renderer):
+    # a renderer of its own: the shared one holds this topology's program from an earlier test, and a
+    # renderer takes a program by the record's topology hash (issue 23), not by its modules
+    from shadergen.render.wgpu_renderer import WgpuRenderer
+    fresh = WgpuRenderer(search_paths=[])  # (the fixture: wgpu is required)
     record = Generator().prepare(TEXTURED, target="vulkan").emit()
     with pytest.raises(RenderError) as caught:
-        wgpu_renderer.render({k: v for k, v in record.items() if k != "spirv"}, size=8)
+        fresh.render({k: v for k, v in record.items() if k != "spirv"}, size=8)
     assert caught.value.code == "invalid_record" and "spirv" in caught.value.message
     truncated = base64.b64encode(base64.b64decode(record["spirv"]["pixel"])[:64]).decode()
     with pytest.raises(RenderError) as caught:
-        wgpu_renderer.render(dict(record, spirv=dict(record["spirv"], pixel=truncated)), size=8)
+        fresh.render(dict(record, spirv=dict(record["spirv"], pixel=truncated)), size=8)
     assert caught.value.code == "compile_error" and "SPIR-V pixel stage" in caught.value.message
 
 
