@@ -17,6 +17,9 @@ NAMES_DOC = ("structural: the source names nodes and uniforms by the graph's str
 Cms = Literal["builtin", "ocio"]
 CMS_DOC = ("colour management system: builtin (the library's transforms to lin_rec709) or ocio (OpenColorIO: any "
            "colour space of the config); default: ocio when ocio_config is given, else builtin")
+# a request names one of OCIO's built-in configs, never a file of the server's (service/generation.py
+# check_config): the contract says so, so a client's validator refuses it before the server does
+OCIO_CONFIG_PATTERN = "^ocio://"
 OCIO_CONFIG_DOC = ("with cms ocio: one of OCIO's built-in configs (ocio://default, "
                    "ocio://cg-config-v2.1.0_aces-v1.3_ocio-v2.3, ...); the server's own config file (its "
                    "SHADERGEN_OCIO_CONFIG) when absent. A request names no file of the server")
@@ -38,6 +41,8 @@ def _encodable(value: str) -> str:
 
 Text = Annotated[str, AfterValidator(_encodable)]
 Keep = Annotated[Text, StringConstraints(min_length=1, max_length=1024)]
+# (the constraints before the validator: after it, pydantic leaves the pattern out of the JSON schema)
+OcioConfig = Annotated[str, StringConstraints(max_length=256, pattern=OCIO_CONFIG_PATTERN), AfterValidator(_encodable)]
 
 
 # -- requests ----------------------------------------------------------------------------------
@@ -53,7 +58,7 @@ class GenerateRequest(BaseModel):
     values: Values = Field("listing", description=VALUES_DOC)
     names: Names = Field("structural", description=NAMES_DOC)
     cms: Cms | None = Field(None, description=CMS_DOC)
-    ocio_config: Text | None = Field(None, max_length=256, description=OCIO_CONFIG_DOC)
+    ocio_config: OcioConfig | None = Field(None, description=OCIO_CONFIG_DOC)
     source: bool = Field(True, description="false: listings without stage source")
 
 

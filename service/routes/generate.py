@@ -8,7 +8,7 @@ from pydantic import ValidationError
 from ..deps import GenerationDep
 from ..errors import ServiceError, from_validation_error
 from ..generation import GenerateParams
-from ..models import (CMS_DOC, NAMES_DOC, OCIO_CONFIG_DOC, VALUES_DOC, Cms, GenerateRequest, Interface, Names,
+from ..models import (CMS_DOC, NAMES_DOC, OCIO_CONFIG_DOC, OCIO_CONFIG_PATTERN, VALUES_DOC, Cms, GenerateRequest, Interface, Names,
                       ShaderRecord, Values)
 from .common import ERRORS, USD_TYPES, json_bytes, media_type_of
 
@@ -39,7 +39,7 @@ async def generate(
     values: Annotated[Values, Query(description=f"with an XML or USD body; {VALUES_DOC}")] = "listing",
     names: Annotated[Names, Query(description=f"with an XML or USD body; {NAMES_DOC}")] = "structural",
     cms: Annotated[Cms | None, Query(description=f"with an XML or USD body; {CMS_DOC}")] = None,
-    ocio_config: Annotated[str | None, Query(max_length=256,
+    ocio_config: Annotated[str | None, Query(max_length=256, pattern=OCIO_CONFIG_PATTERN,
                                              description=f"with an XML or USD body; {OCIO_CONFIG_DOC}")] = None,
 ) -> Response:
     media_type = media_type_of(request)
