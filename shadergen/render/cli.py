@@ -78,6 +78,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--repeat", type=int, default=1, metavar="N", help="draw N frames to time a steady frame")
     parser.add_argument("--json", action="store_true", help="print a JSON summary (or error) on stdout")
     add_cms_arguments(parser)  # with ocio, the PNG shows the working space through the config's display and view
+    parser.add_argument("--view", help="with --cms ocio: the view of the config's default display the PNG shows "
+                        "(default: the config's default view; the CG config's is tone-mapped, 'Un-tone-mapped' is not)")
 
 
 def run(args) -> int:
@@ -111,6 +113,7 @@ def _run(args) -> int:
     record = _record_from_file(args.record, args.element) if args.record \
         else _record_from_document(args.document, args.element, args.interface or "specialized",
                                    BACKENDS[args.backend], args.env_method, bool(args.lights), cms_options(args))
+    encode = _display_encoder(args)  # an unknown view fails before the render
     env = _environment(args)
     document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
     renderer = _renderer(args)
@@ -118,7 +121,6 @@ def _run(args) -> int:
                              env_method=args.env_method,
                              lights=args.lights, supersample=args.ss, document_dir=document_dir,
                              frames=args.repeat)
-    encode = _display_encoder(args)
     for path in outputs:  # .exr and .npy keep the linear working-space values
         write_image(path, result.rgba, background=args.background, encode=encode)
     for warning in result.warnings:
@@ -170,8 +172,12 @@ def _display_encoder(args):
     try:
         system = system_for(args.cms, args.ocio_config)
         if system.name == "builtin":
+            if args.view:
+                raise RenderError("invalid_request", "--view is a colour-managed viewer's: it needs --cms ocio",
+                                  "view")
             return None
-        return system.display_encoder(read_document(args.document).colorspace if args.document else None)
+        return system.display_encoder(read_document(args.document).colorspace if args.document else None,
+                                      view=args.view)
     except ShaderGenError as e:
         raise RenderError(e.code, e.message, e.where) from None
 
