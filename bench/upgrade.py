@@ -7,9 +7,10 @@ reads it and writes it back upgraded to 1.39. Then, for every renderable element
 every top-level node both share, our `specialized` record from the old document (our upgrade)
 against our record from the reference's upgraded document: the same pixel source and the same
 listing mean the two upgrades give the same graph, values included (specialized folds every value
-into the code). With --render, each material is also drawn by `shadergen render` from the old
-document and by the reference's renderer (../shared/oracle/mx_refrender.py): PSNR and max
-difference of the linear images.
+into the code). With --render, each material is also drawn from the old document by the
+reference's renderer (../shared/oracle/mx_refrender.py) and by `shadergen render` under the
+environment the reference saved: PSNR of the sRGB-encoded images, and our mean luminance over
+the reference's (a document that renders black is 0x).
 
   .venv/bin/python bench/upgrade.py [DOC_OR_DIR ...] [--render] [--size 128]
 """
@@ -79,18 +80,29 @@ def describe(rec: tuple) -> str:
     return {"error": f"error {rec[-1]}", "missing": "no such element"}.get(rec[0], "code")
 
 
-def render_psnr(doc: str, element: str, size: int, tmp: str) -> tuple[float, float] | None:
+def srgb(linear):
     import numpy as np
-    ours, ref = os.path.join(tmp, "ours.npy"), os.path.join(tmp, "ref.npy")
-    for cmd in ([SHADERGEN, "render", doc, "--element", element, "-o", os.path.join(tmp, "ours.png"),
-                 "--npy", ours, "--size", str(size), "--search-path", CORPUS],
-                [ORACLE_PY, REFRENDER, doc, "--material", element, "-o", os.path.join(tmp, "ref.png"),
-                 "--npy", ref, "--size", str(size)]):
+    x = np.clip(linear, 0.0, 1.0)
+    return np.where(x <= 0.0031308, x * 12.92, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+
+
+def render_psnr(doc: str, element: str, size: int, tmp: str) -> tuple[float, float] | None:
+    """Both renderers under the same environment (the reference's, saved and read back by ours):
+    PSNR of the two sRGB-encoded images (what a thumbnail shows; highlights past 1 clip), and the
+    ratio of our mean linear luminance to the reference's (a black render is 0)."""
+    import numpy as np
+    ours, ref, env = os.path.join(tmp, "ours.npy"), os.path.join(tmp, "ref.npy"), os.path.join(tmp, "env")
+    for cmd in ([ORACLE_PY, REFRENDER, doc, "--material", element, "-o", os.path.join(tmp, "ref.png"),
+                 "--npy", ref, "--size", str(size), "--save-env", env],
+                [SHADERGEN, "render", doc, "--element", element, "-o", os.path.join(tmp, "ours.png"),
+                 "--npy", ours, "--size", str(size), "--search-path", CORPUS,
+                 "--env", os.path.join(env, "radiance.hdr"), "--irr", os.path.join(env, "irradiance.hdr")]):
         if subprocess.run(cmd, capture_output=True, timeout=600, cwd=CORPUS).returncode != 0:
             return None
-    a, b = np.load(ours)[..., :3].astype(np.float64), np.load(ref)[..., :3].astype(np.float64)
-    mse = float(np.mean((a - b) ** 2))
-    return (99.0 if mse == 0 else 10 * np.log10(1.0 / mse)), float(np.max(np.abs(a - b)))
+    a, b = (np.nan_to_num(np.load(p)[..., :3].astype(np.float64)) for p in (ours, ref))
+    mse = float(np.mean((srgb(a) - srgb(b)) ** 2))
+    luminance = np.array([0.2126, 0.7152, 0.0722])
+    return (99.0 if mse == 0 else 10 * np.log10(1.0 / mse)), float((a @ luminance).mean() / max((b @ luminance).mean(), 1e-9))
 
 
 def main() -> int:
@@ -118,7 +130,7 @@ def main() -> int:
             if args.render and element in materials:
                 with tempfile.TemporaryDirectory() as tmp:
                     r = render_psnr(path, element, args.size, tmp)
-                image = "render failed" if r is None else f"PSNR {r[0]:.1f} dB, max {r[1]:.4f}"
+                image = "render failed" if r is None else f"sRGB PSNR {r[0]:.1f} dB, mean luminance {r[1]:.3f}x"
                 psnrs += [r[0]] if r is not None else []
             rows.append((os.path.relpath(path, CORPUS) if path.startswith(CORPUS) else path, version, element,
                          verdict, image))
@@ -129,7 +141,7 @@ def main() -> int:
     summary = (f"upgrade: {same}/{total} elements the same as from the reference's upgrade "
                f"({both_fail} of them failing alike)")
     if psnrs:
-        summary += f" | renders: min PSNR {min(psnrs):.1f} dB over {len(psnrs)}"
+        summary += f" | renders: min sRGB PSNR {min(psnrs):.1f} dB over {len(psnrs)}"
     print(summary)
     return 0
 

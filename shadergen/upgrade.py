@@ -81,7 +81,7 @@ def _shader(elem: Element) -> bool:
 
 # -- before 1.37 -------------------------------------------------------------------------------
 
-CHANNEL_COUNT = {"vector2": 2, "color3": 3, "vector3": 3, "color4": 4, "vector4": 4}
+CHANNEL_COUNT = {"color2": 2, "vector2": 2, "color3": 3, "vector3": 3, "color4": 4, "vector4": 4}
 COLOR2_OUTPUTS = {"outr": "outx", "outa": "outy"}  # a color2's channels were r and a
 
 
@@ -116,8 +116,8 @@ def _color2(elem: Element) -> bool:
 
 
 def _compare(node: Element) -> bool:
-    """`compare` (in1 where intest <= cutoff, else in2) is `ifgreatereq` (in1 where value1 >=
-    value2, else in2): intest and cutoff are value1 and value2, and in1 and in2 trade places."""
+    """`compare` is `ifgreatereq` (in1 where value1 >= value2, else in2): intest and cutoff are
+    value1 and value2, and in1 and in2 trade places (compare's in1 is the value below the cutoff)."""
     if node.category != "compare":
         return False
     node.category = "ifgreatereq"
@@ -126,6 +126,7 @@ def _compare(node: Element) -> bool:
 
 
 def _invert_matrix(node: Element) -> bool:
+    """`invert` of a matrix (its inverse, not 1 - in) is invertmatrix."""
     if node.category != "invert" or node.get("type") not in ("matrix33", "matrix44"):
         return False
     node.category = "invertmatrix"
@@ -150,7 +151,7 @@ def _transform_by_matrix(node: Element) -> bool:
 
 def _combine(node: Element) -> bool:
     """`combine` is combineN, N the channels of its type."""
-    size = CHANNEL_COUNT.get("vector2" if node.get("type") == "color2" else node.get("type"))
+    size = CHANNEL_COUNT.get(node.get("type"))
     if node.category != "combine" or size is None:
         return False
     node.category = f"combine{size}"
@@ -160,8 +161,7 @@ def _combine(node: Element) -> bool:
 def _separate(node: Element) -> bool:
     """`separate` is separateN, N the channels of its input's type."""
     source = node.child("in") if node.category == "separate" else None
-    size = CHANNEL_COUNT.get("vector2" if source is not None and source.get("type") == "color2"
-                             else source.get("type") if source is not None else None)
+    size = CHANNEL_COUNT.get(source.get("type")) if source is not None else None
     if size is None:
         return False
     node.category = f"separate{size}"
@@ -442,9 +442,11 @@ def _thin_film(layer: Element) -> bool:
     """1.39 removed thin_film_bsdf: a thin film layered over a dielectric, conductor or generalized
     Schlick lobe is that lobe's own thinfilm_thickness and thinfilm_ior, and what read the layer
     reads the lobe."""
+    if layer.category != "layer":
+        return False
     graph = layer.parent
-    top, base = (_graph_node(graph, (layer.child(n) or Element("input", {})).get("nodename"))
-                 for n in ("top", "base")) if layer.category == "layer" else (None, None)
+    top, base = (_graph_node(graph, layer.child(n).get("nodename") if layer.child(n) is not None else None)
+                 for n in ("top", "base"))
     if top is None or base is None or top.category != "thin_film_bsdf" or base.category not in THIN_FILM_BASES:
         return False
     for old, new in (("thickness", "thinfilm_thickness"), ("ior", "thinfilm_ior")):
