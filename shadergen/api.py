@@ -322,15 +322,18 @@ class Generator:
         graph = prepare(builder, outputs, root, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
+        working = doc.colorspace if system.name == "ocio" else None
+        # with OCIO the record names its working space (a viewer's display transform starts there):
+        # two documents of the same graph in different working spaces are different records
+        cms = system.identity if working is None else f"{system.identity} working {working}"
         key = dict(element=doc.label(elem.path), target=target, interface=options.interface,
-                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=system.identity)
+                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=cms)
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
                            for k in (h, topology))
         return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, topology, graph, scope,
-                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3, names,
-                        doc.colorspace if system.name == "ocio" else None)
+                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3, names, working)
 
 
 _default: Generator | None = None

@@ -245,3 +245,16 @@ def test_no_space_of_the_builtin_configs_needs_a_3d_lut_and_a_config_that_does_i
     config.write_text(studio.serialize())
     rec = record(gen, constants(["graded"], working="lin"), ocio_config=str(config))
     assert rec["error"]["code"] == "unsupported_colorspace" and "graded" in rec["error"]["message"], rec
+
+
+def test_the_record_names_its_working_space_and_is_keyed_by_it(gen):
+    """Values with no colour space of their own make the same graph in any working space: the
+    records still differ, each naming its space, since a viewer shows each from its own (a service
+    once answered the second document with the first's record and thumbnail)."""
+    plain = constants(["scene_linear"]).replace(' colorspace="scene_linear"', "")
+    acescg = record(gen, plain, interface="specialized")
+    rec709 = record(gen, plain.replace('colorspace="ACEScg"', 'colorspace="Linear Rec.709 (sRGB)"'),
+                    interface="specialized")
+    assert acescg["working_colorspace"] == "ACEScg" and rec709["working_colorspace"] == "Linear Rec.709 (sRGB)"
+    assert acescg["stages"] == rec709["stages"] and acescg["hash"] != rec709["hash"]
+    assert "working_colorspace" not in next(iter(gen.records(plain)))  # the built-in system's records as they were

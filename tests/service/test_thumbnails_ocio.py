@@ -91,3 +91,22 @@ def test_a_batch_draws_through_the_same_view(client):
     png = client.get(status["results"][0]["thumbnail_url"] if status["results"][0].get("thumbnail_url")
                      else f"{url}/0")
     assert png.status_code == 200 and png.content == single
+
+
+def test_documents_differing_only_in_working_space_get_their_own_pngs(client, tmp_path):
+    """Two documents of the same values in different working spaces share one record hash (no
+    transform in either); the PNG cache must still keep their thumbnails apart."""
+    plain = DOCUMENT.replace(' colorspace="sRGB - Texture"', "")
+    pngs = {}
+    for working in ("ACEScg", "Linear Rec.709 (sRGB)"):
+        r = client.post("/v1/thumbnails", json={"document": plain.replace('colorspace="ACEScg"', f'colorspace="{working}"'),
+                                                "mesh": "plane", "size": SIZE, "cms": "ocio", "ocio_config": CG,
+                                                "view": "Un-tone-mapped"})
+        assert r.status_code == 200, r.text
+        pngs[working] = centre(r.content, tmp_path)
+    cfg = OCIO.Config.CreateFromFile(CG)
+    for working, pixel in pngs.items():
+        colour = np.array([VALUE], "f4")
+        cfg.getProcessor(OCIO.DisplayViewTransform(src=working, display=cfg.getDefaultDisplay(),
+                                                   view="Un-tone-mapped")).getDefaultCPUProcessor().applyRGB(colour)
+        assert np.abs(pixel - np.clip(colour[0], 0, 1)).max() <= 1.5 / 255.0, working
