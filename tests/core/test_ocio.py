@@ -258,3 +258,26 @@ def test_the_record_names_its_working_space_and_is_keyed_by_it(gen):
     assert acescg["working_colorspace"] == "ACEScg" and rec709["working_colorspace"] == "Linear Rec.709 (sRGB)"
     assert acescg["stages"] == rec709["stages"] and acescg["hash"] != rec709["hash"]
     assert "working_colorspace" not in next(iter(gen.records(plain)))  # the built-in system's records as they were
+
+
+def test_render_batch_draws_through_the_display_and_view(tmp_path):
+    """`render --batch --cms ocio`: each PNG is its record's working space through the view, as
+    a single render's; an unknown view stops the batch before it draws."""
+    require_renderer()
+    from shadergen.render.imageio import read_image
+
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "doc.mtlx").write_text(constants(["sRGB - Texture"]))
+    base = [sys.executable, "-m", "shadergen.cli", "render", "--batch", str(tmp_path / "docs"), "-o",
+            str(tmp_path / "out"), "--mesh", "plane", "--size", "32", "--cms", "ocio", "--ocio-config", CG]
+    out = subprocess.run(base + ["--view", "Un-tone-mapped"], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    result = json.loads((tmp_path / "out" / "results.jsonl").read_text().splitlines()[0])
+    cfg = OCIO.Config.CreateFromFile(CG)
+    shown = np.array([[0.25, 0.5, 0.75]], "f4")
+    cfg.getProcessor("sRGB - Texture", "ACEScg").getDefaultCPUProcessor().applyRGB(shown)
+    cfg.getProcessor(OCIO.DisplayViewTransform(src="ACEScg", display=cfg.getDefaultDisplay(), view="Un-tone-mapped")) \
+        .getDefaultCPUProcessor().applyRGB(shown)
+    assert np.abs(read_image(result["png"])[16, 16, :3] - np.clip(shown[0], 0, 1)).max() <= 1.5 / 255.0
+    bad = subprocess.run(base + ["--view", "Filmic", "--json"], capture_output=True, text=True, timeout=300)
+    assert bad.returncode != 0 and json.loads(bad.stdout.splitlines()[-1])["error"]["code"] == "unknown_view"
