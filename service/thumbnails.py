@@ -61,7 +61,7 @@ class ThumbnailService:
         ocio = order.params.cms == "ocio" or (order.params.cms is None and order.params.ocio_config)
         if not ocio:
             if order.view is not None:
-                raise ServiceError("invalid_request", "a view is a colour-managed viewer's: it needs cms ocio",
+                raise ServiceError("invalid_option", "a view is a colour-managed viewer's: it needs cms ocio",
                                    "view")
             return None
         display = {"ocio_config": order.params.ocio_config, "working": record.get("working_colorspace"),

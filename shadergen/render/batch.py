@@ -120,7 +120,7 @@ def display_encoders(args):
         system = system_for(args.cms, args.ocio_config)
         if system.name == "builtin":
             if args.view:
-                raise RenderError("invalid_request", "--view is a colour-managed viewer's: it needs --cms ocio", "view")
+                raise RenderError("invalid_option", "--view is a colour-managed viewer's: it needs --cms ocio", "view")
             return lambda record: None
         system.display_encoder(None, view=args.view)
     except ShaderGenError as e:
