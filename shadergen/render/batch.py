@@ -11,6 +11,8 @@ import os
 import sys
 import time
 
+from shadergen.errors import ShaderGenError
+
 from .errors import RenderError
 from .imageio import write_image
 
@@ -83,17 +85,18 @@ def run_batch(args, renderer, env, target: str) -> int:
     if args.exr or args.npy or not args.output:
         raise RenderError("invalid_request", "--batch writes PNGs under -o OUTDIR (no --exr or --npy)")
     root, documents = batch_documents(args.batch)
+    encoder = display_encoders(args)
     os.makedirs(args.output, exist_ok=True)
     generator = default_generator()
     options = dict(target=target, all=True, interface=args.interface or "complete", environment=args.env_method,
-                   lights=bool(args.lights))
+                   lights=bool(args.lights), cms=args.cms, ocio_config=args.ocio_config)
     progress = Progress(len(documents))
     counts = {"materials": 0, "thumbnails": 0, "errors": 0}
     written: set[str] = set()
     with open(os.path.join(args.output, RESULTS), "w", encoding="utf-8") as results:
         for document in documents:
             for result in _document_results(generator.records(DocumentFile(document), **options), document, root,
-                                            args, renderer, env, written):
+                                            args, renderer, env, written, encoder):
                 counts["materials"] += 1
                 counts["errors" if "error" in result else "thumbnails"] += 1
                 results.write(json.dumps(result) + "\n")
@@ -107,18 +110,36 @@ def run_batch(args, renderer, env, target: str) -> int:
     return 0 if counts["errors"] == 0 else 1
 
 
-def _document_results(records, document: str, root: str, args, renderer, env, written: set[str]):
+def display_encoders(args):
+    """fn(record) -> the PNG's encoding of that record (None: sRGB of linear Rec.709): with --cms
+    ocio, the record's working space through the config's display and --view. An unknown view
+    fails here, before anything is drawn. A single render's PNG is encoded the same way (cli.py)."""
+    from shadergen.cms import system_for
+
+    try:
+        system = system_for(args.cms, args.ocio_config)
+        if system.name == "builtin":
+            if args.view:
+                raise RenderError("invalid_option", "--view is a colour-managed viewer's: it needs --cms ocio", "view")
+            return lambda record: None
+        system.display_encoder(None, view=args.view)
+    except ShaderGenError as e:
+        raise RenderError(e.code, e.message, e.where) from None
+    return lambda record: system.display_encoder(record.get("working_colorspace"), view=args.view)
+
+
+def _document_results(records, document: str, root: str, args, renderer, env, written: set[str], encoder):
     """One result per material of the document: its thumbnail written, or its error record."""
     base = {"document": document}
     try:
         for record in records:
-            yield _thumbnail(record, document, root, args, renderer, env, written)
+            yield _thumbnail(record, document, root, args, renderer, env, written, encoder)
     except Exception as exc:  # a document the generator could not even start on: its record, not a traceback
         yield dict(base, element=None, error={"code": "internal_error", "message": f"{type(exc).__name__}: {exc}",
                                               "where": None})
 
 
-def _thumbnail(record: dict, document: str, root: str, args, renderer, env, written: set[str]) -> dict:
+def _thumbnail(record: dict, document: str, root: str, args, renderer, env, written: set[str], encoder) -> dict:
     result = {"document": document, "element": record.get("element")}
     if "error" in record:
         return dict(result, error=record["error"])
@@ -131,8 +152,8 @@ def _thumbnail(record: dict, document: str, root: str, args, renderer, env, writ
                                 env_method=args.env_method, lights=args.lights, supersample=args.ss,
                                 document_dir=os.path.dirname(os.path.abspath(document)))
         os.makedirs(os.path.dirname(path), exist_ok=True)
-        write_image(path, drawn.rgba, background=args.background)
-    except RenderError as exc:
+        write_image(path, drawn.rgba, background=args.background, encode=encoder(record))
+    except ShaderGenError as exc:  # a render's, or the record's working space unknown to the config
         return dict(result, error=exc.to_dict())
     except Exception as exc:  # one material's failure is its record; the batch goes on
         return dict(result, error={"code": "internal_error", "message": f"{type(exc).__name__}: {exc}",
