@@ -9,7 +9,10 @@ digits: a log space's 1.0 is a linear 200 whose last bit is 1.5e-5), against the
 (analytic) and 2e-3 (LUT). Values `specialized` folds: their difference from the CPU
 processor's, goal 1e-6. Then a colour-managed material (textures and values in three spaces)
 against the same material without colour spaces: generation and steady-frame time, interleaved
-runs, medians.
+runs, medians. Then which of OCIO's GPU shaders need LUTs: every space to the working space and
+every display's view from it, per built-in config (1D LUTs we draw as textures; 3D LUTs we
+refuse, so none may be needed); and what a thumbnail's display encoding costs (a 256x256 PNG
+through sRGB, and through the CG config's default view and 'Un-tone-mapped', interleaved, medians).
 
   .venv/bin/python bench/color.py [--runs 5] [--size 64] [--table docs/color-bench.md]
 """
@@ -27,9 +30,10 @@ import numpy as np  # noqa: E402
 import PyOpenColorIO as OCIO  # noqa: E402
 
 from shadergen.api import DocumentFile, Generator  # noqa: E402
+from shadergen.cms import display_encoder  # noqa: E402
 from shadergen.cms.check import RampCheck  # noqa: E402
 from shadergen.render import Renderer  # noqa: E402
-from shadergen.render.imageio import write_image  # noqa: E402
+from shadergen.render.imageio import encode_png, write_image  # noqa: E402
 
 CONFIGS = ("ocio://cg-config-v2.1.0_aces-v1.3_ocio-v2.3", "ocio://studio-config-v2.1.0_aces-v1.3_ocio-v2.3")
 WORKING = "ACEScg"
@@ -98,6 +102,45 @@ def timing(runs: int, size: int) -> dict:
     return {name: {k: statistics.median(v) for k, v in s.items()} for name, s in samples.items()}
 
 
+def lut_census() -> list[dict]:
+    """Per built-in config: OCIO's GPU shaders (GLSL 4.0) of every space to the working space and
+    every display's view from it, and how many of them hold 1D and 3D LUTs."""
+    rows = []
+    for config in CONFIGS + ("ocio://default",):
+        cfg = OCIO.Config.CreateFromFile(config)
+        processors = [cfg.getProcessor(cs, WORKING) for cs in cfg.getColorSpaceNames()]
+        processors += [cfg.getProcessor(OCIO.DisplayViewTransform(src=WORKING, display=d, view=v))
+                       for d in cfg.getDisplays() for v in cfg.getViews(d)]
+        one, three = 0, 0
+        for processor in processors:
+            desc = OCIO.GpuShaderDesc.CreateShaderDesc(language=OCIO.GPU_LANGUAGE_GLSL_4_0)
+            desc.setAllowTexture1D(False)
+            processor.getDefaultGPUProcessor().extractGpuShaderInfo(desc)
+            one += bool(list(desc.getTextures()))
+            three += bool(list(desc.get3DTextures()))
+        rows.append({"config": config.removeprefix("ocio://").split("_")[0], "shaders": len(processors),
+                     "lut1d": one, "lut3d": three})
+    return rows
+
+
+def display_timing(runs: int) -> dict:
+    """Median ms to encode a 256x256 linear render as a PNG: sRGB (the built-in system's), and
+    OCIO's default view and Un-tone-mapped view of the CG config from ACEScg."""
+    rgba = np.concatenate([np.random.default_rng(2).random((256, 256, 3), dtype="f4") * 4,
+                           np.ones((256, 256, 1), "f4")], 2)
+    encoders = {"sRGB (builtin)": None,
+                "OCIO default view": display_encoder({"ocio_config": CONFIGS[0], "working": WORKING, "view": None}),
+                "OCIO Un-tone-mapped": display_encoder({"ocio_config": CONFIGS[0], "working": WORKING,
+                                                        "view": "Un-tone-mapped"})}
+    samples = {name: [] for name in encoders}
+    for run in range(runs):
+        for name in (list(encoders) if run % 2 == 0 else list(reversed(encoders))):
+            t0 = time.perf_counter()
+            encode_png(rgba, encode=encoders[name])
+            samples[name].append((time.perf_counter() - t0) * 1e3)
+    return {name: statistics.median(v) for name, v in samples.items()}
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", type=int, default=5)
@@ -113,6 +156,13 @@ def main() -> int:
     times = timing(args.runs, 128)
     lines += ["", "| material | generate ms | frame ms |", "|---|---:|---:|"]
     lines += [f"| {name} | {t['generate']:.1f} | {t['frame']:.1f} |" for name, t in times.items()]
+    census = lut_census()
+    lines += ["", "| config | GPU shaders (spaces to ACEScg, views from it) | with 1D LUTs | with 3D LUTs |",
+              "|---|---:|---:|---:|"]
+    lines += [f"| {r['config']} | {r['shaders']} | {r['lut1d']} | {r['lut3d']} |" for r in census]
+    encoding = display_timing(max(args.runs, 9))
+    lines += ["", "| thumbnail 256x256 PNG encoding | ms |", "|---|---:|"]
+    lines += [f"| {name} | {ms:.2f} |" for name, ms in encoding.items()]
     text = "\n".join(lines)
     print(text)
     if args.table:
@@ -125,7 +175,10 @@ def main() -> int:
     print(f"color: {passed}/{len(rows)} spaces within goal | analytic max {max(analytic):.1e} (goal 1e-4) | "
           f"LUT max {max(luts):.1e} (goal 2e-3) | folded max {folded:.1e} (goal 1e-6) | "
           f"generate managed/plain {times['managed']['generate'] / times['plain']['generate']:.2f} | "
-          f"frame managed/plain {times['managed']['frame'] / times['plain']['frame']:.2f}")
+          f"frame managed/plain {times['managed']['frame'] / times['plain']['frame']:.2f} | "
+          f"3D LUTs needed {sum(r['lut3d'] for r in census)}/{sum(r['shaders'] for r in census)} shaders | "
+          f"PNG through the default view/sRGB "
+          f"{encoding['OCIO default view'] / encoding['sRGB (builtin)']:.2f}")
     return 0
 
 

@@ -43,6 +43,11 @@ Text = Annotated[str, AfterValidator(_encodable)]
 Keep = Annotated[Text, StringConstraints(min_length=1, max_length=1024)]
 # (the constraints before the validator: after it, pydantic leaves the pattern out of the JSON schema)
 OcioConfig = Annotated[str, StringConstraints(max_length=256, pattern=OCIO_CONFIG_PATTERN), AfterValidator(_encodable)]
+View = Annotated[str, StringConstraints(min_length=1, max_length=256), AfterValidator(_encodable)]
+VIEW_DOC = ("with cms ocio: the view of the config's default display the PNG shows the working space through "
+            "(the CG config's: 'ACES 1.0 - SDR Video', tone-mapped, its default; 'Un-tone-mapped'; 'Raw'); "
+            "default: the config's default view, as `shadergen render --cms ocio`. 422 unknown_view lists the "
+            "config's views")
 
 
 # -- requests ----------------------------------------------------------------------------------
@@ -73,6 +78,9 @@ class ThumbnailRequest(BaseModel):
     env_method: EnvMethod = Field("fis", description="environment lighting: fis (16 importance samples per pixel), "
                                   "prefilter (a GGX-prefiltered map and a DFG table: one lookup) or hybrid (that "
                                   "lookup corrected by 4 samples of the prefiltered map)")
+    cms: Cms | None = Field(None, description=CMS_DOC)
+    ocio_config: OcioConfig | None = Field(None, description=OCIO_CONFIG_DOC)
+    view: View | None = Field(None, description=VIEW_DOC)
 
 
 class BatchDocument(BaseModel):
@@ -91,6 +99,9 @@ class ThumbnailBatchRequest(BaseModel):
     size: int = Field(256, ge=16, le=1024, description="width and height in pixels")
     mesh: Mesh = "sphere"
     env_method: EnvMethod = "fis"
+    cms: Cms | None = Field(None, description=CMS_DOC)
+    ocio_config: OcioConfig | None = Field(None, description=OCIO_CONFIG_DOC)
+    view: View | None = Field(None, description=VIEW_DOC)
 
 
 # -- responses ---------------------------------------------------------------------------------

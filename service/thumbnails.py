@@ -6,6 +6,9 @@ import hashlib
 import json
 from dataclasses import dataclass, replace
 
+from shadergen.cms import display_encoder
+from shadergen.errors import ShaderGenError
+
 from .cache import GuardedStore
 from .cache.entries import is_png
 from .errors import ServiceError
@@ -23,6 +26,7 @@ class ThumbnailOrder:
     size: int = 256
     mesh: str = "sphere"
     env_method: str = "fis"
+    view: str | None = None  # with cms ocio: the config's view the PNG shows (None: its default)
 
 
 class ThumbnailService:
@@ -37,6 +41,9 @@ class ThumbnailService:
         params = replace(order.params, environment=order.env_method, lights=False)
         record = json.loads(await self.generation.generate(order.document, params))
         request = {"record": record, "size": order.size, "mesh": order.mesh, "env_method": order.env_method}
+        display = self._display(order, record)
+        if display is not None:
+            request["display"] = display
         if order.params.document_format == "usdz":
             # the record's textures are members of the package (the translation refuses any that
             # leave it): the job carries the package and reads them there, never in the roots
@@ -46,9 +53,33 @@ class ThumbnailService:
         return request
 
     @staticmethod
+    def _display(order: ThumbnailOrder, record: dict) -> dict | None:
+        """How the PNG shows an OCIO record: its working space through the config's default display
+        and the order's view (the config's default view unless named), as `shadergen render --cms
+        ocio` does; None (sRGB of linear Rec.709) with the built-in system. Checked here, so that
+        an unknown view is refused before any job is queued."""
+        ocio = order.params.cms == "ocio" or (order.params.cms is None and order.params.ocio_config)
+        if not ocio:
+            if order.view is not None:
+                raise ServiceError("invalid_option", "a view is a colour-managed viewer's: it needs cms ocio",
+                                   "view")
+            return None
+        display = {"ocio_config": order.params.ocio_config, "working": record.get("working_colorspace"),
+                   "view": order.view}
+        try:
+            display_encoder(display)
+        except ShaderGenError as exc:
+            raise ServiceError(exc.code, exc.message, exc.where) from None
+        return display
+
+    @staticmethod
     def _key(request: dict) -> str:
+        # the display encoding is the PNG's and not the shader's: two documents may share a record
+        # hash (no colour transforms) and differ in their working space
         options = (f'{request["record"]["hash"]}:{request["size"]}:{request["mesh"]}:{request["env_method"]}:'
                    f'{request.get("package", "")}')
+        if "display" in request:
+            options += ":" + json.dumps(request["display"], sort_keys=True)
         return "png:" + hashlib.sha256(options.encode()).hexdigest()
 
     async def thumbnail(self, order: ThumbnailOrder) -> bytes:

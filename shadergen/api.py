@@ -87,7 +87,7 @@ class Prepared:
 
     def __init__(self, generator: "Generator", document: Document, element: str, target: str, interface: str,
                  hash: str, topology_hash: str, graph, scope: Scope, warnings: list[str], prepare_ms: float,
-                 names: str = "structural"):
+                 names: str = "structural", working_colorspace: str | None = None):
         self.generator = generator
         self.document = document
         self.element = element
@@ -100,6 +100,9 @@ class Prepared:
         self.warnings = warnings
         self.prepare_ms = prepare_ms
         self.names = names  # what the source calls the document's elements (naming.py)
+        # with OCIO, the space the shader's colours are in: a viewer shows them through the
+        # config's display and view from it (cms/ocio.py display_encoder)
+        self.working_colorspace = working_colorspace
 
     def emit(self, source: bool = True) -> dict:
         t0 = time.perf_counter()
@@ -124,7 +127,10 @@ class Prepared:
         } | ({"layout": layout} if layout is not None else {}) \
           | ({"environment": self.graph.environment} if self.graph.environment is not None else {}) \
           | ({"lights": False} if not self.graph.lights else {}) \
-          | ({"luts": ctx.luts} if ctx.luts else {}) | binaries
+          | ({"luts": ctx.luts} if ctx.luts else {}) | self._working() | binaries
+
+    def _working(self) -> dict:
+        return {"working_colorspace": self.working_colorspace} if self.working_colorspace else {}
 
     def rebind(self, record: dict) -> dict | None:
         """This element's record made from `record`, an earlier one of the same topology hash,
@@ -151,7 +157,7 @@ class Prepared:
         ms = (time.perf_counter() - t0) * 1e3 + self.prepare_ms
         blocks = dict(record["blocks"], pixel=dict(record["blocks"]["pixel"], PublicUniforms=public))
         return dict(record, document=self.document.path, element=self.element, hash=self.hash, cached=False,
-                    blocks=blocks, timings_ms={"generate": round(ms, 3)}, warnings=self.warnings)
+                    blocks=blocks, timings_ms={"generate": round(ms, 3)}, warnings=self.warnings) | self._working()
 
 
 class DocumentFile(os.PathLike):
@@ -316,14 +322,18 @@ class Generator:
         graph = prepare(builder, outputs, root, options)
         local = {id(i) for impls in scope.local.implementations.values() for i in impls}
         local |= {id(g) for g in scope.local.nodegraphs.values()}  # named by <implementation nodegraph=>
+        working = doc.colorspace if system.name == "ocio" else None
+        # with OCIO the record names its working space (a viewer's display transform starts there):
+        # two documents of the same graph in different working spaces are different records
+        cms = system.identity if working is None else f"{system.identity} working {working}"
         key = dict(element=doc.label(elem.path), target=target, interface=options.interface,
-                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=system.identity)
+                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=cms)
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (hashlib.sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
                            for k in (h, topology))
         return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, topology, graph, scope,
-                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3, names)
+                        doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3, names, working)
 
 
 _default: Generator | None = None

@@ -322,6 +322,9 @@ def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
     for name, out in graph.outputs.items():
         if out.type in ("filename", "string"):
             raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn", name)
+        if out.type in CLOSURES:  # a lobe has no colour until a surface shader lights it
+            raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn by itself: "
+                                 "connect it to a surface shader", name)
         var = ctx.namer(ctx.names.output(name))
         ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
         ctx.body.assign(build.name(var, "output", "vec4"), output_color(out.type, ctx.vars[id(out)]))

@@ -5,9 +5,16 @@ step sees what an earlier one produced (a 1.37 `channels` attribute becomes a 1.
 which the 1.39 step turns into extract/combine nodes):
 - before 1.26 (1.22, 1.25): `opgraph` graphs, `shader` elements, connections written as
   `opgraphnode` values, and materials' `override` values by public name;
+- before 1.37 (1.36 and older): color2 is vector2; nodes whose name said less than their
+  signature (`invert` of a matrix, `rotate`, `compare`, `transformpoint/vector/normal` by a
+  matrix, `combine`, `separate`) renamed, `geomattr` is `geomprop`;
 - before 1.38: materials whose `shaderref` children name their shader node (1.22-1.37), the
-  1.37 BSDF nodes (`*_brdf`, `*_btdf`, a `base` input instead of a layer), `channels`, atan2's inputs;
-- before 1.39: normalmap's space, swizzle.
+  1.37 BSDF nodes (`*_brdf`, `*_btdf`, a `base` input instead of a layer), `channels`, atan2's
+  inputs in the 1.38 order;
+- before 1.39: normalmap's space, swizzle, atan2's inputs named `iny`/`inx`, subsurface_bsdf's
+  radius a color3, thin_film_bsdf layers as inputs of the lobe below.
+The rules are the standard's (the specification's release notes per version); each step is
+checked against the reference's own upgrade of the same document by bench/upgrade.py.
 `upgrade` records what it changed as warnings.
 """
 from .element import Element
@@ -70,6 +77,109 @@ def _shader(elem: Element) -> bool:
         if inp.get("graphoutput"):
             inp.attrs["output"] = inp.attrs.pop("graphoutput")
     return True
+
+
+# -- before 1.37 -------------------------------------------------------------------------------
+
+CHANNEL_COUNT = {"color2": 2, "vector2": 2, "color3": 3, "vector3": 3, "color4": 4, "vector4": 4}
+COLOR2_OUTPUTS = {"outr": "outx", "outa": "outy"}  # a color2's channels were r and a
+
+
+def _rename_ports(node: Element, names: dict[str, str]) -> None:
+    """Rename a node's inputs at once (so a swap reads the old names), e.g. {"in1": "in2", "in2": "in1"}."""
+    for port in node.children_of("input", "parameter"):
+        if port.name in names:
+            port.name = port.attrs["name"] = names[port.name]
+    node._by_name = None
+
+
+def _readers(node: Element):
+    """The ports and outputs of the node's graph that read it."""
+    graph = node.parent
+    for elem in graph.children if graph is not None else ():
+        for port in [elem] if elem.category == "output" else elem.children_of("input", "parameter"):
+            if port.get("nodename") == node.name:
+                yield port
+
+
+def _color2(elem: Element) -> bool:
+    """1.37 dropped color2 for vector2: a separate of a color2 gave outr and outa, now outx and outy."""
+    if elem.get("type") != "color2":
+        return False
+    elem.attrs["type"] = "vector2"
+    owner = elem.parent
+    if elem.category in ("input", "parameter") and owner is not None and owner.category in ("separate", "separate2"):
+        for port in _readers(owner):
+            if port.get("output") in COLOR2_OUTPUTS:
+                port.attrs["output"] = COLOR2_OUTPUTS[port.get("output")]
+    return True
+
+
+def _compare(node: Element) -> bool:
+    """`compare` is `ifgreatereq` (in1 where value1 >= value2, else in2): intest and cutoff are
+    value1 and value2, and in1 and in2 trade places (compare's in1 is the value below the cutoff)."""
+    if node.category != "compare":
+        return False
+    node.category = "ifgreatereq"
+    _rename_ports(node, {"intest": "value1", "cutoff": "value2", "in1": "in2", "in2": "in1"})
+    return True
+
+
+def _invert_matrix(node: Element) -> bool:
+    """`invert` of a matrix (its inverse, not 1 - in) is invertmatrix."""
+    if node.category != "invert" or node.get("type") not in ("matrix33", "matrix44"):
+        return False
+    node.category = "invertmatrix"
+    return True
+
+
+def _rotate(node: Element) -> bool:
+    """`rotate` of a vector2 is rotate2d, of a vector3 rotate3d."""
+    if node.category != "rotate" or node.get("type") not in ("vector2", "vector3"):
+        return False
+    node.category = "rotate2d" if node.get("type") == "vector2" else "rotate3d"
+    return True
+
+
+def _transform_by_matrix(node: Element) -> bool:
+    """transformpoint/vector/normal by a `mat` input (not between named spaces) is transformmatrix."""
+    if node.category not in ("transformpoint", "transformvector", "transformnormal") or node.child("mat") is None:
+        return False
+    node.category = "transformmatrix"
+    return True
+
+
+def _combine(node: Element) -> bool:
+    """`combine` is combineN, N the channels of its type."""
+    size = CHANNEL_COUNT.get(node.get("type"))
+    if node.category != "combine" or size is None:
+        return False
+    node.category = f"combine{size}"
+    return True
+
+
+def _separate(node: Element) -> bool:
+    """`separate` is separateN, N the channels of its input's type."""
+    source = node.child("in") if node.category == "separate" else None
+    size = CHANNEL_COUNT.get(source.get("type")) if source is not None else None
+    if size is None:
+        return False
+    node.category = f"separate{size}"
+    return True
+
+
+def _geomattr(elem: Element) -> bool:
+    """1.37 calls geometry attributes geometry properties: `geomattr` in a geominfo is `geomprop`,
+    and `geomattrvalue attrname=` is `geompropvalue geomprop=`."""
+    if elem.category == "geomattr":
+        elem.category = "geomprop"
+        return True
+    if elem.category == "geomattrvalue":
+        elem.category = "geompropvalue"
+        if "attrname" in elem.attrs:
+            elem.attrs["geomprop"] = elem.attrs.pop("attrname")
+        return True
+    return False
 
 
 # -- before 1.38 -------------------------------------------------------------------------------
@@ -187,15 +297,11 @@ def _channels(port: Element) -> bool:
     return True
 
 
-def _atan2(node: Element) -> bool:
-    """1.38 named atan2's inputs for what they are: in1 is y, in2 is x."""
+def _atan2_order(node: Element) -> bool:
+    """1.38 swapped atan2's two inputs: a 1.37 document's in1 is the 1.38 in2, and in2 is in1."""
     if node.category != "atan2" or node.child("in1") is None and node.child("in2") is None:
         return False
-    for old, new in (("in1", "iny"), ("in2", "inx")):
-        port = node.child(old)
-        if port is not None:
-            port.name = port.attrs["name"] = new
-    node._by_name = None
+    _rename_ports(node, {"in1": "in2", "in2": "in1"})
     return True
 
 
@@ -308,10 +414,60 @@ def _swizzled_constant(node: Element, source: Element | None, channels: str) -> 
     node.add_child(Element("input", {"name": "value", "type": node.get("type", "float"), "value": ", ".join(picked)}))
 
 
+def _atan2_names(node: Element) -> bool:
+    """1.39 named atan2's inputs for what they are: a 1.38 in1 is y, in2 is x."""
+    if node.category != "atan2" or node.child("in1") is None and node.child("in2") is None:
+        return False
+    _rename_ports(node, {"in1": "iny", "in2": "inx"})
+    return True
+
+
+def _subsurface_radius(node: Element) -> bool:
+    """1.39 made subsurface_bsdf's radius a color3: a vector3 one reaches it through a convert."""
+    radius = node.child("radius") if node.category == "subsurface_bsdf" else None
+    if radius is None or radius.get("type") != "vector3":
+        return False
+    graph = node.parent
+    convert = Element("convert", {"name": _unique_name(graph, "convert"), "type": "color3"})
+    convert.add_child(Element("input", {k: v for k, v in radius.attrs.items()} | {"name": "in"}))
+    graph.add_child(convert, graph.children.index(node))
+    radius.attrs = {"name": "radius", "type": "color3", "nodename": convert.name}
+    return True
+
+
+THIN_FILM_BASES = ("dielectric_bsdf", "conductor_bsdf", "generalized_schlick_bsdf")
+
+
+def _thin_film(layer: Element) -> bool:
+    """1.39 removed thin_film_bsdf: a thin film layered over a dielectric, conductor or generalized
+    Schlick lobe is that lobe's own thinfilm_thickness and thinfilm_ior, and what read the layer
+    reads the lobe."""
+    if layer.category != "layer":
+        return False
+    graph = layer.parent
+    top, base = (_graph_node(graph, layer.child(n).get("nodename") if layer.child(n) is not None else None)
+                 for n in ("top", "base"))
+    if top is None or base is None or top.category != "thin_film_bsdf" or base.category not in THIN_FILM_BASES:
+        return False
+    for old, new in (("thickness", "thinfilm_thickness"), ("ior", "thinfilm_ior")):
+        port = top.child(old)
+        if port is not None:
+            base.add_child(Element("input", {k: v for k, v in port.attrs.items()} | {"name": new}))
+    _reconnect(graph, layer.name, base.name, layer)
+    graph.remove_child(layer)
+    layer.parent = None
+    if not any(True for _ in _readers(top)):
+        graph.remove_child(top)
+        top.parent = None
+    return True
+
+
 # (the version a step upgrades to, its rules), in order
 STEPS = (((1, 26), (_opgraph, _opgraphnode, _shader)),
-         ((1, 38), (_material, _bsdf_1_37, _channels, _atan2)),
-         ((1, 39), (_normalmap, _swizzle)))
+         ((1, 37), (_color2, _compare, _invert_matrix, _rotate, _transform_by_matrix, _combine, _separate,
+                    _geomattr)),
+         ((1, 38), (_material, _bsdf_1_37, _channels, _atan2_order)),
+         ((1, 39), (_normalmap, _swizzle, _atan2_names, _subsurface_radius, _thin_film)))
 
 
 def upgrade(doc) -> None:

@@ -12,8 +12,8 @@ from ..config import get_settings
 from ..deps import BatchesDep, ThumbnailsDep
 from ..errors import ServiceError, from_validation_error
 from ..generation import GenerateParams
-from ..models import (BatchStatus, EnvMethod, ErrorResponse, Interface, JobAccepted, Mesh, ThumbnailBatchRequest,
-                      ThumbnailRequest)
+from ..models import (CMS_DOC, OCIO_CONFIG_PATTERN, VIEW_DOC, BatchStatus, Cms, EnvMethod, ErrorResponse, Interface,
+                      JobAccepted, Mesh, ThumbnailBatchRequest, ThumbnailRequest)
 from ..thumbnails import ThumbnailOrder
 from .common import ERRORS, JSON, PNG, PNG_RESPONSE, USD_TYPES, media_type_of
 
@@ -26,9 +26,8 @@ WITH_USD = "with a USD body"
 BODY = {"requestBody": {"required": True, "content": {
     JSON: {"schema": ThumbnailRequest.model_json_schema()},
     "model/vnd.usda": {"schema": {"type": "string", "description": "a USD layer that refers to no other file; "
-                                  "textures come from the texture roots; element, interface, size, mesh and env_method "
-                                  "come "
-                                  "from the query"}},
+                                  "textures come from the texture roots; element, interface, size, mesh, env_method, cms, "
+                                  "ocio_config and view come from the query"}},
     "model/vnd.usdz+zip": {"schema": {"type": "string", "format": "binary", "description": "a usdz package; its "
                                       "textures are read from inside it; options from the query"}},
 }}}
@@ -45,19 +44,23 @@ async def thumbnail(
     size: Annotated[int, Query(ge=16, le=1024, description=WITH_USD)] = 256,
     mesh: Annotated[Mesh, Query(description=WITH_USD)] = "sphere",
     env_method: Annotated[EnvMethod, Query(description=WITH_USD)] = "fis",
+    cms: Annotated[Cms | None, Query(description=f"{WITH_USD}; {CMS_DOC}")] = None,
+    ocio_config: Annotated[str | None, Query(max_length=256, pattern=OCIO_CONFIG_PATTERN, description=WITH_USD)] = None,
+    view: Annotated[str | None, Query(min_length=1, max_length=256, description=f"{WITH_USD}; {VIEW_DOC}")] = None,
 ) -> Response:
     media_type = media_type_of(request)
     body = await request.body()
     if media_type in USD_TYPES:
-        params = GenerateParams(element=element, interface=interface, document_format=USD_TYPES[media_type])
-        order = ThumbnailOrder(body, params, size, mesh, env_method)
+        params = GenerateParams(element=element, interface=interface, document_format=USD_TYPES[media_type],
+                                cms=cms, ocio_config=ocio_config)
+        order = ThumbnailOrder(body, params, size, mesh, env_method, view)
     elif media_type == JSON:
         try:
             req = ThumbnailRequest.model_validate_json(body)
         except ValidationError as exc:
             raise from_validation_error(exc) from None
-        order = ThumbnailOrder(req.document.encode(), GenerateParams(element=req.element, interface=req.interface),
-                               req.size, req.mesh, req.env_method)
+        params = GenerateParams(element=req.element, interface=req.interface, cms=req.cms, ocio_config=req.ocio_config)
+        order = ThumbnailOrder(req.document.encode(), params, req.size, req.mesh, req.env_method, req.view)
     else:
         raise ServiceError("unsupported_media_type", "send application/json, model/vnd.usda or model/vnd.usdz+zip, "
                            f"not {media_type}")
@@ -75,8 +78,9 @@ async def thumbnail_batch(req: ThumbnailBatchRequest, batches: BatchesDep) -> JS
     if len(req.documents) > limit:
         raise ServiceError("too_large", f"{len(req.documents)} documents in the batch, over the limit of {limit} "
                            "(SHADERGEN_MAX_BATCH_DOCUMENTS)", "documents")
-    orders = [ThumbnailOrder(d.document.encode(), GenerateParams(element=d.element, interface=req.interface),
-                             req.size, req.mesh, req.env_method) for d in req.documents]
+    orders = [ThumbnailOrder(d.document.encode(), GenerateParams(element=d.element, interface=req.interface, cms=req.cms,
+                                                                ocio_config=req.ocio_config),
+                             req.size, req.mesh, req.env_method, req.view) for d in req.documents]
     batch_id = await batches.submit(orders, [d.name for d in req.documents])
     accepted = JobAccepted(id=batch_id, state="running", status_url=f"{BATCH_PATH}/{batch_id}")
     return JSONResponse(accepted.model_dump(), status_code=202)

@@ -5,6 +5,8 @@ import base64
 import os
 import tempfile
 
+from shadergen.cms import display_encoder
+from shadergen.errors import ShaderGenError
 from shadergen.render import Renderer, RenderError
 from shadergen.render.imageio import encode_png
 from shadergen.render.worker import lp_threads_for
@@ -34,8 +36,9 @@ PACKAGE = "upload.usdz"  # a usdz upload's name in its job's folder
 
 
 def render(renderer, request: dict) -> tuple[dict, bytes]:
-    """Shared with the Celery task: the request is `{"record", "size", "mesh", "env_method"}`, and `"package"`
-    (base64) for a usdz upload, whose record names its textures as members of the package."""
+    """Shared with the Celery task: the request is `{"record", "size", "mesh", "env_method"}`, `"display"`
+    for an OCIO record (cms.display_encoder: the PNG through the config's display and view), and
+    `"package"` (base64) for a usdz upload, whose record names its textures as members of the package."""
     if "package" not in request:
         return _render(renderer, request["record"], request, None)
     with tempfile.TemporaryDirectory(prefix="shadergen-job-") as folder:
@@ -55,13 +58,16 @@ def in_package(record: dict, package: str) -> dict:
 
 def _render(renderer, record: dict, request: dict, document_dir: str | None) -> tuple[dict, bytes]:
     try:
+        encode = display_encoder(request.get("display"))
         result = renderer.render(record, size=request["size"], mesh=request["mesh"], env_method=request["env_method"],
                                  document_dir=document_dir)
     except RenderError as exc:
         code = getattr(exc, "code", None) or "render_failed"
         return {"error": {"code": code, "message": str(exc), "where": getattr(exc, "where", None)}}, b""
+    except ShaderGenError as exc:  # the display or view the request names
+        return {"error": exc.to_dict()}, b""
     return ({"timings_ms": result.timings_ms, "warnings": list(result.warnings),
-             "program_reused": result.program_reused}, encode_png(result.rgba))
+             "program_reused": result.program_reused}, encode_png(result.rgba, encode=encode))
 
 
 def main() -> None:

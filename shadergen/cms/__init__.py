@@ -12,7 +12,7 @@ import os
 from ..errors import ShaderGenError
 from .builtin import BuiltinCMS
 
-__all__ = ["CMS_NAMES", "BuiltinCMS", "system_for", "OCIO_CONFIG_ENV"]
+__all__ = ["CMS_NAMES", "BuiltinCMS", "system_for", "display_encoder", "OCIO_CONFIG_ENV"]
 
 CMS_NAMES = ("builtin", "ocio")
 OCIO_CONFIG_ENV = "SHADERGEN_OCIO_CONFIG"
@@ -35,3 +35,14 @@ def system_for(cms: str | None = None, ocio_config: str | None = None):
         return BUILTIN
     from .ocio import OcioCMS  # OpenColorIO is imported only by those who ask for it
     return OcioCMS.for_config(ocio_config or os.environ.get(OCIO_CONFIG_ENV) or DEFAULT_OCIO_CONFIG)
+
+
+def display_encoder(display: dict | None):
+    """The PNG encoding a render request asks for (service thumbnails): `display` is None (sRGB of
+    linear Rec.709, the built-in system's) or `{"ocio_config", "working", "view"}`, the working
+    space of an OCIO record shown through the config's default display and `view` (None: that
+    display's default view), as `shadergen render --cms ocio` writes its PNG."""
+    if display is None:
+        return None
+    return system_for("ocio", display.get("ocio_config")).display_encoder(display.get("working"),
+                                                                          view=display.get("view"))

@@ -120,6 +120,7 @@ class OcioCMS:
     def __init__(self, spec: str, config):
         self.spec, self.config = spec, config
         self.identity = f"ocio {spec} {config.getCacheID()}"  # the config's content, for the cache key
+        self._display_processors = {}  # (working, display, view) -> CPU processor: a render worker's every job
 
     @classmethod
     def for_config(cls, spec: str) -> "OcioCMS":
@@ -191,16 +192,28 @@ class OcioCMS:
         """fn(linear (h, w, 3) float32 image in the working space) -> the display's encoded values,
         through OCIO's CPU processor of the config's display and view (its default display and that
         display's default view unless named): what a colour-managed viewer shows. No working
-        space: the config's scene_linear role."""
+        space: the config's scene_linear role. An unknown display or view is an `unknown_view`
+        error that lists the config's."""
         display = display or self.config.getDefaultDisplay()
+        if display not in self.config.getDisplays():
+            raise ShaderGenError("unknown_view", f"no display '{display}' in the OCIO config '{self.spec}'; its "
+                                 "displays: " + ", ".join(self.config.getDisplays()), "display")
+        views = list(self.config.getViews(display))
         view = view or self.config.getDefaultView(display)
+        if view not in views:
+            raise ShaderGenError("unknown_view", f"no view '{view}' of display '{display}' in the OCIO config "
+                                 f"'{self.spec}'; its views: " + ", ".join(views), "view")
         source = self.require(working or "scene_linear", "working", "the document")
-        try:
-            cpu = self.config.getProcessor(OCIO.DisplayViewTransform(src=source, display=display, view=view)) \
-                .getDefaultCPUProcessor()
-        except Exception as e:
-            raise ShaderGenError("unknown_colorspace", f"display '{display}' / view '{view}' of the OCIO config "
-                                 f"'{self.spec}': {e}", "display") from None
+        key = (source, display, view)
+        cpu = self._display_processors.get(key)
+        if cpu is None:
+            try:
+                cpu = self.config.getProcessor(OCIO.DisplayViewTransform(src=source, display=display, view=view)) \
+                    .getDefaultCPUProcessor()
+            except Exception as e:
+                raise ShaderGenError("unknown_view", f"display '{display}' / view '{view}' of the OCIO config "
+                                     f"'{self.spec}': {e}", "view") from None
+            self._display_processors[key] = cpu
 
         def encode(rgb):
             import numpy as np

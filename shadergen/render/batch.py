@@ -15,6 +15,8 @@ import sys
 import time
 from collections import deque
 
+from shadergen.errors import ShaderGenError
+
 from .errors import RenderError
 from .imageio import write_image
 
@@ -88,16 +90,17 @@ def run_batch(args, renderer, env, target: str) -> int:
     if args.exr or args.npy or not args.output:
         raise RenderError("invalid_request", "--batch writes PNGs under -o OUTDIR (no --exr or --npy)")
     root, documents = batch_documents(args.batch)
+    encoder = display_encoders(args)
     os.makedirs(args.output, exist_ok=True)
     options = dict(target=target, all=True, interface=args.interface or "complete", environment=args.env_method,
-                   lights=bool(args.lights))
+                   lights=bool(args.lights), cms=args.cms, ocio_config=args.ocio_config)
     progress = Progress(len(documents))
     counts = {"materials": 0, "thumbnails": 0, "errors": 0}
     written: set[str] = set()
     with open(os.path.join(args.output, RESULTS), "w", encoding="utf-8") as results:
         for document, records in generated_ahead(documents, options):
             for record in records:
-                result = _thumbnail(record, document, root, args, renderer, env, written)
+                result = _thumbnail(record, document, root, args, renderer, env, written, encoder)
                 counts["materials"] += 1
                 counts["errors" if "error" in result else "thumbnails"] += 1
                 results.write(json.dumps(result) + "\n")
@@ -162,7 +165,25 @@ def document_records(document: str, options: dict) -> list[dict]:
                  "error": {"code": "internal_error", "message": f"{type(exc).__name__}: {exc}", "where": None}}]
 
 
-def _thumbnail(record: dict, document: str, root: str, args, renderer, env, written: set[str]) -> dict:
+def display_encoders(args):
+    """fn(record) -> the PNG's encoding of that record (None: sRGB of linear Rec.709): with --cms
+    ocio, the record's working space through the config's display and --view. An unknown view
+    fails here, before anything is drawn. A single render's PNG is encoded the same way (cli.py)."""
+    from shadergen.cms import system_for
+
+    try:
+        system = system_for(args.cms, args.ocio_config)
+        if system.name == "builtin":
+            if args.view:
+                raise RenderError("invalid_option", "--view is a colour-managed viewer's: it needs --cms ocio", "view")
+            return lambda record: None
+        system.display_encoder(None, view=args.view)
+    except ShaderGenError as e:
+        raise RenderError(e.code, e.message, e.where) from None
+    return lambda record: system.display_encoder(record.get("working_colorspace"), view=args.view)
+
+
+def _thumbnail(record: dict, document: str, root: str, args, renderer, env, written: set[str], encoder) -> dict:
     result = {"document": document, "element": record.get("element")}
     if "error" in record:
         return dict(result, error=record["error"])
@@ -175,8 +196,8 @@ def _thumbnail(record: dict, document: str, root: str, args, renderer, env, writ
                                 env_method=args.env_method, lights=args.lights, supersample=args.ss,
                                 document_dir=os.path.dirname(os.path.abspath(document)))
         os.makedirs(os.path.dirname(path), exist_ok=True)
-        write_image(path, drawn.rgba, background=args.background)
-    except RenderError as exc:
+        write_image(path, drawn.rgba, background=args.background, encode=encoder(record))
+    except ShaderGenError as exc:  # a render's, or the record's working space unknown to the config
         return dict(result, error=exc.to_dict())
     except Exception as exc:  # one material's failure is its record; the batch goes on
         return dict(result, error={"code": "internal_error", "message": f"{type(exc).__name__}: {exc}",

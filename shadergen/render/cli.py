@@ -10,6 +10,7 @@ from shadergen.cli_generate import add_cms_arguments, cms_options
 from shadergen.errors import ShaderGenError
 
 from . import Environment, RenderError, Renderer
+from .batch import display_encoders
 from .imageio import write_image
 from .renderer import ENV_METHODS
 
@@ -78,6 +79,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--repeat", type=int, default=1, metavar="N", help="draw N frames to time a steady frame")
     parser.add_argument("--json", action="store_true", help="print a JSON summary (or error) on stdout")
     add_cms_arguments(parser)  # with ocio, the PNG shows the working space through the config's display and view
+    parser.add_argument("--view", help="with --cms ocio: the view of the config's default display the PNG shows "
+                        "(default: the config's default view; the CG config's is tone-mapped, 'Un-tone-mapped' is not)")
 
 
 def run(args) -> int:
@@ -111,6 +114,7 @@ def _run(args) -> int:
     record = _record_from_file(args.record, args.element) if args.record \
         else _record_from_document(args.document, args.element, args.interface or "specialized",
                                    BACKENDS[args.backend], args.env_method, bool(args.lights), cms_options(args))
+    encoder = display_encoders(args)  # an unknown view fails before the render
     env = _environment(args)
     document_dir = os.path.dirname(os.path.abspath(args.document)) if args.document else None
     renderer = _renderer(args)
@@ -118,7 +122,7 @@ def _run(args) -> int:
                              env_method=args.env_method,
                              lights=args.lights, supersample=args.ss, document_dir=document_dir,
                              frames=args.repeat)
-    encode = _display_encoder(args)
+    encode = encoder(record)  # the record names its working space (any document format, or --record)
     for path in outputs:  # .exr and .npy keep the linear working-space values
         write_image(path, result.rgba, background=args.background, encode=encode)
     for warning in result.warnings:
@@ -159,21 +163,6 @@ def _record_from_file(path: str, element: str | None) -> dict:
         except json.JSONDecodeError as exc:
             raise RenderError("invalid_record", f"{path} is neither JSON nor JSON Lines: {exc}", path) from exc
     return _choose(records, element, path)
-
-
-def _display_encoder(args):
-    """With OCIO, the PNG's encoding: the document's working space to the config's display and
-    view (cms/ocio.py); None (sRGB of linear Rec.709) with the built-in system."""
-    from shadergen.cms import system_for
-    from shadergen.document import read_document
-
-    try:
-        system = system_for(args.cms, args.ocio_config)
-        if system.name == "builtin":
-            return None
-        return system.display_encoder(read_document(args.document).colorspace if args.document else None)
-    except ShaderGenError as e:
-        raise RenderError(e.code, e.message, e.where) from None
 
 
 def _record_from_document(path: str, element: str | None, interface: str, target: str, env_method: str,

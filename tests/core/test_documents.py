@@ -151,10 +151,11 @@ def test_old_documents_are_upgraded_and_generate(gen, glslang_validator, version
     assert ok, log
 
 
-def test_1_37_atan2_inputs_are_named_y_and_x():
+def test_1_37_atan2_inputs_are_swapped_then_named():
+    """1.38 swapped atan2's inputs, 1.39 named them y and x: a 1.37 in1 is x (test_upgrade.py)."""
     d = parse_document(doc(V1_37, version="1.37"))
     angle = d.root.child("angle")
-    assert angle.child("iny").get("value") == "0.5" and angle.child("inx").get("value") == "1.0"
+    assert angle.child("inx").get("value") == "0.5" and angle.child("iny").get("value") == "1.0"
 
 
 def test_nodes_of_another_namespace_are_written_with_an_undeclared_prefix(gen):

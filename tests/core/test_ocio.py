@@ -191,3 +191,93 @@ def test_render_keeps_linear_working_values_and_shows_the_display(tmp_path):
         .getDefaultCPUProcessor().applyRGB(shown)
     pixel = read_image(str(png))[16, 16, :3]
     assert np.abs(pixel - np.clip(shown[0], 0, 1)).max() <= 1.5 / 255.0
+
+
+def test_render_view_is_chosen_and_an_unknown_one_refused(tmp_path):
+    """`render --view`: the PNG through that view of the default display; a view the config lacks
+    is an `unknown_view` error listing its views, before anything is drawn."""
+    require_renderer()
+    from shadergen.render.imageio import read_image
+
+    path = tmp_path / "doc.mtlx"
+    path.write_text(constants(["sRGB - Texture"]))
+    png = tmp_path / "out.png"
+    base = [sys.executable, "-m", "shadergen.cli", "render", str(path), "--mesh", "plane", "--size", "32",
+            "--cms", "ocio", "--ocio-config", CG, "-o", str(png), "--json"]
+    out = subprocess.run(base + ["--view", "Un-tone-mapped"], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    cfg = OCIO.Config.CreateFromFile(CG)
+    shown = np.array([[0.25, 0.5, 0.75]], "f4")
+    cfg.getProcessor("sRGB - Texture", "ACEScg").getDefaultCPUProcessor().applyRGB(shown)
+    cfg.getProcessor(OCIO.DisplayViewTransform(src="ACEScg", display=cfg.getDefaultDisplay(), view="Un-tone-mapped")) \
+        .getDefaultCPUProcessor().applyRGB(shown)
+    assert np.abs(read_image(str(png))[16, 16, :3] - np.clip(shown[0], 0, 1)).max() <= 1.5 / 255.0
+    bad = subprocess.run(base + ["--view", "Filmic"], capture_output=True, text=True, timeout=300)
+    error = json.loads(bad.stdout)["error"]
+    assert bad.returncode != 0 and error["code"] == "unknown_view" and "Un-tone-mapped" in error["message"]
+
+
+def test_no_space_of_the_builtin_configs_needs_a_3d_lut_and_a_config_that_does_is_refused(gen, tmp_path):
+    """OCIO's GPU shaders of every colour space of the built-in configs (to ACEScg) and of their
+    displays' views use 1D LUTs at most, which we draw; a studio's own config whose space reads a
+    3D LUT (.cube) is an `unsupported_colorspace` record naming it, not a wrong colour."""
+    for name in (CG, STUDIO):
+        cfg = OCIO.Config.CreateFromFile(name)
+        processors = [cfg.getProcessor(cs, "ACEScg") for cs in cfg.getColorSpaceNames()]
+        processors += [cfg.getProcessor(OCIO.DisplayViewTransform(src="ACEScg", display=d, view=v))
+                       for d in cfg.getDisplays() for v in cfg.getViews(d)]
+        for processor in processors:
+            desc = OCIO.GpuShaderDesc.CreateShaderDesc(language=OCIO.GPU_LANGUAGE_GLSL_4_0)
+            processor.getDefaultGPUProcessor().extractGpuShaderInfo(desc)
+            assert not list(desc.get3DTextures()), name
+    cube = tmp_path / "look.cube"
+    cube.write_text("LUT_3D_SIZE 2\n" + "".join(f"{b} {g} {r}\n".replace("1", "0.9") for r in (0, 1) for g in (0, 1)
+                                                   for b in (0, 1)))
+    studio = OCIO.Config.CreateRaw()
+    studio.setSearchPath(str(tmp_path))
+    studio.addColorSpace(OCIO.ColorSpace(name="lin"))
+    graded = OCIO.ColorSpace(name="graded")
+    graded.setTransform(OCIO.FileTransform(src="look.cube", interpolation=OCIO.INTERP_LINEAR),
+                        OCIO.COLORSPACE_DIR_TO_REFERENCE)
+    studio.addColorSpace(graded)
+    studio.setRole("scene_linear", "lin")
+    config = tmp_path / "studio.ocio"
+    config.write_text(studio.serialize())
+    rec = record(gen, constants(["graded"], working="lin"), ocio_config=str(config))
+    assert rec["error"]["code"] == "unsupported_colorspace" and "graded" in rec["error"]["message"], rec
+
+
+def test_the_record_names_its_working_space_and_is_keyed_by_it(gen):
+    """Values with no colour space of their own make the same graph in any working space: the
+    records still differ, each naming its space, since a viewer shows each from its own (a service
+    once answered the second document with the first's record and thumbnail)."""
+    plain = constants(["scene_linear"]).replace(' colorspace="scene_linear"', "")
+    acescg = record(gen, plain, interface="specialized")
+    rec709 = record(gen, plain.replace('colorspace="ACEScg"', 'colorspace="Linear Rec.709 (sRGB)"'),
+                    interface="specialized")
+    assert acescg["working_colorspace"] == "ACEScg" and rec709["working_colorspace"] == "Linear Rec.709 (sRGB)"
+    assert acescg["stages"] == rec709["stages"] and acescg["hash"] != rec709["hash"]
+    assert "working_colorspace" not in next(iter(gen.records(plain)))  # the built-in system's records as they were
+
+
+def test_render_batch_draws_through_the_display_and_view(tmp_path):
+    """`render --batch --cms ocio`: each PNG is its record's working space through the view, as
+    a single render's; an unknown view stops the batch before it draws."""
+    require_renderer()
+    from shadergen.render.imageio import read_image
+
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "doc.mtlx").write_text(constants(["sRGB - Texture"]))
+    base = [sys.executable, "-m", "shadergen.cli", "render", "--batch", str(tmp_path / "docs"), "-o",
+            str(tmp_path / "out"), "--mesh", "plane", "--size", "32", "--cms", "ocio", "--ocio-config", CG]
+    out = subprocess.run(base + ["--view", "Un-tone-mapped"], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    result = json.loads((tmp_path / "out" / "results.jsonl").read_text().splitlines()[0])
+    cfg = OCIO.Config.CreateFromFile(CG)
+    shown = np.array([[0.25, 0.5, 0.75]], "f4")
+    cfg.getProcessor("sRGB - Texture", "ACEScg").getDefaultCPUProcessor().applyRGB(shown)
+    cfg.getProcessor(OCIO.DisplayViewTransform(src="ACEScg", display=cfg.getDefaultDisplay(), view="Un-tone-mapped")) \
+        .getDefaultCPUProcessor().applyRGB(shown)
+    assert np.abs(read_image(result["png"])[16, 16, :3] - np.clip(shown[0], 0, 1)).max() <= 1.5 / 255.0
+    bad = subprocess.run(base + ["--view", "Filmic", "--json"], capture_output=True, text=True, timeout=300)
+    assert bad.returncode != 0 and json.loads(bad.stdout.splitlines()[-1])["error"]["code"] == "unknown_view"
