@@ -81,6 +81,8 @@ class Settings(BaseModel):
     max_batch_documents: int = 1000
     # a batch's thumbnails in flight at once (each one a generation and a render job)
     batch_concurrency: int = Field(4, ge=1)
+    # a batch whose API worker has said nothing of it for this long is taken over by the next poll
+    batch_lease_s: float = Field(15.0, gt=0)
     # a request's body must arrive within this, its line and headers within head_timeout_s and
     # head_max_bytes: a slow or endless upload cannot hold a worker's memory or a connection
     body_timeout_s: float = 30.0

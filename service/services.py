@@ -35,7 +35,8 @@ class Services:
             await pool.close()
             raise
         thumbnails = ThumbnailService(generation, jobs, store, settings.texture_roots, settings.retry_after_s)
-        batches = BatchService(thumbnails, store, settings.batch_concurrency, settings.retry_after_s)
+        batches = BatchService(thumbnails, store, settings.batch_concurrency, settings.retry_after_s,
+                               settings.batch_lease_s)
         return cls(settings, store, generation, jobs, thumbnails, batches)
 
     async def stop(self) -> None:

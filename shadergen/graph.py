@@ -75,6 +75,9 @@ class Input:
         self.public = False  # a PublicUniform of the shader (decided by the interface pass)
         self.parameter: str | None = None  # the body interface input it was bound to, inside an expanded nodegraph
         self.default = default  # the nodedef's value: a value-free shader's initializer
+        # a value the generator derives from the document's structure (a unit conversion's factor):
+        # no input of the document, so never a uniform; its value is in the topology hash
+        self.derived = False
 
     @property
     def owner(self) -> "Node":
@@ -329,25 +332,27 @@ class GraphBuilder:
     def new_node(self, name: str, category: str, type_name: str, nodedef: Element, impl: Element,
                  path: str | None) -> Node:
         """A node with the ports of its nodedef (and the extra inputs its implementation declares).
-        An input's listing path is the element path of the node's input, when the node has one."""
+        An input's listing path is the element path of the node's input, when the node has one; an
+        input its implementation adds (image's uv_scale) is listed at the same place, `node/input`,
+        where an application finds it, though a document cannot author it."""
         node = Node(self.unique(name), category, type_name, nodedef, impl, path or "", instance=self.instance)
         for out in self.scope.nodedef_outputs(nodedef):
             node.outputs[out.name] = Output(out.name, out.get("type"), node)
         if not node.outputs:
             node.outputs["out"] = Output("out", nodedef.get("type"), node)
-        for name, t, value, meta, on_nodedef in self.ports(nodedef, impl):
+        for name, t, value, meta in self.ports(nodedef, impl):
             inp = Input(name, t, node, value, None, meta=dict(meta), default=value)
-            if path is not None and on_nodedef:
+            if path is not None:
                 inp.path = f"{path}/{name}"
             node.inputs[name] = inp
         return node
 
     def ports(self, nodedef: Element, impl: Element) -> list[tuple]:
-        """(name, type, value, meta, declared on the nodedef) of each input a node of this
-        definition has: its nodedef's (inherited ones included) and those its implementation adds."""
+        """(name, type, value, meta) of each input a node of this definition has: its nodedef's
+        (inherited ones included) and those its implementation adds."""
         return self.scope.library_fact(("ports", id(nodedef), id(impl)), lambda: [
             (decl.name, decl.get("type"), T.parse_value(decl.get("type"), decl.get("value"), decl.path),
-             input_meta(decl), decl.parent.category == "nodedef")
+             input_meta(decl))
             for decl in self.scope.nodedef_inputs(nodedef) + impl.children_of("input") if decl.category != "token"])
 
     # -- colour-space and unit transforms (seed 3.3, 3.4) --------------------------------------
@@ -389,7 +394,7 @@ class GraphBuilder:
         if node is not None:
             self.insert_before(inp, node)
             factor = node.inputs["in2"]
-            factor.value, factor.path, factor.authored = src_scale / dst_scale, None, True
+            factor.value, factor.path, factor.authored, factor.derived = src_scale / dst_scale, None, True, True
 
     def colorspace_node(self, name: str, source: str | None, type_name: str, where: str) -> Node | None:
         """The working colour space is the document's own (MaterialX's rule): a document that names

@@ -15,6 +15,14 @@ class Store(ABC):
     @abstractmethod
     def delete(self, key: str) -> None: ...
 
+    @abstractmethod
+    def add(self, key: str, value: bytes) -> bool:
+        """Write the value only if the key holds none; whether it was written. Of several
+        processes adding one key, exactly one is told True: a claim."""
+
+    async def aadd(self, key: str, value: bytes) -> bool:
+        return await asyncio.to_thread(self.add, key, value)
+
     async def aget(self, key: str) -> bytes | None:
         """Read from the event loop. Back ends whose reads can wait (disk, network) override this."""
         return self.get(key)

@@ -68,6 +68,21 @@ class GuardedStore(Store):
         except Exception as exc:
             self._failed("put", exc)
 
+    def add(self, key: str, value: bytes) -> bool:
+        """A claim that cannot be written is not held."""
+        try:
+            return self.inner.add(key, value)
+        except Exception as exc:
+            self._failed("put", exc)
+            return False
+
+    async def aadd(self, key: str, value: bytes) -> bool:
+        try:
+            return await self.inner.aadd(key, value)
+        except Exception as exc:
+            self._failed("put", exc)
+            return False
+
     def delete(self, key: str) -> None:
         try:
             self.inner.delete(key)

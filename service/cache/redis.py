@@ -30,6 +30,9 @@ class RedisStore(Store):
     def delete(self, key: str) -> None:
         self._sync.delete(PREFIX + key)
 
+    def add(self, key: str, value: bytes) -> bool:
+        return bool(self._sync.set(PREFIX + key, value, nx=True))
+
     def close(self) -> None:
         self._sync.close()
 

@@ -224,23 +224,29 @@ class SQLiteStore(Store):
     def put(self, key: str, value: bytes) -> None:
         if len(value) > self.max_bytes:
             return  # larger than the whole store: caching it would only evict everything else
+        self._write("INSERT INTO entries (key, value, size, accessed) VALUES (?, ?, ?, ?) "
+                    "ON CONFLICT (key) DO UPDATE SET value = excluded.value, size = excluded.size, "
+                    "accessed = excluded.accessed", key, value)
 
+    def add(self, key: str, value: bytes) -> bool:
+        return self._write("INSERT OR IGNORE INTO entries (key, value, size, accessed) VALUES (?, ?, ?, ?)",
+                           key, value) == 1
+
+    def _write(self, statement: str, key: str, value: bytes) -> int:
+        """One write of (key, value, size, accessed) in its own transaction, eviction included;
+        the rows it changed."""
         def op(conn):
             conn.execute("BEGIN IMMEDIATE")
             try:
-                conn.execute(
-                    "INSERT INTO entries (key, value, size, accessed) VALUES (?, ?, ?, ?) "
-                    "ON CONFLICT (key) DO UPDATE SET value = excluded.value, size = excluded.size, "
-                    "accessed = excluded.accessed",
-                    (key, value, len(value), time.time()),
-                )
+                changed = conn.execute(statement, (key, value, len(value), time.time())).rowcount
                 self._evict(conn)
                 conn.execute("COMMIT")
             except BaseException:
                 conn.execute("ROLLBACK")
                 raise
+            return changed
 
-        self._run(op)
+        return self._run(op)
 
     def _evict(self, conn: sqlite3.Connection) -> None:
         total = self.total_bytes(conn)

@@ -29,7 +29,7 @@ def document_path(inp: Input) -> str:
 
 
 def is_public(inp: Input, node: Node, graph: Graph, mode: str, keep: frozenset[str]) -> bool:
-    if inp.connection is not None or inp.socket is not None or inp.type in NOT_PUBLISHED:
+    if inp.connection is not None or inp.socket is not None or inp.type in NOT_PUBLISHED or inp.derived:
         return False
     if TYPES[inp.type].is_closure and node is not graph.root and not inp.meta.get("interface"):
         return False  # an unconnected shader input inside the graph has nothing to edit

@@ -1,15 +1,19 @@
-"""`shadergen render --batch DIR_OR_LIST -o OUTDIR`: a library's thumbnails in one process.
+"""`shadergen render --batch DIR_OR_LIST -o OUTDIR`: a library's thumbnails in one command.
 
 One generator and one renderer for the whole batch: the library is loaded once, and a compiled
 program serves every material of its topology (value-free `complete` source and structural names:
-a new material of a known topology is a bind and a draw). Every material gets one line in
-OUTDIR/results.jsonl, its PNG's path or its error record; a broken document is an error record
-beside the others' thumbnails, never the end of the batch.
+a new material of a known topology is a bind and a draw). The generator runs in a child process
+a few documents ahead of the drawing, so that a material costs about its frame rather than its
+generation plus its frame. Every material gets one line in OUTDIR/results.jsonl, its PNG's path
+or its error record; a broken document is an error record beside the others' thumbnails, never the
+end of the batch.
 """
+import itertools
 import json
 import os
 import sys
 import time
+from collections import deque
 
 from shadergen.errors import ShaderGenError
 
@@ -18,6 +22,9 @@ from .imageio import write_image
 
 DOCUMENT_SUFFIXES = (".mtlx", ".usda", ".usd", ".usdc", ".usdz")
 RESULTS = "results.jsonl"
+# documents generated ahead of the one being drawn: enough to keep the generator busy while a frame
+# is drawn, few enough that their records hold little memory
+AHEAD = 2
 
 
 def batch_documents(spec: str) -> tuple[str, list[str]]:
@@ -80,23 +87,20 @@ class Progress:
 
 def run_batch(args, renderer, env, target: str) -> int:
     """Thumbnails of every material of every document of `args.batch` under `args.output`."""
-    from shadergen.api import DocumentFile, default_generator
-
     if args.exr or args.npy or not args.output:
         raise RenderError("invalid_request", "--batch writes PNGs under -o OUTDIR (no --exr or --npy)")
     root, documents = batch_documents(args.batch)
     encoder = display_encoders(args)
     os.makedirs(args.output, exist_ok=True)
-    generator = default_generator()
     options = dict(target=target, all=True, interface=args.interface or "complete", environment=args.env_method,
                    lights=bool(args.lights), cms=args.cms, ocio_config=args.ocio_config)
     progress = Progress(len(documents))
     counts = {"materials": 0, "thumbnails": 0, "errors": 0}
     written: set[str] = set()
     with open(os.path.join(args.output, RESULTS), "w", encoding="utf-8") as results:
-        for document in documents:
-            for result in _document_results(generator.records(DocumentFile(document), **options), document, root,
-                                            args, renderer, env, written, encoder):
+        for document, records in generated_ahead(documents, options):
+            for record in records:
+                result = _thumbnail(record, document, root, args, renderer, env, written, encoder)
                 counts["materials"] += 1
                 counts["errors" if "error" in result else "thumbnails"] += 1
                 results.write(json.dumps(result) + "\n")
@@ -108,6 +112,57 @@ def run_batch(args, renderer, env, target: str) -> int:
           f"thumbnails, {counts['errors']} errors; {programs['compiled']} programs compiled, {programs['reused']} "
           f"reused; {progress.seconds():.1f} s; results in {os.path.join(args.output, RESULTS)}", file=sys.stderr)
     return 0 if counts["errors"] == 0 else 1
+
+
+def generated_ahead(documents: list[str], options: dict):
+    """(document, its records) in the documents' order, each generated in a child process while
+    this one draws the documents before it. Should the child die, the documents not yet generated
+    are generated here: a batch loses nothing to it."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    # spawned, not forked: this process holds a GL context, which a fork would share
+    pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
+    queued = iter(documents)
+    pending = deque((d, pool.submit(document_records, d, options)) for d in itertools.islice(queued, AHEAD))
+    try:
+        while pending:
+            document, future = pending.popleft()
+            try:
+                records = future.result()
+            except BrokenProcessPool:
+                records = document_records(document, options)
+            following = next(queued, None)
+            if following is not None:
+                try:
+                    pending.append((following, pool.submit(document_records, following, options)))
+                except BrokenProcessPool:
+                    pending.append((following, _here(following, options)))
+            yield document, records
+    finally:
+        pool.shutdown(cancel_futures=True)
+
+
+def _here(document: str, options: dict):
+    """A finished future of the document's records, generated in this process."""
+    from concurrent.futures import Future
+
+    future = Future()
+    future.set_result(document_records(document, options))
+    return future
+
+
+def document_records(document: str, options: dict) -> list[dict]:
+    """One record per material of the document (error records included); a document the generator
+    could not even start on is one error record, not a traceback."""
+    from shadergen.api import DocumentFile, default_generator
+
+    try:
+        return list(default_generator().records(DocumentFile(document), **options))
+    except Exception as exc:
+        return [{"document": document, "element": None,
+                 "error": {"code": "internal_error", "message": f"{type(exc).__name__}: {exc}", "where": None}}]
 
 
 def display_encoders(args):
@@ -126,17 +181,6 @@ def display_encoders(args):
     except ShaderGenError as e:
         raise RenderError(e.code, e.message, e.where) from None
     return lambda record: system.display_encoder(record.get("working_colorspace"), view=args.view)
-
-
-def _document_results(records, document: str, root: str, args, renderer, env, written: set[str], encoder):
-    """One result per material of the document: its thumbnail written, or its error record."""
-    base = {"document": document}
-    try:
-        for record in records:
-            yield _thumbnail(record, document, root, args, renderer, env, written, encoder)
-    except Exception as exc:  # a document the generator could not even start on: its record, not a traceback
-        yield dict(base, element=None, error={"code": "internal_error", "message": f"{type(exc).__name__}: {exc}",
-                                              "where": None})
 
 
 def _thumbnail(record: dict, document: str, root: str, args, renderer, env, written: set[str], encoder) -> dict:

@@ -145,11 +145,26 @@ def test_a_document_without_colorspace_is_not_colour_managed(gen):
     assert "_cm" not in pixel(gen.prepare(doc(COLORED), names="document").emit())
 
 
-def test_units_insert_a_conversion(gen):
-    rec = first(gen, '<multiply name="m" type="float"><input name="in1" type="float" value="10" unit="centimeter" '
-                     'unittype="distance"/></multiply><output name="o" type="float" nodename="m"/>')
-    factor = next(v for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["name"] == "m_in1_unit_in2")
-    assert factor["value"] == pytest.approx(0.01)
+def test_units_insert_a_conversion_whose_factor_is_code_not_a_uniform(gen):
+    def multiply(unit):
+        return doc('<multiply name="m" type="float"><input name="in1" type="float" value="10" unit="' + unit + '" '
+                   'unittype="distance"/></multiply><output name="o" type="float" nodename="m"/>')
+
+    rec = gen.prepare(multiply("centimeter")).emit()
+    uniforms = rec["blocks"]["pixel"]["PublicUniforms"]
+    # the factor is no input of the document: a client could not say what it binds to
+    assert [v["path"] for v in uniforms] == ["m/in1", "m/in2"]
+    assert "0.01" in pixel(rec)
+    # ... so the unit, which decides it, is part of the topology
+    assert rec["topology_hash"] != gen.prepare(multiply("meter")).emit()["topology_hash"]
+    assert rec["topology_hash"] == gen.prepare(multiply("centimeter")).emit()["topology_hash"]
+
+
+def test_an_input_an_implementation_adds_is_listed_at_its_node(gen):
+    rec = gen.prepare(doc('<image name="i" type="color3"/><output name="o" type="color3" nodename="i"/>')).emit()
+    paths = {v["name"]: v["path"] for v in rec["blocks"]["pixel"]["PublicUniforms"]}
+    assert all(paths.values()), paths
+    assert {"i/uv_scale", "i/uv_offset"} <= set(paths.values())
 
 
 def test_enum_strings_become_integer_uniforms(gen):
