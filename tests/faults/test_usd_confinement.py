@@ -275,3 +275,25 @@ def test_messages_hold_no_address_of_the_server(server, tmp_path, kind):
         record = generated(server, body, headers)
         assert any(told in warning for warning in record["warnings"]), record["warnings"]
         assert not ADDRESS.search(str(record["warnings"])), record["warnings"]
+
+
+def test_a_record_carries_no_other_uploads_warnings(server):
+    """Records are cached by graph hash, which two uploads share when they translate to the same
+    graph; a record's warnings are its own upload's, though (a composition error quotes that
+    upload's layers). The second upload was answered with the first one's warnings, from the
+    generator and then from the API's cache of byte-identical requests: one client reading what
+    another client's layer said."""
+    other = material("        references = </PlansOfAnotherClient>", "        float inputs:metallic = 0.7")
+    own = material(body="        float inputs:metallic = 0.7")
+    assert "PlansOfAnotherClient" in str(generated(server, other, USDA)["warnings"])
+    for attempt in range(2):  # a new request, then the same bytes again
+        record = generated(server, own, USDA)
+        assert record["warnings"] == [], (attempt, record["warnings"])
+    assert "PlansOfAnotherClient" in str(generated(server, other, USDA)["warnings"])
+    # the shared record evicted and stored again by the other upload: the API's cache of the
+    # first one's bytes still leads to that record
+    from service.cache import open_store
+
+    open_store(f"sqlite:///{server.cache_path}", 1 << 30).delete("rec:" + record["hash"])
+    assert "PlansOfAnotherClient" in str(generated(server, other, USDA)["warnings"])
+    assert generated(server, own, USDA)["warnings"] == []
