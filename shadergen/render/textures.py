@@ -178,11 +178,26 @@ class TextureCache:
         return self.constant(upload, request.sampling.border), warning
 
     def trim(self) -> None:
+        """Release the textures of files that are gone or changed since they were read, which no
+        render can ask for again (a usdz upload's package, removed with its job's folder: what
+        one client sent is not kept after its job), then the least recently used over the budget."""
+        for key in [key for key in self._files if not _unchanged(key)]:
+            self._files.pop(key).release()
         total = sum(t.width * t.height * t.components * 4 for t in self._files.values())
         while self._files and total > self.budget_bytes:
             _, texture = self._files.popitem(last=False)
             total -= texture.width * texture.height * texture.components * 4
             texture.release()
+
+
+def _unchanged(key: tuple) -> bool:
+    """Whether the file of a TextureCache key (path, mtime, size) is still there as it was read."""
+    path, mtime_ns, size = key
+    try:
+        stat = os.stat(split_member(path)[0])
+    except OSError:
+        return False
+    return (stat.st_mtime_ns, stat.st_size) == (mtime_ns, size)
 
 
 def upload(ctx, image: np.ndarray, levels: list[np.ndarray] | None = None):
