@@ -7,7 +7,9 @@ Two cache levels, both in the shared store:
   document bytes, the parameters and the generator's output key (shadergen/fingerprint.py: the
   library files, their folder and the generator's code, as the generator process reports it); a
   repeated request is answered from the store without even parsing the XML, which is what keeps
-  cached requests in the millisecond range.
+  cached requests in the millisecond range. Only a request whose answer has no warnings gets one:
+  a record is stored once per graph, with the warnings of the document that stored it, which are
+  no other document's (the generator gives each request its own: gen_worker.py).
 """
 import hashlib
 import json
@@ -17,7 +19,7 @@ from dataclasses import dataclass
 from shadergen.cms import OCIO_CONFIG_ENV
 
 from .cache import CacheUnavailable, GuardedStore
-from .cache.entries import is_graph_hash, is_record, refusal
+from .cache.entries import has_no_warnings, is_graph_hash, is_record, refusal
 from .errors import ServiceError
 from .metrics import CACHE, GENERATE_SECONDS
 from .safety import check_document
@@ -116,7 +118,9 @@ class GenerationService:
         if not is_graph_hash(graph_hash):
             return None
         record = await self.store.aget("rec:" + graph_hash.decode())
-        if not is_record(record, graph_hash.decode()):
+        # (a `req:` entry is written for answers without warnings; a record with some is another
+        # document's of the same graph, stored after this one's was evicted)
+        if not is_record(record, graph_hash.decode()) or not has_no_warnings(record):
             return None
         RECORD_HITS.inc()
         return record

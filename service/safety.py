@@ -59,16 +59,25 @@ def check_texture_paths(record: dict, roots: list[str]) -> None:
 
 def texture_in_roots(value: str, roots: list[Path]) -> Path | None:
     """The real path a filename names inside one of the (real) roots, or None when it names a
-    URL, holds a NUL or leaves them: what thumbnails may read, and what the editor may fetch."""
+    URL, holds a NUL or leaves them: what thumbnails may read, and what the editor may fetch.
+    The name is made normal as written (`a/x/../b` is `a/b`) and must lie in a root as written
+    before the file system is asked anything: resolved by the file system, `..` after a folder
+    outside the roots goes wherever that folder really is, so what the server keeps outside them
+    (a folder, a link and where it leads, nothing) would decide the answer. Links inside a root
+    are still followed, and what they lead to must be in a root too."""
     if "://" in value or "\x00" in value:
         return None
     candidate = Path(value)
     if candidate.is_absolute():
-        real = Path(os.path.realpath(candidate))
+        written = Path(os.path.normpath(candidate))
+        if not any(_inside(written, root) for root in roots):
+            return None
+        real = Path(os.path.realpath(written))
         return real if any(_inside(real, root) for root in roots) else None
     # relative names are looked up under a root and must stay under that same root; the first
     # root that holds the file, else the first the name stays in (a missing file is no escape)
-    inside = [real for root in roots if _inside(real := Path(os.path.realpath(root / candidate)), root)]
+    inside = [real for root in roots if _inside(written := Path(os.path.normpath(root / candidate)), root)
+              and _inside(real := Path(os.path.realpath(written)), root)]
     return next((real for real in inside if _is_file(real)), inside[0] if inside else None)
 
 

@@ -161,10 +161,14 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
         except UnicodeDecodeError as exc:
             raise ShaderGenError("invalid_document", f"the layer is not UTF-8: {exc.reason}", f"byte {exc.start}") from None
         layer = Sdf.Layer.CreateAnonymous(".usda")
-        with usd_errors("<document>"):
-            layer.ImportFromString(text)
-            confine_layer(layer)
-        return _translate(layer, [layer], library, None, AssetPaths())
+
+        def translate():
+            with usd_errors("<document>"):
+                layer.ImportFromString(text)
+                confine_layer(layer)
+            return _translate(layer, [layer], library, None, AssetPaths())
+
+        return _in_public(translate, None)
     if document_format == "usdz":
         if not data.startswith(b"PK\x03\x04"):
             raise ShaderGenError("invalid_document", "the upload is not a usdz package (a zip archive)", "<document>")
@@ -178,27 +182,47 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
             package = os.path.join(folder, "upload.usdz")
             with open(package, "wb") as f:
                 f.write(data)
-            try:
+
+            def translate():
                 layer, layers = _open_package(package)
-                return _unnamed(_translate(layer, layers, library, None, AssetPaths(package=package)), folder)
-            except ShaderGenError as exc:
-                raise _unnamed_error(exc, folder) from None
+                return _translate(layer, layers, library, None, AssetPaths(package=package))
+
+            return _in_public(translate, folder)
     raise ShaderGenError("unsupported_format", f"unknown USD format '{document_format}'", document_format)
 
 
-def _unnamed_error(exc: ShaderGenError, folder: str) -> ShaderGenError:
-    """The error without the server's temporary folder, which usd-core's messages name the
-    package's layers by (`/tmp/shadergen-usdz-x/upload.usdz[scene.usda]:2:5`)."""
-    exc.message = exc.message.replace(folder + os.sep, "")
-    exc.where = exc.where.replace(folder + os.sep, "") if exc.where else exc.where
-    return exc
+# usd-core names an anonymous layer (an uploaded text layer, every stage's session layer) by its
+# address, `anon:0x55d0c3a4b2c0:.usda`, and an object by a pointer, `<0x55d0c3a4b2c0>`
+_ADDRESS = re.compile(r"0x[0-9a-fA-F]+")
 
 
-def _unnamed(doc: Document, folder: str) -> Document:
-    doc.warnings[:] = [w.replace(folder + os.sep, "") for w in doc.warnings]
+def public_text(text: str, folder: str | None) -> str:
+    """A text of usd-core's about an upload as a client may read it: no address of the server's
+    process (which would show where its heap lies) and no server folder (a package's temporary
+    folder, `/tmp/shadergen-usdz-x/upload.usdz[scene.usda]:2:5`, is `upload.usdz[scene.usda]:2:5`)."""
+    if folder:
+        text = text.replace(folder + os.sep, "")
+    return _ADDRESS.sub("0x", text)
+
+
+def _in_public(translate, folder: str | None) -> Document:
+    """The document `translate` makes of an upload, or its refusal, with every text that leaves
+    the reader (the error, warnings, each failed material) in public_text: one exit that no
+    message of usd-core's passes by, whichever step made it."""
+    try:
+        doc = translate()
+    except ShaderGenError as exc:
+        raise _public_error(exc, folder) from None
+    doc.warnings[:] = [public_text(w, folder) for w in doc.warnings]
     for exc in doc.failures.values():
-        _unnamed_error(exc, folder)
+        _public_error(exc, folder)
     return doc
+
+
+def _public_error(exc: ShaderGenError, folder: str | None) -> ShaderGenError:
+    exc.message = public_text(exc.message, folder)
+    exc.where = public_text(exc.where, folder) if exc.where else exc.where
+    return exc
 
 
 def _translate(layer, layers: list, library: Library, path: str | None, assets: AssetPaths) -> Document:

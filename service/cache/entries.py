@@ -19,6 +19,13 @@ def is_record(value: bytes | None, graph_hash: str) -> bool:
             and b'"hash":"%s"' % graph_hash.encode() in value)
 
 
+def has_no_warnings(record: bytes) -> bool:
+    """Whether a sound `rec:` entry (compact JSON, as the generator writes it) lists no warnings.
+    A record is stored once per graph hash, but its warnings are those of the document that
+    stored it: only a record without any is every document's answer as it is."""
+    return b'"warnings":[]' in record
+
+
 def refusal(value: bytes | None) -> dict | None:
     """An `err:` entry: the generator's error object for a request it refused, or None."""
     if value is None or not value.startswith(b"{"):

@@ -56,7 +56,8 @@ class GenerateHandler:
             )
             key = "rec:" + prepared.hash
             stored = self.store.get(key)
-            if not is_record(stored, prepared.hash):  # absent, or garbage to overwrite
+            body = self._with_own_warnings(stored, prepared.warnings) if is_record(stored, prepared.hash) else None
+            if body is None:  # absent, or garbage to overwrite
                 record = (self.topology_sharing and self._same_topology(prepared)) or prepared.emit(source=True)
                 record["document"] = None  # uploads have no path
                 self.store.put(key, _dumps({**record, "cached": True}))
@@ -64,17 +65,35 @@ class GenerateHandler:
                     self.store.put("top:" + prepared.topology_hash, prepared.hash.encode())
                 body, cached = _dumps({**record, "cached": False}), False
             else:
-                body, cached = stored, True
+                cached = True
         except ShaderGenError as exc:
             if message.get("digest"):
                 # the same request is refused from the store next time (service/generation.py): a
                 # refusal depends on nothing but what the digest covers
                 self.store.put("err:" + message["digest"], _dumps(exc.to_dict()))
             return {"error": exc.to_dict()}, b""
-        if message.get("digest"):
-            # identical requests later skip even `prepare` (see service/generation.py)
+        if message.get("digest") and not prepared.warnings:
+            # identical requests later skip even `prepare` (see service/generation.py), answered
+            # with the stored record as it is: only those without warnings, whose record is theirs
+            # whichever document of the graph stored it (entries.has_no_warnings)
             self.store.put("req:" + message["digest"], prepared.hash.encode())
         return {"hash": prepared.hash, "cached": cached, "seconds": time.perf_counter() - started}, body
+
+    @staticmethod
+    def _with_own_warnings(stored: bytes, warnings: list[str]) -> bytes | None:
+        """The stored record (`stored` itself when it already says so) with this document's
+        warnings: records are shared by graph hash, and two documents of one graph warn of
+        different things (what one upload's layers say is no other client's to read). None for
+        an entry that only looks like a record."""
+        try:
+            record = json.loads(stored)
+        except ValueError:
+            return None
+        if not isinstance(record, dict):
+            return None
+        if record.get("warnings") == warnings:
+            return stored
+        return _dumps({**record, "warnings": warnings})
 
     def _same_topology(self, prepared) -> dict | None:
         """The record of an earlier document of the same topology, rebound to this one's values."""

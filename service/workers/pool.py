@@ -257,6 +257,12 @@ class Job:
     created: float = field(default_factory=time.time)
     future: asyncio.Future = field(default_factory=lambda: asyncio.get_running_loop().create_future())
 
+    def forget_request(self) -> None:
+        """A job that is over is kept for its outcome alone (the render pool keeps jobs for polling,
+        for minutes): its request, which may carry a client's usdz package of megabytes, is never
+        needed again."""
+        self.message, self.payload = {}, b""
+
 
 class ProcessPool:
     def __init__(self, module: str, size: int, queue_size: int, timeout_s: float,
@@ -403,6 +409,7 @@ class ProcessPool:
                 child = await self._spawn(index)
                 continue
             if job.future.done():  # its caller went away while it waited
+                job.forget_request()
                 continue
             job.state = "running"
             running[:] = [job]
@@ -436,6 +443,7 @@ class ProcessPool:
 
     @staticmethod
     def _finish(job: Job, outcome) -> None:
+        job.forget_request()
         if job.future.done():
             return
         failed = isinstance(outcome, BaseException)

@@ -41,10 +41,13 @@ def render(renderer, request: dict) -> tuple[dict, bytes]:
     `"package"` (base64) for a usdz upload, whose record names its textures as members of the package."""
     if "package" not in request:
         return _render(renderer, request["record"], request, None)
-    with tempfile.TemporaryDirectory(prefix="shadergen-job-") as folder:
-        with open(os.path.join(folder, PACKAGE), "wb") as f:
-            f.write(base64.b64decode(request["package"]))
-        return _render(renderer, in_package(request["record"], PACKAGE), request, folder)
+    try:
+        with tempfile.TemporaryDirectory(prefix="shadergen-job-") as folder:
+            with open(os.path.join(folder, PACKAGE), "wb") as f:
+                f.write(base64.b64decode(request["package"]))
+            return _render(renderer, in_package(request["record"], PACKAGE), request, folder)
+    finally:  # the package is gone with its folder: its textures go too, not kept for no later job
+        renderer.trim_textures()
 
 
 def in_package(record: dict, package: str) -> dict:

@@ -65,6 +65,12 @@ class SceneRenderer:
         self._environments: OrderedDict[str, EnvironmentTextures] = OrderedDict()
         self._textures = TextureCache(texture_budget_bytes)
 
+    def trim_textures(self) -> None:
+        """Release the cached textures of files that are gone (after a job whose folder held its
+        textures: service/workers/render_worker.py) and those over the budget, as every render
+        does before it binds its own."""
+        self._textures.trim()
+
     @staticmethod
     def _image_side(size: int, supersample: int, element) -> int:
         side = int(size) * int(supersample)

@@ -82,7 +82,9 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
     document's folder, then in each search path. When `confined` (a service rendering what clients
     send), whatever it resolves to (symbolic links followed) must lie inside the document's
     folder, a search path or a texture root, so a document cannot make the renderer read
-    arbitrary files; a local user rendering their own document reads what it names.
+    arbitrary files, and so must the name made normal as written (`a/x/../b` is `a/b`), before
+    the file system is asked: what lies outside the folders never decides what is read. A local
+    user rendering their own document reads what it names.
     `package.usdz[member]` names a member of a package, the package being found as any file is."""
     name, member = split_member(name)
     if any(token in name for token in UNRESOLVABLE_TOKENS):
@@ -90,6 +92,12 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
     bases = [d for d in [document_dir, *search_paths] if d]
     roots = [os.path.realpath(d) for d in [*bases, *texture_roots]]
     candidates = [name] if os.path.isabs(name) else [os.path.join(b, name) for b in bases]
+    left = False  # a candidate that leaves the folders as written, which the file system is not asked about
+    if confined:  # as the service checks it (service/safety.py): made normal as written, in a folder as written
+        written_roots = roots + [os.path.abspath(d) for d in [*bases, *texture_roots]]
+        written = list(map(os.path.abspath, candidates))
+        candidates = [c for c in written if _within(c, written_roots)]
+        left = len(candidates) < len(written)
     outside = None
     for candidate in candidates:
         try:
@@ -99,7 +107,7 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
             continue
         if not exists:
             continue
-        if not confined or any(os.path.commonpath([real, root]) == root for root in roots):
+        if not confined or _within(real, roots):
             if member is None:
                 return real, None
             if has_member(real, member):
@@ -108,8 +116,14 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
         outside = real
     if outside:
         return None, f"{name}: resolves to {outside}, outside the allowed folders"
+    if left:
+        return None, f"{name}: outside the allowed folders"
     where = ", ".join(bases) if bases else "no folder (give a document folder or search paths)"
     return None, f"{name}: not found (looked in {where})"
+
+
+def _within(path: str, folders: list[str]) -> bool:
+    return any(os.path.commonpath([path, folder]) == folder for folder in folders)
 
 
 class TextureCache:
@@ -164,11 +178,26 @@ class TextureCache:
         return self.constant(upload, request.sampling.border), warning
 
     def trim(self) -> None:
+        """Release the textures of files that are gone or changed since they were read, which no
+        render can ask for again (a usdz upload's package, removed with its job's folder: what
+        one client sent is not kept after its job), then the least recently used over the budget."""
+        for key in [key for key in self._files if not _unchanged(key)]:
+            self._files.pop(key).release()
         total = sum(t.width * t.height * t.components * 4 for t in self._files.values())
         while self._files and total > self.budget_bytes:
             _, texture = self._files.popitem(last=False)
             total -= texture.width * texture.height * texture.components * 4
             texture.release()
+
+
+def _unchanged(key: tuple) -> bool:
+    """Whether the file of a TextureCache key (path, mtime, size) is still there as it was read."""
+    path, mtime_ns, size = key
+    try:
+        stat = os.stat(split_member(path)[0])
+    except OSError:
+        return False
+    return (stat.st_mtime_ns, stat.st_size) == (mtime_ns, size)
 
 
 def upload(ctx, image: np.ndarray, levels: list[np.ndarray] | None = None):

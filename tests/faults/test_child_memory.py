@@ -23,6 +23,7 @@ require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh 
 from pxr import Gf, Sdf, Usd, UsdShade  # noqa: E402
 
 from faults_testing import processes, wait_ready  # noqa: E402
+from service.workers import memory  # noqa: E402
 from service_testing import DOCS, Server, assert_error, document, is_png, wait_until  # noqa: E402
 
 from shadergen.render.imageio import encode_png  # noqa: E402
@@ -202,3 +203,54 @@ def test_children_killed_mid_job_leave_no_files(server, tmp_path):
     assert not folder.exists()
     assert not temporary_files(server), temporary_files(server)
     wait_ready(client)
+
+
+def test_a_packages_textures_leave_the_render_worker_with_its_job(server, tmp_path):
+    """A usdz upload's textures are read from its own package, in a job folder removed when the
+    job ends, so no later job can ask for them again; the render worker's texture cache kept them
+    all the same (about 21 MB resident each for a 1024 x 1024 texture) until its budget pushed
+    them out: every client's images held after its request, and a worker full of them answered
+    an innocent thumbnail 413 (its 600 MiB limit reached after some twenty packages). Each
+    thumbnail here is another client's package with a texture of its own."""
+    from hostile_packages import png
+
+    client = server.client
+    wait_ready(client)
+    worker = one(server, RENDER)
+    resident = []
+    for i in range(24):
+        folder = tmp_path / f"client{i}"
+        folder.mkdir()
+        (folder / "t.png").write_bytes(png(1024, 1024, (10 * i, 20, 30)))
+        material_stage(folder / "scene.usdc", "t.png")
+        r = client.post("/v1/thumbnails", params={"size": 16}, content=zipped(folder, "scene.usdc", "t.png"),
+                        headers=USDZ)
+        assert r.status_code == 200 and is_png(r.content, 16), (i, r.text)
+        resident.append(memory.resident_bytes(worker) >> 20)
+    assert one(server, RENDER) == worker
+    # (MiB) flat once the allocator has its working set (measured: 223 after the first job, 337 from
+    # the seventh to the last); before, each job added its texture, about 21 MiB
+    assert max(resident[12:]) - resident[11] < 32, resident
+
+
+def test_the_render_pool_keeps_no_package_after_its_job(server, tmp_path):
+    """The render pool keeps finished jobs for polling (ten minutes, up to 1024 of them), and each
+    kept its request, whose usdz package is the upload, base64: 2.7 MB for a 2 MiB upload. The
+    pool's own process (no child under a memory limit) grew by that with every usdz thumbnail
+    (575 MiB resident after 192 of them, measured, and 2.8 GB at 1024 jobs); now a finished job
+    keeps its outcome alone."""
+    client = server.client
+    wait_ready(client)
+    pool = one(server, "service.jobs.pool_server")
+    folder = tmp_path / "padded"
+    folder.mkdir()
+    material_stage(folder / "scene.usdc")
+    (folder / "padding.bin").write_bytes(os.urandom(2 * 1024 * 1024 - 8192))  # the upload near the body limit
+    package = zipped(folder, "scene.usdc", "padding.bin")
+    resident = []
+    for i in range(40):
+        # (a size of its own: the same thumbnail again would be answered from the store, without a job)
+        r = client.post("/v1/thumbnails", params={"size": 16 + i}, content=package, headers=USDZ)
+        assert r.status_code == 200 and is_png(r.content, 16 + i), (i, r.text)
+        resident.append(memory.resident_bytes(pool) >> 20)
+    assert resident[-1] - resident[4] < 40, resident  # MiB; before, 2.7 MB more with every job

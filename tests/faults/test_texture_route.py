@@ -94,3 +94,56 @@ def test_a_texture_corrupted_while_served_is_refused_then_served_again(server, f
         target.write_bytes(good)
     assert get(server, "sub/red.png").content == good
     assert "Traceback" not in server.log_text()
+
+
+def textured_layer(name: str) -> str:
+    """A USD layer whose material's colour is the texture `name`."""
+    return f"""#usda 1.0
+def Material "M"
+{{
+    token outputs:surface.connect = </M/S.outputs:surface>
+    def Shader "S"
+    {{
+        uniform token info:id = "UsdPreviewSurface"
+        color3f inputs:diffuseColor.connect = </M/T.outputs:rgb>
+        token outputs:surface
+    }}
+    def Shader "T"
+    {{
+        uniform token info:id = "UsdUVTexture"
+        asset inputs:file = @{name}@
+        float3 outputs:rgb
+    }}
+}}
+"""
+
+
+def answer(response, name: str) -> tuple:
+    """Status and body, the name the body quotes (a refusal's) written as <name>."""
+    return response.status_code, response.content.replace(name.encode(), b"<name>")
+
+
+def test_what_lies_outside_the_roots_changes_no_answer(server, folders):
+    """A name may climb out of a root and back in (`../outside/x/../../root/sub/red.png`), or reach
+    a root from outside (`/outside/x/sub/red.png`). Resolved by the file system, what `x` is outside
+    the roots (a folder, a symbolic link and where it leads, nothing) decided whether the name was
+    served or refused, for the editor's texture route and a USD upload's thumbnail alike: an
+    answer that told a client about the server's files. The name is made normal as written first,
+    so all three spellings give one answer: served when it lands in a root, refused when not."""
+    root, outside = folders
+    (outside / "plain" / "deeper").mkdir(parents=True, exist_ok=True)
+    for link, target in (("link", outside / "plain" / "deeper"), ("into_root", root)):
+        if not (outside / link).is_symlink():
+            os.symlink(target, outside / link)
+    climbing = {via: f"../outside/{via}/../../root/sub/red.png" for via in ("plain", "link", "nosuch")}
+    reaching = {via: f"{outside}/{via}/sub/red.png" for via in ("into_root", "nosuch")}
+    for names, status in ((climbing, 200), (reaching, 403)):
+        answers = {via: answer(get(server, name), name) for via, name in names.items()}
+        assert {a[0] for a in answers.values()} == {status}, answers
+        assert len(set(answers.values())) == 1, answers
+        # the same picture (the red texture) or the same refusal
+        thumbnails = {via: answer(server.client.post("/v1/thumbnails", params={"size": 32},
+                                                     content=textured_layer(name),
+                                                     headers={"content-type": "model/vnd.usda"}, timeout=120), name)
+                      for via, name in names.items()}
+        assert len(set(thumbnails.values())) == 1, thumbnails

@@ -10,6 +10,7 @@ from required_tools import require_module
 require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh does")
 
 import os
+import re
 from pathlib import Path
 
 import pytest
@@ -250,3 +251,49 @@ def test_arcs_inside_the_package_compose(server, tmp_path):
         record = generated(server, package(tmp_path / name, members))
         assert "shadergen-usdz-" not in str(record["warnings"]), record["warnings"]
         assert record["element"] in ("/Looks", "/World", "/M", "/Brick"), (name, record["element"])
+
+
+# an address in the server's heap as usd-core writes one (`anon:0x55d0c3a4b2c0:.usda`, `<0x55d0c3a4b2c0>`)
+ADDRESS = re.compile(r"0x[0-9a-fA-F]{4,}")
+COMPOSITION_ERRORS = {  # what each one still tells the client (each its own metallic: its own graph)
+    "cycle": (material("        references = </M/S>", "        float inputs:metallic = 0.1"), "Cycle detected"),
+    "unresolved": (material("        references = </Nowhere>", "        float inputs:metallic = 0.2"),
+                   "Unresolved reference prim path"),
+    "relocation": (material(body="        float inputs:metallic = 0.3",
+                            layer_metadata="    relocates = { </M/S>: </M/S> }"), "Relocation from </M/S>"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(COMPOSITION_ERRORS))
+def test_messages_hold_no_address_of_the_server(server, tmp_path, kind):
+    """usd-core names an uploaded text layer, and every stage's session layer, by its address in the
+    server's memory (`anon:0x55d0c3a4b2c0:.usda`); its composition errors, which a record lists as
+    warnings, quoted those addresses, which tell a client where the generator's heap lies. The
+    warning is still given, with the layer named as `anon:0x:.usda`."""
+    layer, told = COMPOSITION_ERRORS[kind]
+    for body, headers in [(layer, USDA), (package(tmp_path, [("root.usda", layer)]), USDZ)]:
+        record = generated(server, body, headers)
+        assert any(told in warning for warning in record["warnings"]), record["warnings"]
+        assert not ADDRESS.search(str(record["warnings"])), record["warnings"]
+
+
+def test_a_record_carries_no_other_uploads_warnings(server):
+    """Records are cached by graph hash, which two uploads share when they translate to the same
+    graph; a record's warnings are its own upload's, though (a composition error quotes that
+    upload's layers). The second upload was answered with the first one's warnings, from the
+    generator and then from the API's cache of byte-identical requests: one client reading what
+    another client's layer said."""
+    other = material("        references = </PlansOfAnotherClient>", "        float inputs:metallic = 0.7")
+    own = material(body="        float inputs:metallic = 0.7")
+    assert "PlansOfAnotherClient" in str(generated(server, other, USDA)["warnings"])
+    for attempt in range(2):  # a new request, then the same bytes again
+        record = generated(server, own, USDA)
+        assert record["warnings"] == [], (attempt, record["warnings"])
+    assert "PlansOfAnotherClient" in str(generated(server, other, USDA)["warnings"])
+    # the shared record evicted and stored again by the other upload: the API's cache of the
+    # first one's bytes still leads to that record
+    from service.cache import open_store
+
+    open_store(f"sqlite:///{server.cache_path}", 1 << 30).delete("rec:" + record["hash"])
+    assert "PlansOfAnotherClient" in str(generated(server, other, USDA)["warnings"])
+    assert generated(server, own, USDA)["warnings"] == []
