@@ -6,7 +6,8 @@ measured: page load to first frame, a value edit (a control moved: the GPU alone
 a topology edit (a node added, then undone: a request each) to its frame, and the screenshot of
 the preview against the service's thumbnail of the same material (256 px, sphere, camera and
 environment as `shadergen render`), PSNR. The service reads textures from its texture roots only,
-so each document's `fileprefix` folder becomes a root and the prefix is dropped from the text sent.
+so each document's `fileprefix` folder becomes a root and the prefix is dropped from the text sent;
+the Examples folder is its include root, so a look document's `xi:include` of its material is read.
 
     .venv/bin/python bench/editor.py ../shared/corpus/resources/Materials/Examples [--out docs/editor]
 
@@ -144,7 +145,8 @@ def main() -> None:
     found = documents(args.examples)
     roots = sorted({str(root) for _, _, root in found})
     (args.out / "examples").mkdir(parents=True, exist_ok=True)
-    proc, url, _ = start_server(1, 1, {"SHADERGEN_TEXTURE_ROOTS": ":".join(roots), "SHADERGEN_RENDER_TIMEOUT_S": "300"})
+    proc, url, _ = start_server(1, 1, {"SHADERGEN_TEXTURE_ROOTS": ":".join(roots), "SHADERGEN_RENDER_TIMEOUT_S": "300",
+                                       "SHADERGEN_INCLUDE_ROOTS": str(args.examples.resolve())})
     driver = browser()
     try:
         with httpx.Client(base_url=url, timeout=FRAME_WAIT_S) as client:
