@@ -111,8 +111,11 @@ def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as
     set_document(editor, material("maps/green.exr", default="0, 0, 1"))
     shown(editor, runs)
     [listed] = textures_listed(editor).values()
-    assert listed.startswith("missing: maps/green.exr: default colour")
+    assert listed.startswith("missing: maps/green.exr: default colour") and "not_found" in listed
     assert_is(centre_colour(editor, tmp_path), BLUE)
+    # the refusal is the only console line: the browser's note of the 404 itself
+    problems = console_problems(editor)
+    assert len(problems) == 1 and "/v1/textures" in problems[0]["message"] and "404" in problems[0]["message"]
     requests, draws = js(editor, "window.shaderxEditor.traffic.generate"), js(editor, "window.shaderxEditor.preview.stats.draws")
     drop_files(editor, [("green.exr", exr(tmp_path, 8, 8, tuple(c / 255 for c in GREEN)))])
     wait_for_draw(editor, draws)
@@ -122,6 +125,7 @@ def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as
     # a texture, not an environment: the menu did not change, and the document was not sent again
     assert [o.text for o in editor.find_elements("css selector", "#environment option")] == ["sky"]
     assert js(editor, "window.shaderxEditor.traffic.generate") == requests
+    assert console_problems(editor) == []
 
 
 def test_a_dropped_zip_opens_its_document_and_its_folders_resolve_the_references(editor, tmp_path):
