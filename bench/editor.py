@@ -6,7 +6,9 @@ measured: page load to first frame, a value edit (a control moved: the GPU alone
 a topology edit (a node added, then undone: a request each) to its frame, and the screenshot of
 the preview against the service's thumbnail of the same material (256 px, sphere, camera and
 environment as `shadergen render`), PSNR. The service reads textures from its texture roots only,
-so each document's `fileprefix` folder becomes a root and the prefix is dropped from the text sent.
+so each document's `fileprefix` folder becomes a root and the prefix is dropped from the text sent;
+each document's own folder is an include root, so a look document's `xi:include` of its material
+(an href relative to the look's folder, which the text sent no longer has) is read.
 
     .venv/bin/python bench/editor.py ../shared/corpus/resources/Materials/Examples [--out docs/editor]
 
@@ -143,8 +145,10 @@ def main() -> None:
     args = ap.parse_args()
     found = documents(args.examples)
     roots = sorted({str(root) for _, _, root in found})
+    folders = sorted({str(path.parent.resolve()) for path in args.examples.rglob("*.mtlx")})
     (args.out / "examples").mkdir(parents=True, exist_ok=True)
-    proc, url, _ = start_server(1, 1, {"SHADERGEN_TEXTURE_ROOTS": ":".join(roots), "SHADERGEN_RENDER_TIMEOUT_S": "300"})
+    proc, url, _ = start_server(1, 1, {"SHADERGEN_TEXTURE_ROOTS": ":".join(roots), "SHADERGEN_RENDER_TIMEOUT_S": "300",
+                                       "SHADERGEN_INCLUDE_ROOTS": ":".join(folders)})
     driver = browser()
     try:
         with httpx.Client(base_url=url, timeout=FRAME_WAIT_S) as client:

@@ -9,7 +9,7 @@ from typing import Literal
 from pydantic import BaseModel, Field, model_validator
 
 ENV_PREFIX = "SHADERGEN_"
-LIST_SEPARATORS = {"texture_roots": os.pathsep, "trusted_proxies": ","}  # as PATH, and as uvicorn's FORWARDED_ALLOW_IPS
+LIST_SEPARATORS = {"texture_roots": os.pathsep, "include_roots": os.pathsep, "trusted_proxies": ","}  # as PATH, and as uvicorn's FORWARDED_ALLOW_IPS
 
 
 # where a container's memory limit is read (cgroup v2, v1): the machine's memory is not the container's
@@ -100,6 +100,9 @@ class Settings(BaseModel):
     topology_sharing: bool = True
     # colon-separated directories that textures named by documents may come from
     texture_roots: list[str] = Field(default_factory=list)
+    # colon-separated directories an uploaded document's xi:include may read .mtlx files from
+    # (relative hrefs only, confined to the root: shadergen/document.py IncludeRoots); none: refused
+    include_roots: list[str] = Field(default_factory=list)
     # the largest texture file GET /v1/textures sends (the image its header declares is bounded
     # as the renderer bounds it, SHADERGEN_MAX_IMAGE_VALUES)
     max_texture_bytes: int = Field(64 * 1024 * 1024, gt=0)

@@ -25,6 +25,7 @@ from .metrics import CACHE, GENERATE_SECONDS
 from .safety import check_document
 from .workers.pool import JobTimeout, PoolError, ProcessPool, QueueFull, WorkerCrashed
 
+INCLUDE = b"include"  # an xi:include element, however its namespace prefix is spelled
 RECORD_HITS = CACHE.labels("record", "hit")  # resolved once: this is on every cached request
 
 
@@ -90,9 +91,10 @@ def without_source(record_json: bytes) -> bytes:
 
 
 class GenerationService:
-    def __init__(self, pool: ProcessPool, store: GuardedStore, retry_after_s: int = 2):
+    def __init__(self, pool: ProcessPool, store: GuardedStore, retry_after_s: int = 2, include_roots=()):
         self.pool = pool
         self.store = store
+        self.include_roots = list(include_roots)
         self.retry_after_s = retry_after_s
         self._nodedefs: bytes | None = None
 
@@ -104,10 +106,15 @@ class GenerationService:
         """The record as JSON bytes; raises ServiceError (a 4xx for anything the client sent)."""
         check_config(params)
         document = checked(raw_document, params)
-        digest = request_digest(self.library_hash, params, document)
-        record = await self._cached(digest)
+        # a document that includes files from the include roots is not answered by the digest of
+        # its bytes, which does not cover what it includes: it is generated every time (its
+        # record is still shared by its graph hash)
+        digest = None if self.include_roots and INCLUDE in document else \
+            request_digest(self.library_hash, params, document)
+        record = await self._cached(digest) if digest else None
         if record is None:
-            await self._refused_before(digest, params)
+            if digest:
+                await self._refused_before(digest, params)
             record = await self._generate(document, params, digest)
         return record if params.source else without_source(record)
 
@@ -133,7 +140,7 @@ class GenerationService:
             CACHE.labels("refusal", "hit").inc()
             raise ServiceError.from_generator(error, element=params.element, target=params.target)
 
-    async def _generate(self, document: bytes, params: GenerateParams, digest: str) -> bytes:
+    async def _generate(self, document: bytes, params: GenerateParams, digest: str | None) -> bytes:
         # the document travels as the frame's payload: bytes as they are (binary for usdz), and no
         # JSON escaping of a large XML text on either side
         request = {"op": "generate", "format": params.document_format, "target": params.target,

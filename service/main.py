@@ -15,6 +15,7 @@ from .metrics import MetricsMiddleware
 from .models import ErrorResponse
 from .routes import routers
 from .routes.editor import editor_files
+from .routes.images import DECODE_PATH
 from .routes.thumbnails import BATCH_PATH
 from .services import Services
 
@@ -39,7 +40,8 @@ def create_app() -> FastAPI:
     app.add_middleware(GenerateFastPath)
     settings = get_settings()
     app.add_middleware(BodyLimitMiddleware, max_bytes=settings.max_body_bytes, read_timeout_s=settings.body_timeout_s,
-                       path_limits={BATCH_PATH: settings.max_batch_body_bytes})
+                       path_limits={BATCH_PATH: settings.max_batch_body_bytes,
+                                    DECODE_PATH: settings.max_texture_bytes})
     if settings.client_failure_burst > 0:
         app.add_middleware(FairnessMiddleware, hold_s=settings.client_hold_s,
                            ledger=FailureLedger(settings.client_failure_burst, settings.client_failure_rate))

@@ -28,7 +28,7 @@ class Services:
                            env=settings.to_env(), limits=settings.child_limits(settings.generate_memory_mib),
                            name="generator")
         await pool.start()
-        generation = GenerationService(pool, store, settings.retry_after_s)
+        generation = GenerationService(pool, store, settings.retry_after_s, settings.include_roots)
         try:
             jobs = await open_jobs(settings)
         except BaseException:

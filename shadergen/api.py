@@ -183,10 +183,11 @@ class Generator:
 
     # -- documents ----------------------------------------------------------------------------
     def load(self, source: str | bytes | os.PathLike, *, base_dir: str | None = None,
-             allow_includes: bool = True, document_format: str = "mtlx") -> Document:
+             allow_includes: bool = True, document_format: str = "mtlx", include_roots=()) -> Document:
         """A path (os.PathLike) is read from disk, as USD when its suffix says so; str or bytes
         are the document itself (MaterialX XML, or a USD upload of `document_format` usda/usdz),
-        never a path, and XML may include other files only relative to an explicit `base_dir`."""
+        never a path, and XML may include other files only relative to an explicit `base_dir`,
+        or else only from `include_roots` (document.IncludeRoots: confined, as the service's)."""
         if isinstance(source, os.PathLike):
             path = os.fspath(source)
             if is_usd_path(path):
@@ -194,13 +195,14 @@ class Generator:
             return read_document(path, allow_includes=allow_includes)
         if document_format != "mtlx":
             return parse_usd(source, document_format, self.library)
-        return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None)
+        return parse_document(source, base_dir=base_dir, allow_includes=allow_includes and base_dir is not None,
+                              include_roots=include_roots)
 
     def prepare_all(self, source, *, target: str = "glsl", element: str | None = None, all: bool = True,
                     interface: str = "complete", keep=(), values: str = "listing", environment: str | None = None,
                     lights: bool = True, names: str = "structural", cms: str | None = None,
                     ocio_config: str | None = None, base_dir: str | None = None, allow_includes: bool = True,
-                    document_format: str = "mtlx") -> list["Prepared | ShaderGenError"]:
+                    document_format: str = "mtlx", include_roots=()) -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
         that stay live uniforms in the `specialized` interface. `values`: "listing" (uniforms initialised
@@ -230,7 +232,8 @@ class Generator:
             raise ShaderGenError("unsupported_interface", f"unknown interface '{interface}'; supported: "
                                  + ", ".join(INTERFACES), interface)
         doc = source if isinstance(source, Document) else self.load(
-            source, base_dir=base_dir, allow_includes=allow_includes, document_format=document_format)
+            source, base_dir=base_dir, allow_includes=allow_includes, document_format=document_format,
+            include_roots=include_roots)
         scope = Scope(self.library, doc.root)
         elems = renderable_elements(doc, scope)
         if element:

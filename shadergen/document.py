@@ -2,7 +2,8 @@
 
 Expat reads the XML and our Element tree is built in its callbacks (no ElementTree in between).
 The parser refuses DTDs (so no entity expansion and no external entities), resolves
-`xi:include` relative to the including file (or refuses it, for untrusted uploads), and
+`xi:include` relative to the including file (or, for untrusted uploads, refuses it or reads it
+only from the configured include roots, confined), and
 upgrades the older syntax that real documents still use (see upgrade.py).
 """
 import codecs
@@ -210,12 +211,49 @@ def _parse_text(text: str | bytes, where: str, source: str | None) -> Element:
     return builder.root
 
 
-def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tuple[str, ...]) -> None:
+class IncludeRoots:
+    """Where an upload's `xi:include` may read from: files under these folders only, each href
+    relative (to the root, or to the folder of the file that includes it) and confined to the
+    root it was found in, as a texture is confined to the texture roots. An included file's
+    relative `fileprefix` is made absolute: its textures are where its own folder says, whatever
+    folder the upload has (it has none)."""
+
+    def __init__(self, roots):
+        self.roots = [os.path.realpath(r) for r in roots]
+
+    def resolve(self, href: str, from_dir: str | None) -> str:
+        if os.path.isabs(href) or "://" in href or "\x00" in href or "\\" in href:
+            raise ShaderGenError("include_refused", f"xi:include of '{href}': only relative paths inside the "
+                                 "include roots may be included", href)
+        leaves = False
+        for root in (r for r in self.roots if from_dir is None or _inside(from_dir, r)):
+            named = os.path.join(from_dir or root, href)
+            real = os.path.realpath(named)
+            if _inside(real, root):
+                if os.path.isfile(real):
+                    return real
+            elif os.path.lexists(named) or not _inside(os.path.normpath(named), root):
+                leaves = True  # by its name, or through a link
+        if leaves:
+            raise ShaderGenError("include_refused", f"xi:include of '{href}' leaves the include roots", href)
+        raise ShaderGenError("invalid_document", f"cannot read included file '{href}': not in the include roots",
+                             href)
+
+
+def _inside(path: str, root: str) -> bool:
+    return path == root or path.startswith(root.rstrip(os.sep) + os.sep)
+
+
+def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tuple[str, ...],
+                     roots: IncludeRoots | None = None) -> None:
     for inc in [c for c in root.children if c.category == XINCLUDE]:
         href = inc.get("href", "")
-        if not allow or base_dir is None:
+        if allow and base_dir is not None:
+            path = os.path.normpath(os.path.join(base_dir, href))
+        elif roots is not None:
+            path = roots.resolve(href, base_dir)
+        else:
             raise ShaderGenError("include_refused", f"xi:include of '{href}' is not allowed here", href)
-        path = os.path.normpath(os.path.join(base_dir, href))
         if path in seen or len(seen) > MAX_INCLUDE_DEPTH:
             raise ShaderGenError("invalid_document", f"recursive xi:include of '{href}'", href)
         try:
@@ -224,7 +262,9 @@ def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tup
         except OSError as e:
             raise ShaderGenError("invalid_document", f"cannot read included file '{href}': {e.strerror}", href) from None
         included = _parse_text(text, path, path)
-        _expand_includes(included, os.path.dirname(path), allow, seen + (path,))
+        if roots is not None and not allow:
+            _absolute_fileprefix(included, os.path.dirname(path))
+        _expand_includes(included, os.path.dirname(path), allow, seen + (path,), roots)
         index = root.children.index(inc)
         root.remove_child(inc)
         for offset, child in enumerate(included.children):
@@ -234,16 +274,30 @@ def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tup
             root.add_child(child, index + offset)
 
 
+def _absolute_fileprefix(included: Element, folder: str) -> None:
+    """A relative fileprefix of a file included from the roots, made absolute from its folder
+    (on any of its elements: the root's is inherited, and so is a nodegraph's)."""
+    pending = [included]
+    while pending:
+        element = pending.pop()
+        prefix = element.get("fileprefix")
+        if prefix and not os.path.isabs(prefix) and "://" not in prefix:
+            element.attrs["fileprefix"] = os.path.join(os.path.normpath(os.path.join(folder, prefix)), "")
+        pending.extend(element.children)
+
+
 def parse_document(text: str | bytes, *, path: str | None = None, base_dir: str | None = None,
-                   allow_includes: bool = True) -> Document:
-    """Parse MaterialX XML text. `base_dir` resolves includes (defaults to the file's folder)."""
+                   allow_includes: bool = True, include_roots=()) -> Document:
+    """Parse MaterialX XML text. `base_dir` resolves includes (defaults to the file's folder);
+    an upload (no includes allowed) may still include files under `include_roots`, confined."""
     where = path or "<document>"
     root = _parse_text(text, where, path)
     if root.category != "materialx":
         raise ShaderGenError("invalid_document", f"root element is <{root.category}>, expected <materialx>", where)
     if base_dir is None and path:
         base_dir = os.path.dirname(os.path.abspath(path))
-    _expand_includes(root, base_dir, allow_includes, (os.path.abspath(path),) if path else ())
+    _expand_includes(root, base_dir, allow_includes, (os.path.abspath(path),) if path else (),
+                     IncludeRoots(include_roots) if include_roots else None)
     doc = Document(root=root, path=path, version=_version(root.get("version", "1.39")))
     upgrade(doc)
     return doc

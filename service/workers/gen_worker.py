@@ -33,6 +33,7 @@ class GenerateHandler:
         self.store = open_store(settings.cache, settings.cache_max_bytes)
         self.generator = Generator()
         self.topology_sharing = settings.topology_sharing
+        self.include_roots = settings.include_roots
 
     def __call__(self, message: dict, payload: bytes) -> tuple[dict, bytes]:
         if message["op"] == "nodedefs":
@@ -52,7 +53,7 @@ class GenerateHandler:
                 environment=message.get("environment"), lights=message.get("lights", True),
                 names=message.get("names", "structural"), cms=message.get("cms"),
                 ocio_config=message.get("ocio_config"), base_dir=None,
-                allow_includes=False, document_format=document_format,
+                allow_includes=False, include_roots=self.include_roots, document_format=document_format,
             )
             key = "rec:" + prepared.hash
             stored = self.store.get(key)

@@ -620,6 +620,15 @@ fn mx_fresnel_conductor_pol(cosTheta: f32, n: vec3f, k: vec3f, parallel: ptr<fun
     *parallel = *perpendicular * (u - w) / (u + w);
 }
 
+// The angle of (x, y), atan(y, x), with a zero y on the positive x axis read as 0 whatever its
+// sign: IEEE gives -0 for atan(-0, x > 0), but SwiftShader (headless Chromium's WebGL) gives pi,
+// which turns a dielectric base's phase (y is 0 or -0 there) by half a wave.
+fn mx_phase_angle(y: vec3f, x: vec3f) -> vec3f {
+    let angle: vec3f = atan2(y, x);
+    let onAxis: vec3f = select(angle, vec3f(0.0), x > vec3f(0.0));
+    return select(angle, onAxis, y == vec3f(0.0));
+}
+
 // Phase shifts on reflection at a conductor (Belcour & Barla 2017), per polarisation.
 fn mx_fresnel_conductor_phase(cosTheta: f32, eta1: f32, eta2: vec3f, kappa2: vec3f,
                               phiP: ptr<function, vec3f>, phiS: ptr<function, vec3f>) {
@@ -628,11 +637,14 @@ fn mx_fresnel_conductor_phase(cosTheta: f32, eta1: f32, eta2: vec3f, kappa2: vec
     let oneMinusK2: vec3f = vec3f(1.0) - k * k;
     let A: vec3f = eta2 * eta2 * oneMinusK2 - eta1 * eta1 * s2;
     let B: vec3f = sqrt(A * A + mx_sqr_vec3(2.0 * eta2 * eta2 * k));
-    let U: vec3f = sqrt((A + B) / 2.0);
-    let V: vec3f = max(vec3f(0.0), sqrt((B - A) / 2.0));
-    *phiS = atan2(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr_float(eta1 * cosTheta));
-    *phiP = atan2(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
-                  mx_sqr_vec3(eta2 * eta2 * (vec3f(1.0) + k * k) * cosTheta) - eta1 * eta1 * (U * U + V * V));
+    // B >= |A| exactly, but rounding can leave A + B or B - A a tiny negative: clamped before the
+    // square root, whose NaN a max() after it does not remove everywhere (SwiftShader keeps it)
+    let U: vec3f = sqrt(max((A + B) / 2.0, vec3f(0.0)));
+    let V: vec3f = sqrt(max((B - A) / 2.0, vec3f(0.0)));
+    *phiS = mx_phase_angle(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr_float(eta1 * cosTheta));
+    *phiP = mx_phase_angle(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
+                           mx_sqr_vec3(eta2 * eta2 * (vec3f(1.0) + k * k) * cosTheta) -
+                           eta1 * eta1 * (U * U + V * V));
 }
 
 fn mx_f0_to_ior(F0: vec3f) -> vec3f {

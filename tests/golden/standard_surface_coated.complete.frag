@@ -864,6 +864,16 @@ vec3 mx_fresnel_conductor(float cosTheta, vec3 n, vec3 k)
     return 0.5 * (par + perp);
 }
 
+// The angle of (x, y), atan(y, x), with a zero y on the positive x axis read as 0 whatever its
+// sign: IEEE gives -0 for atan(-0, x > 0), but SwiftShader (headless Chromium's WebGL) gives pi,
+// which turns a dielectric base's phase (y is 0 or -0 there) by half a wave.
+vec3 mx_phase_angle(vec3 y, vec3 x)
+{
+    vec3 angle = atan(y, x);
+    vec3 onAxis = mix(angle, vec3(0.0), greaterThan(x, vec3(0.0)));
+    return mix(angle, onAxis, equal(y, vec3(0.0)));
+}
+
 // Phase shifts on reflection at a conductor (Belcour & Barla 2017), per polarisation.
 void mx_fresnel_conductor_phase(float cosTheta, float eta1, vec3 eta2, vec3 kappa2, out vec3 phiP,
                                 out vec3 phiS)
@@ -873,11 +883,13 @@ void mx_fresnel_conductor_phase(float cosTheta, float eta1, vec3 eta2, vec3 kapp
     vec3 oneMinusK2 = vec3(1.0) - k * k;
     vec3 A = eta2 * eta2 * oneMinusK2 - eta1 * eta1 * s2;
     vec3 B = sqrt(A * A + mx_sqr(2.0 * eta2 * eta2 * k));
-    vec3 U = sqrt((A + B) / 2.0);
-    vec3 V = max(vec3(0.0), sqrt((B - A) / 2.0));
-    phiS = atan(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr(eta1 * cosTheta));
-    phiP = atan(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
-                mx_sqr(eta2 * eta2 * (vec3(1.0) + k * k) * cosTheta) - eta1 * eta1 * (U * U + V * V));
+    // B >= |A| exactly, but rounding can leave A + B or B - A a tiny negative: clamped before the
+    // square root, whose NaN a max() after it does not remove everywhere (SwiftShader keeps it)
+    vec3 U = sqrt(max((A + B) / 2.0, vec3(0.0)));
+    vec3 V = sqrt(max((B - A) / 2.0, vec3(0.0)));
+    phiS = mx_phase_angle(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr(eta1 * cosTheta));
+    phiP = mx_phase_angle(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
+                          mx_sqr(eta2 * eta2 * (vec3(1.0) + k * k) * cosTheta) - eta1 * eta1 * (U * U + V * V));
 }
 
 vec3 mx_f0_to_ior(vec3 F0)

@@ -930,6 +930,16 @@ float3 mx_fresnel_conductor(float cosTheta, float3 n, float3 k)
     return 0.5 * (par + perp);
 }
 
+// The angle of (x, y), atan(y, x), with a zero y on the positive x axis read as 0 whatever its
+// sign: IEEE gives -0 for atan(-0, x > 0), but SwiftShader (headless Chromium's WebGL) gives pi,
+// which turns a dielectric base's phase (y is 0 or -0 there) by half a wave.
+float3 mx_phase_angle(float3 y, float3 x)
+{
+    float3 angle = atan2(y, x);
+    float3 onAxis = x > (float3)0.0 ? (float3)0.0 : angle;
+    return y == (float3)0.0 ? onAxis : angle;
+}
+
 // Phase shifts on reflection at a conductor (Belcour & Barla 2017), per polarisation.
 void mx_fresnel_conductor_phase(float cosTheta, float eta1, float3 eta2, float3 kappa2, out float3 phiP,
                                 out float3 phiS)
@@ -939,11 +949,14 @@ void mx_fresnel_conductor_phase(float cosTheta, float eta1, float3 eta2, float3 
     float3 oneMinusK2 = (float3)1.0 - k * k;
     float3 A = eta2 * eta2 * oneMinusK2 - eta1 * eta1 * s2;
     float3 B = sqrt(A * A + mx_sqr(2.0 * eta2 * eta2 * k));
-    float3 U = sqrt((A + B) / 2.0);
-    float3 V = max((float3)0.0, sqrt((B - A) / 2.0));
-    phiS = atan2(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr(eta1 * cosTheta));
-    phiP = atan2(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
-                 mx_sqr(eta2 * eta2 * ((float3)1.0 + k * k) * cosTheta) - eta1 * eta1 * (U * U + V * V));
+    // B >= |A| exactly, but rounding can leave A + B or B - A a tiny negative: clamped before the
+    // square root, whose NaN a max() after it does not remove everywhere (SwiftShader keeps it)
+    float3 U = sqrt(max((A + B) / 2.0, (float3)0.0));
+    float3 V = sqrt(max((B - A) / 2.0, (float3)0.0));
+    phiS = mx_phase_angle(2.0 * eta1 * V * cosTheta, U * U + V * V - mx_sqr(eta1 * cosTheta));
+    phiP = mx_phase_angle(2.0 * eta1 * eta2 * eta2 * cosTheta * (2.0 * k * U - oneMinusK2 * V),
+                          mx_sqr(eta2 * eta2 * ((float3)1.0 + k * k) * cosTheta) -
+                          eta1 * eta1 * (U * U + V * V));
 }
 
 float3 mx_f0_to_ior(float3 F0)

@@ -128,3 +128,14 @@ def thumbnail_pixels(server, document: str, tmp_path: Path, **options) -> np.nda
     path = tmp_path / f"thumbnail-{time.monotonic_ns()}.png"
     path.write_bytes(response.content)
     return oiio.ImageBuf(str(path)).get_pixels(oiio.FLOAT)[..., :3]
+
+
+def exr(folder: Path, width: int, height: int, rgb: tuple[float, float, float]) -> bytes:
+    """An OpenEXR file of one colour (half RGB), written by OpenImageIO."""
+    import OpenImageIO as oiio
+
+    buf = oiio.ImageBuf(oiio.ImageSpec(width, height, 3, oiio.FLOAT))
+    oiio.ImageBufAlgo.fill(buf, list(rgb))
+    path = folder / f"made-{time.monotonic_ns()}.exr"
+    assert buf.write(str(path), "half"), buf.geterror()
+    return path.read_bytes()

@@ -88,6 +88,8 @@ class Server:
             **os.environ,
             "SHADERGEN_CACHE": f"sqlite:///{self.cache_path}",
             "SHADERGEN_TEXTURE_ROOTS": str(DOCS),
+            # uploads may include the documents under included/ (and nothing else)
+            "SHADERGEN_INCLUDE_ROOTS": str(DOCS / "included"),
             # every test client is one address that sends bad input on purpose, by the hundred: the
             # failure ledger (service/fairness.py) is off unless a test turns it on
             "SHADERGEN_CLIENT_FAILURE_BURST": "0",

@@ -1,13 +1,13 @@
 """Issue 27, item 3, in a real browser (editor_testing.py): the preview's scene chosen on the
 page, with no request: the mesh (sphere, plane, cube, a dropped .obj), the environment (the
-thumbnails' sky or a dropped .hdr, its irradiance computed in the page), its intensity and
-rotation, and the turntable."""
+thumbnails' sky or a dropped .hdr, or a dropped .exr decoded by the service, its irradiance
+computed in the page), its intensity and rotation, and the turntable."""
 import struct
 
 import numpy as np
 from selenium.webdriver.support.select import Select
 
-from editor_testing import browser, canvas_pixels, console_problems, drop_files, editor, js, poll_js, psnr, \
+from editor_testing import browser, canvas_pixels, console_problems, drop_files, editor, exr, js, poll_js, psnr, \
     screenshot, wait_for_draw  # noqa: F401 (fixtures)
 from service_testing import wait_until
 
@@ -96,5 +96,23 @@ def test_the_environment_intensity_rotation_and_turntable(editor, tmp_path):
     screenshot(editor, "editor-environment.png", tmp_path)
     back = changed(editor, tmp_path, sky, lambda: Select(editor.find_element("id", "environment")).select_by_value("sky"))
     assert psnr(back, sky) > 50
+    assert js(editor, "window.shaderxEditor.traffic.generate") == sent
+    assert console_problems(editor) == []
+
+
+def test_a_dropped_exr_environment_lights_the_object_as_the_same_hdr_does(editor, tmp_path):
+    """red.exr holds exactly what red.hdr decodes to (RGBE keeps 8 bits: 0.1 reads 0.09375), so
+    the two environments draw one picture; the .exr went through the service's decoder, the
+    document was not generated again."""
+    sent = js(editor, "window.shaderxEditor.traffic.generate")
+    sky = canvas_pixels(editor, tmp_path)
+    red = changed(editor, tmp_path, sky, lambda: drop_files(editor, [("red.exr", exr(tmp_path, 64, 32, (1.0, 0.09375, 0.09375)))]))
+    assert Select(editor.find_element("id", "environment")).first_selected_option.text == "red.exr"
+    colour = centre(red)
+    assert colour[0] > 2 * colour[1] and colour[0] > 2 * colour[2], colour
+    assert psnr(red, sky) < 25
+    screenshot(editor, "editor-exr-environment.png", tmp_path)
+    from_hdr = changed(editor, tmp_path, red, lambda: drop_files(editor, [("red.hdr", hdr(64, 32, (1.0, 0.1, 0.1)))]))
+    assert psnr(from_hdr, red) > 50
     assert js(editor, "window.shaderxEditor.traffic.generate") == sent
     assert console_problems(editor) == []

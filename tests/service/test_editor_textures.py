@@ -1,6 +1,6 @@
 """Issue 27, item 2, in a real browser (editor_testing.py): the preview binds the textures a
 document names, from the service's texture roots or from what is dropped on the page (images,
-a .zip with folders, a .usdz), with the sampling its image node gives; a file it cannot have is
+an .exr the service decodes, a .zip with folders, a .usdz), with the sampling its image node gives; a file it cannot have is
 drawn in the node's default colour with the reason listed, as a thumbnail draws it."""
 import io
 import zipfile
@@ -8,7 +8,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from editor_testing import browser, canvas_pixels, console_problems, drop_files, editor, js, poll_js, psnr, \
+from editor_testing import browser, canvas_pixels, console_problems, drop_files, editor, exr, js, poll_js, psnr, \
     screenshot, set_document, thumbnail_pixels, wait_for_draw  # noqa: F401 (fixtures)
 from hostile_packages import LAYER, png, textured_layer, usdz
 from service_testing import wait_until
@@ -104,6 +104,28 @@ def test_a_file_outside_the_roots_draws_its_default_until_a_dropped_image_resolv
     assert_is(centre_colour(editor, tmp_path), RED)
     assert js(editor, "window.shaderxEditor.traffic.generate") == requests  # a drop of images asks nothing
     screenshot(editor, "editor-dropped-texture.png", tmp_path)
+
+
+def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as_a_texture(editor, tmp_path):
+    runs = js(editor, "window.shaderxEditor.runs")
+    set_document(editor, material("maps/green.exr", default="0, 0, 1"))
+    shown(editor, runs)
+    [listed] = textures_listed(editor).values()
+    assert listed.startswith("missing: maps/green.exr: default colour") and "not_found" in listed
+    assert_is(centre_colour(editor, tmp_path), BLUE)
+    # the refusal is the only console line: the browser's note of the 404 itself
+    problems = console_problems(editor)
+    assert len(problems) == 1 and "/v1/textures" in problems[0]["message"] and "404" in problems[0]["message"]
+    requests, draws = js(editor, "window.shaderxEditor.traffic.generate"), js(editor, "window.shaderxEditor.preview.stats.draws")
+    drop_files(editor, [("green.exr", exr(tmp_path, 8, 8, tuple(c / 255 for c in GREEN)))])
+    wait_for_draw(editor, draws)
+    wait_until(lambda: "loaded" in "".join(textures_listed(editor).values()), 60, "the dropped .exr listed")
+    assert list(textures_listed(editor).values()) == ["loaded: maps/green.exr (dropped)"]
+    assert_is(centre_colour(editor, tmp_path), GREEN)
+    # a texture, not an environment: the menu did not change, and the document was not sent again
+    assert [o.text for o in editor.find_elements("css selector", "#environment option")] == ["sky"]
+    assert js(editor, "window.shaderxEditor.traffic.generate") == requests
+    assert console_problems(editor) == []
 
 
 def test_a_dropped_zip_opens_its_document_and_its_folders_resolve_the_references(editor, tmp_path):

@@ -40,6 +40,17 @@ export async function textureFile(name) {
   return { blob: await response.blob() };
 }
 
+// An image file the browser cannot decode (EXR, TIFF, TGA) decoded by the service, nothing stored:
+// { width, height, channels, data: Float32Array } or the error object.
+export async function decodedImage(blob, name) {
+  const init = { method: "POST", headers: { "content-type": "application/octet-stream" }, body: blob };
+  const response = await request(`v1/images/decode?name=${encodeURIComponent(name)}`, init);
+  if (!response.ok) return answer(response);
+  const size = (header) => Number(response.headers.get(header));
+  return { width: size("X-Image-Width"), height: size("X-Image-Height"), channels: size("X-Image-Channels"),
+           data: new Float32Array(await response.arrayBuffer()) };
+}
+
 export async function exampleDocument(name) {
   const response = await request(`examples/${encodeURIComponent(name)}`, {}, "");
   if (!response.ok) throw new Error(`example ${name}: HTTP ${response.status}`);

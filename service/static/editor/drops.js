@@ -7,11 +7,14 @@ import { droppedEntries } from "./files.js";
 import { SCENE_FILE } from "./scene.js";
 
 const DOCUMENT = /\.(mtlx|xml)$/i;
+const MESH = /\.obj$/i;
 const USD = [[/\.usdz$/i, "model/vnd.usdz+zip"], [/\.usda$/i, "model/vnd.usda"]];
 
 // `open({ text, name } | { usd: { blob, media, name } })` for a document; `sceneFiles(entries)` for
-// meshes and environments (scene.js); `texturesChanged()` otherwise.
-export function acceptDrops(target, files, { open, sceneFiles, texturesChanged, failed }) {
+// meshes and environments (scene.js); `texturesChanged()` otherwise. A dropped .hdr or .exr is an
+// environment unless the drop holds a document or `isTexture(path)` says the open document names
+// it: then it is a texture like any other image.
+export function acceptDrops(target, files, { open, sceneFiles, texturesChanged, failed, isTexture = () => false }) {
   target.addEventListener("dragover", (event) => {
     event.preventDefault();
     event.dataTransfer.dropEffect = "copy";
@@ -20,9 +23,12 @@ export function acceptDrops(target, files, { open, sceneFiles, texturesChanged, 
     event.preventDefault();
     try {
       const everything = await droppedEntries(event.dataTransfer);
-      const scene = everything.filter((entry) => SCENE_FILE.test(entry.path));
+      const withDocument = everything.some((entry) => DOCUMENT.test(entry.path) || USD.some(([pattern]) => pattern.test(entry.path)));
+      const isScene = (entry) => MESH.test(entry.path)
+        || (SCENE_FILE.test(entry.path) && !withDocument && !isTexture(entry.path));
+      const scene = everything.filter(isScene);
       if (scene.length) await sceneFiles(scene);
-      const dropped = everything.filter((entry) => !SCENE_FILE.test(entry.path));
+      const dropped = everything.filter((entry) => !isScene(entry));
       if (!dropped.length) return;
       const added = await files.add(dropped);
       const document = added.find((entry) => DOCUMENT.test(entry.path));

@@ -1,14 +1,32 @@
-// Image files decoded in the browser, values untouched: what the browser decodes itself (PNG,
-// JPEG, GIF, BMP, WebP) as an ImageBitmap with no colour conversion, Radiance .hdr as float RGB.
+// Image files decoded for the preview, values untouched: what the browser decodes itself (PNG,
+// JPEG, GIF, BMP, WebP) as an ImageBitmap with no colour conversion, Radiance .hdr as float RGB
+// here, and OpenEXR, TIFF and Targa as float pixels by the service (OpenImageIO, as the
+// thumbnails read them).
 
+import { decodedImage } from "./api.js";
 import { decodeHdr } from "./hdr.js";
+
+const SERVICE_DECODED = /\.(exr|tiff?|tga)$/i;
 
 export async function decodeImage(blob, name) {
   if (/\.hdr$/i.test(name)) return decodeHdr(await blob.arrayBuffer(), name);
-  if (/\.(exr|tiff?|tga)$/i.test(name)) throw new Error(`${name}: this format is not decoded in the browser`);
+  if (SERVICE_DECODED.test(name)) return decodedByService(blob, name);
   try {
     return { bitmap: await createImageBitmap(blob, { colorSpaceConversion: "none", premultiplyAlpha: "none" }) };
   } catch {
     throw new Error(`${name} is not an image the browser can decode`);
   }
+}
+
+// A float image, decoded by the service ({ width, height, channels, data }); an error names the file.
+export async function decodeFloatImage(blob, name) {
+  if (/\.hdr$/i.test(name)) return decodeHdr(await blob.arrayBuffer(), name);
+  return decodedByService(blob, name);
+}
+
+async function decodedByService(blob, name) {
+  const base = name.split("/").pop();
+  const image = await decodedImage(blob, base);
+  if (image.error) throw new Error(`${name}: ${image.error.code}: ${image.error.message}`);
+  return image;
 }

@@ -9,12 +9,13 @@ import { materials, parseDocument } from "./documents.js";
 import { acceptDrops } from "./drops.js";
 import { Edits } from "./edits.js";
 import { installExports } from "./exports.js";
-import { DroppedFiles } from "./files.js";
+import { DroppedFiles, normalize } from "./files.js";
 import { GraphEditor } from "./grapheditor.js";
 import { Library } from "./library.js";
 import { Preview } from "./preview.js";
 import { installScene } from "./scene.js";
 import { documentFromFragment } from "./share.js";
+import { textureRequests } from "./textures.js";
 
 const $ = (id) => document.getElementById(id);
 const page = {
@@ -76,6 +77,8 @@ async function start() {
       showTextures();
     },
     failed: report("invalid_drop"),
+    isTexture: (path) => state.record !== null && textureRequests(state.record)
+      .some((request) => normalize(request.file).split("/").pop() === normalize(path).split("/").pop()),
   });
   $("generate").addEventListener("click", () => run());
   page.material.addEventListener("change", () => run());
