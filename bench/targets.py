@@ -190,11 +190,12 @@ def main() -> int:
                                 for doc in docs} if target == "msl" else {}
                 rows[target, interface, corpus, "ours"] = check(records, target, errors, counterparts, reasons, "ours")
                 if interface == "complete" and target in REFERENCE_TARGETS and not args.no_reference:
-                    theirs = reference(docs, target)
                     rows[target, interface, corpus, "ref"] = check(
-                        theirs, target, reference_msl_errors if target == "msl" else errors, {}, reasons, "ref")
-                print(f"  {target} {interface} {corpus}: {rows[target, interface, corpus, 'ours'].figures()} "
-                      f"({time.perf_counter() - started:.0f} s)", file=sys.stderr, flush=True)
+                        reference(docs, target), target, reference_msl_errors if target == "msl" else errors, {}, reasons, "ref")
+                theirs = rows.get((target, interface, corpus, "ref"))
+                print(f"  {target} {interface} {corpus}: {rows[target, interface, corpus, 'ours'].figures()}"
+                      f"{f' (ref {theirs.figures()})' if theirs else ''} ({time.perf_counter() - started:.0f} s)",
+                      file=sys.stderr, flush=True)
     images = {}
     if not args.no_images:
         examples = [str(d) for d in corpora["Examples"]]
