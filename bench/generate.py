@@ -12,10 +12,15 @@ reference alternating, best of three.
 Prints a table of medians and ratios (ours / reference).
 With `--baseline TREE` the other side is not the reference but our own generator from another
 source tree (a checkout of main before a change): the same documents, the same interleaving.
+With `--targets glsl,essl,...` (issue 24) the other side is our GLSL: in this one process, per
+element, each target's prepare + emit (the whole record: vulkan's includes its SPIR-V, compiled by
+glslangValidator) in an order that turns each round; an element's time per target is its best
+round; medians per target and the median per-element ratio to GLSL.
 
   .venv/bin/python bench/generate.py ../shared/corpus --filter TestSuite/stdlib [--cold-docs 10] [--repeat 3]
   .venv/bin/python bench/generate.py ../shared/corpus --filter Examples
   .venv/bin/python bench/generate.py ../shared/corpus --filter Examples --baseline /tmp/main-checkout
+  .venv/bin/python bench/generate.py ../shared/corpus --filter Examples --targets glsl,essl,wgsl,vulkan,hlsl,slang,msl
 """
 import argparse
 import json
@@ -165,6 +170,51 @@ def cold(docs: list[str], count: int, baseline: str | None) -> list[tuple[float,
     return out
 
 
+def per_target(docs: list[str], targets: list[str], repeat: int) -> dict[str, dict[tuple[str, str], float]]:
+    """target -> (document, element) -> best ms of prepare + emit, every target of an element
+    measured in the same round, each round in another order."""
+    from pathlib import Path
+
+    from shadergen.api import Generator
+    from shadergen.errors import ShaderGenError
+
+    gen = Generator()
+    best: dict[str, dict[tuple[str, str], float]] = {t: {} for t in targets}
+    for path in docs:
+        try:
+            doc = gen.load(Path(path))  # parsed once, untimed, as in the warm measurement
+        except ShaderGenError:
+            continue
+        elements = [p.element for p in gen.prepare_all(doc) if not isinstance(p, Exception)]
+        for round_ in range(repeat):
+            for i, element in enumerate(elements):
+                shift = (round_ + i) % len(targets)
+                for target in targets[shift:] + targets[:shift]:
+                    t0 = time.perf_counter()
+                    try:
+                        gen.prepare(doc, element=element, target=target).emit()
+                    except ShaderGenError:
+                        continue
+                    ms = (time.perf_counter() - t0) * 1e3
+                    key = (path, element)
+                    best[target][key] = min(ms, best[target].get(key, ms))
+    return best
+
+
+def report_targets(filter_: str, best: dict[str, dict[tuple[str, str], float]]) -> None:
+    glsl = best["glsl"]
+    print(f"{'target':<8}{'elements':>10}{'median ms':>11}{'/ glsl (median per element)':>29}")
+    groups = []
+    for target, times in best.items():
+        ratios = [ms / glsl[key] for key, ms in times.items() if key in glsl]
+        ratio = statistics.median(ratios) if ratios else float("nan")
+        print(f"{target:<8}{len(times):>10}{statistics.median(times.values()) if times else float('nan'):>11.2f}"
+              f"{ratio:>29.2f}")
+        if target != "glsl":
+            groups.append(f"{target} {ratio:.2f}x")
+    print(f"generate targets: {filter_} against glsl (n={len(glsl)}) | " + " | ".join(groups))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("corpus")
@@ -172,10 +222,15 @@ def main():
     ap.add_argument("--cold-docs", type=int, default=10)
     ap.add_argument("--repeat", type=int, default=3, help="warm rounds over the documents")
     ap.add_argument("--baseline", help="a source tree of ours to measure against instead of the reference")
+    ap.add_argument("--targets", help="our targets against our glsl instead (comma-separated, glsl among them)")
     a = ap.parse_args()
     other = "baseline" if a.baseline else "reference"
     docs = sorted(os.path.abspath(os.path.join(d, f)) for d, _, fs in os.walk(a.corpus) for f in fs
                   if f.endswith(".mtlx") and a.filter in os.path.join(d, f))
+    if a.targets:
+        targets = a.targets.split(",")
+        report_targets(a.filter, per_target(docs, targets if "glsl" in targets else ["glsl", *targets], a.repeat))
+        return
     pairs, skipped = warm(docs, a.repeat, a.baseline)
     for path, why in skipped.items():
         print(f"skipped (the {other} cannot load it): {os.path.relpath(path, a.corpus)}: {why}")

@@ -1,5 +1,6 @@
-"""Our WGSL (or, with --target vulkan, our Vulkan GLSL's SPIR-V; with --target essl, our ESSL on GL)
-drawn by WebGPU against our GLSL drawn by GL, same scene (issues 12, 24): every renderable element
+"""Our WGSL (or, with --target vulkan, our Vulkan GLSL's SPIR-V; with --target slang, the SPIR-V
+slangpy's Slang compiler writes from our Slang, bench/slang_spirv.py; with --target essl, our ESSL
+on GL) drawn by WebGPU against our GLSL drawn by GL, same scene (issues 12, 24): every renderable element
 of the documents given (default: the Examples materials of the corpus), generated for the target
 and for glsl with the same interface, drawn by WgpuRenderer (wgpu on Vulkan: lavapipe without a
 GPU) and by Renderer (moderngl on EGL: llvmpipe) on the same sphere, procedural sky, textures and
@@ -7,7 +8,7 @@ optional light rig. PSNR over the linear RGBA framebuffers (peak 1.0), as bench/
 Prints a row per element, then the minimum, the median and the worst five, and the share >= 40 dB.
 bench/targets.py calls compare_images for its image column.
 
-    .venv/bin/python bench/wgsl_images.py [DOC.mtlx ...] [--target wgsl|vulkan|essl] [--corpus ../shared/corpus]
+    .venv/bin/python bench/wgsl_images.py [DOC.mtlx ...] [--target wgsl|vulkan|slang|essl] [--corpus ../shared/corpus]
         [--size 128] [--interface specialized] [--lights rig.mtlx] [--save DIR]
 """
 import argparse
@@ -26,14 +27,18 @@ from accuracy import fmt_db, psnr  # noqa: E402 - the same PSNR as the other acc
 from shadergen.api import generate_file  # noqa: E402
 from shadergen.render import Renderer, RenderError  # noqa: E402
 from shadergen.render.wgpu_renderer import WGPU_TARGETS, WgpuRenderer  # noqa: E402
+from slang_spirv import drawable  # noqa: E402
 
 PASS_DB = 40.0
 EXAMPLES = "resources/Materials/Examples/StandardSurface/*.mtlx"
 
 
+DRAWN = (*WGPU_TARGETS, "slang", "essl")
+
+
 def renderer_for(target: str, roots: list[str]):
-    """GL draws GLSL and ESSL; WebGPU draws WGSL and Vulkan's SPIR-V."""
-    if target in WGPU_TARGETS:
+    """GL draws GLSL and ESSL; WebGPU draws WGSL and SPIR-V (Vulkan's, Slang's)."""
+    if target in WGPU_TARGETS or target == "slang":
         return WgpuRenderer(search_paths=roots, confined=False)
     return Renderer(search_paths=roots, confined=False)
 
@@ -49,7 +54,7 @@ def compare_images(documents, target: str, roots: list[str], size: int = 128, in
     rows = []
     for document in documents:
         records = {t: {r.get("element"): r for r in generate_file(document, target=t, all=True, interface=interface)}
-                   for t in (target, "glsl")}
+                   for t in (target, "glsl", *(["vulkan"] if target == "slang" else []))}
         for element, theirs in records[target].items():
             name = os.path.basename(document)
             glsl = records["glsl"].get(element)
@@ -59,10 +64,17 @@ def compare_images(documents, target: str, roots: list[str], size: int = 128, in
                 rows.append({"document": name, "element": element, "psnr": float("nan"), "error": failed})
                 show(f"{name:<44} {str(element):<28} {'error':>8}  {failed[:80]}")
                 continue
+            if target == "slang":  # drawn as our Vulkan record of the element with Slang's SPIR-V
+                try:
+                    theirs = drawable(theirs, records["vulkan"][element])
+                except ValueError as exc:
+                    rows.append({"document": name, "element": element, "psnr": float("nan"), "error": str(exc)})
+                    show(f"{name:<44} {str(element):<28} {'error':>8}  {str(exc)[:200]}")
+                    continue
             images, compile_s, first_s = {}, {}, {}
             for drawn, record in (("ours", theirs), ("glsl", glsl)):
                 try:
-                    result = renderers[record["target"]].render(record, size=size, lights=lights)
+                    result = renderers[target if drawn == "ours" else "glsl"].render(record, size=size, lights=lights)
                 except RenderError as exc:
                     images = None
                     rows.append({"document": name, "element": element, "psnr": float("nan"), "error": exc.message})
@@ -90,8 +102,8 @@ def main() -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("documents", nargs="*")
     p.add_argument("--corpus", default=os.path.join(os.path.dirname(os.path.dirname(HERE)), "shared", "corpus"))
-    p.add_argument("--target", choices=(*WGPU_TARGETS, "essl"), default="wgsl",
-                   help="the target drawn against glsl (wgsl and vulkan by WebGPU, essl by GL)")
+    p.add_argument("--target", choices=DRAWN, default="wgsl",
+                   help="the target drawn against glsl (wgsl, vulkan and slang by WebGPU, essl by GL)")
     p.add_argument("--size", type=int, default=128)
     p.add_argument("--interface", default="specialized")
     p.add_argument("--lights", help="a light rig both renderers use")

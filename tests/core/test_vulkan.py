@@ -104,3 +104,17 @@ def test_without_glslang_a_vulkan_record_is_an_error_record(gen, glslang, monkey
     [record] = gen.records(DOCUMENTS["marble_checker"].read_text(), target="vulkan")
     assert record["error"]["code"] == "missing_tool"
     assert "glslangValidator" in record["error"]["message"] and record["error"]["where"] == "vulkan"
+
+
+def test_constant_tables_are_indexed_in_place_not_copied_at_each_index(gen, glslang, tmp_path):
+    """glslang copies a `const` array into a function-local variable at every run-time index (SPIR-V
+    cannot index a value): 12 copies of the albedo tables, and lavapipe took over 14 minutes to build
+    the lit standard_surface's pipeline. Printed as module-scope variables, they are Private
+    variables indexed in place (targets/vulkan/printer.py)."""
+    from required_tools import tool_path
+    record = gen.prepare(DOCUMENTS["standard_surface_coated"], target="vulkan", interface="specialized").emit()
+    path = tmp_path / "pixel.spv"
+    path.write_bytes(base64.b64decode(record["spirv"]["pixel"]))
+    text = subprocess.run([tool_path("spirv-dis"), str(path)], capture_output=True, text=True, check=True).stdout
+    assert "OpVariable %_ptr_Private__arr_float_uint_1024 Private" in text  # the largest table
+    assert re.findall(r"OpVariable %_ptr_Function__arr_float_uint_\d+ Function", text) == []

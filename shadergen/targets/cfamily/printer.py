@@ -344,7 +344,9 @@ class CFamilyPrinter(GlslPrinter):
         if cls is ir.Constant and item.type is not None:
             lines = comment_lines(item.comment) if item.comment else []
             ir_type = self.sized(item.type, item.value)
-            head = f"{self.syntax.constant} " + self.declarator(ir_type, self.safe(item.name)) + " = "
+            keyword = self.syntax.constant_array if is_array(ir_type) and self.syntax.constant_array else \
+                self.syntax.constant
+            head = f"{keyword} " + self.declarator(ir_type, self.safe(item.name)) + " = "
             lines.extend((head + self.render(item.value, len(head), 0) + ";").split("\n"))
             return lines
         return super().item(item)

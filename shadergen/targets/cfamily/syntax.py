@@ -31,6 +31,11 @@ class Syntax:
     constant: str  # a module-scope constant's keyword
     mutable_global: str  # a module-scope variable's keyword ("": MSL has none, a member of the stage's struct)
     texture_calls: dict = field(default_factory=dict)  # GLSL texture built-in -> method format
+    # a module-scope constant array's keyword, where not `constant`'s: Slang's SPIR-V copies a
+    # `static const` array into a function-local variable at every run-time index (SPIR-V cannot
+    # index a value; 128 copies of the 256-1024-float albedo tables in a lit standard_surface, which
+    # lavapipe did not compile in 10 minutes), and indexes a `static` one (a Private variable) in place
+    constant_array: str | None = None
 
 
 HLSL_RENAMED = {"mix": "lerp", "fract": "frac", "inversesqrt": "rsqrt", "dFdx": "ddx", "dFdy": "ddy",
@@ -61,6 +66,6 @@ MSL_TEXTURES = {
 HLSL = Syntax("HLSL", HLSL_RENAMED, "Texture2D", "SamplerState", True, "cast", "helper", "ternary", False,
               "{qualifier} {type} {name}", "static const", "static", HLSL_TEXTURES)
 SLANG = Syntax("Slang", HLSL_RENAMED, "Texture2D", "SamplerState", True, "constructor", "constructor", "select", False,
-               "{qualifier} {type} {name}", "static const", "static", HLSL_TEXTURES)
+               "{qualifier} {type} {name}", "static const", "static", HLSL_TEXTURES, constant_array="static")
 MSL = Syntax("MSL", MSL_RENAMED, "texture2d<float>", "sampler", False, "constructor", "braces", "select_msl", True,
              "thread {type}& {name}", "constant", "", MSL_TEXTURES)

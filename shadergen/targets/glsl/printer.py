@@ -359,7 +359,7 @@ class GlslPrinter:
         elif cls is ir.Constant and item.type is None:  # a #define the checker has not typed
             lines.append(f"#define {item.name} {self.render(item.value, None, 0)}")
         elif cls is ir.Constant:
-            head = "const " + self.declarator(item.type, item.name) + " = "
+            head = self.constant_qualifier(item) + self.declarator(item.type, item.name) + " = "
             lines.extend((head + self.render(item.value, len(head), 0) + ";").split("\n"))
         elif cls is ir.Global:
             if item.kind != "builtin":  # the target's own variable: nothing to declare
@@ -371,6 +371,10 @@ class GlslPrinter:
         else:
             raise unsupported(f"a {cls.__name__} item", item)
         return lines
+
+    def constant_qualifier(self, item: ir.Constant) -> str:
+        """What a module-scope constant is declared with (a target may declare some otherwise)."""
+        return "const "
 
     def signature(self, f: ir.Function) -> str:
         head = f"{f.returns} {f.name}("

@@ -13,13 +13,20 @@ which spirv-val refuses. In a texture call's arguments a selection is therefore 
 4.50's selecting `mix(if_false, if_true, condition)` (an OpSelect); the library's texture
 coordinates have no side effects, so evaluating both sides changes nothing.
 
+A constant array (the libraries' albedo and DFG tables, 256 to 1024 floats) is declared as a
+module-scope variable with its values, not `const`: glslang writes a `const` array as a SPIR-V
+constant, and since SPIR-V cannot index a value, it copies the whole table into a function-local
+variable at every run-time index (12 copies in a lit standard_surface), which lavapipe took over
+14 minutes to compile. A variable (SPIR-V's Private storage, as WGSL's `var<private>`,
+wgsl/printer.py) is indexed in place.
+
 A section on GL_ES takes its ESSL side, as WGSL's printer does: naga has no OpImageQueryLod
 (`textureQueryLod`), so the level of detail comes from the derivatives there too. Every other
 section stays a preprocessor section.
 """
 from ...code import ir
 from ...code.passes.rewrite import rebuild_list
-from ...code.types import is_matrix, scalar_of, size_of
+from ...code.types import is_array, is_matrix, scalar_of, size_of
 from ..glsl.printer import GlslPrinter, unsupported
 
 TEXTURE = "sampler2D"
@@ -53,6 +60,9 @@ class VulkanPrinter(GlslPrinter):
             else:
                 args.append(a)
         return args
+
+    def constant_qualifier(self, item: ir.Constant) -> str:
+        return "" if is_array(item.type) else "const "
 
     def section(self, s: ir.Section, body_lines, lines: list[str]) -> None:
         if s.macro != "GL_ES":
