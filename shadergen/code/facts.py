@@ -103,7 +103,7 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     writes_outside = False
     stack = list(nodes)
     pop, push, extend = stack.pop, stack.append, stack.extend
-    Name, Literal, Node = ir.Name, ir.Literal, ir.Node
+    Name, Literal, Construct, Node = ir.Name, ir.Literal, ir.Construct, ir.Node
     while stack:
         n = pop()
         cls = n.__class__
@@ -124,6 +124,8 @@ def _read(nodes, function: ir.Function | None) -> Facts:
             if type_name is not None:
                 mentioned[type_name] = None
             continue
+        if cls is Construct and n.exact and n.type in BUILTIN_TYPES:
+            continue  # a value's vector or matrix (code/values.py): numbers of built-in types, no fact
         for field in cls.CHILDREN:
             value = getattr(n, field)
             if isinstance(value, Node):
