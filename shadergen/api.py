@@ -69,8 +69,11 @@ def collection_deferred(method):
     it would have): preparing and emitting an element build thousands of containers (graph nodes
     and their ports, IR nodes) that stay alive until its record is written, and the collector's
     default threshold rescanned them every 700 allocations, a fifth of a warm request's time (the
-    commit that added this has the figures). Nothing is frozen, so a request's cyclic garbage (the
-    graph) is still collected, once, after it."""
+    commit that added this has the figures). Nothing is frozen and no collection is forced: the
+    collector's own schedule resumes at the first allocation after it (the caller's), so a
+    request's cyclic garbage (the graph) is still collected, and older generations when they are
+    due (a forced young collection here would put off the older ones indefinitely in a loop of
+    requests)."""
     @functools.wraps(method)
     def deferred(*args, **kwargs):
         enabled = gc.isenabled()
