@@ -41,9 +41,6 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
 
-    def value(port):
-        return None if port.public else port.value
-
     digests: dict[int, list] = {}  # id(element) -> its digest: thousands of uses share one local definition
 
     def local_key(e: Element) -> list:
@@ -61,21 +58,26 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
 
     def meta(port) -> dict:
         m = port.meta
-        if document_names or not any(k in m for k in LISTING_ONLY):  # most metadata has none of them
+        if not m or document_names or m.keys().isdisjoint(LISTING_ONLY):  # most metadata has none of them
             return m
         return {k: v for k, v in m.items() if k not in LISTING_ONLY}
 
     uniforms = [[p.name, p.type, meta(p)] for p in graph.interface]
     nodes = []
+    get_public = public.get
     for n in graph.nodes:
         inputs = []
         for inp in n.inputs.values():
-            conn = [index[id(inp.connection.node)], inp.connection.name] if inp.connection is not None else None
-            uniform = public.get(id(inp.socket if inp.socket is not None else inp))
+            # (the loop runs for every input of every node: the per-input helpers are written inline)
+            connection, socket, m = inp.connection, inp.socket, inp.meta
+            conn = [index[id(connection.node)], connection.name] if connection is not None else None
+            uniform = get_public(id(socket if socket is not None else inp))
+            if m and not document_names and not m.keys().isdisjoint(LISTING_ONLY):
+                m = meta(inp)
             # no path: after the passes only a public uniform's path reaches the record (the listing),
             # and `uniforms` has it; the others' (a third of the bytes hashed) are where they came from
-            inputs.append([inp.name, inp.type, value(inp), conn, uniform, inp.authored if document_names else None,
-                           meta(inp)])
+            inputs.append([inp.name, inp.type, None if inp.public else inp.value, conn, uniform,
+                           inp.authored if document_names else None, m])
         impl = n.implementation
         impl_key = local_key(impl) if id(impl) in local_ids else impl.name
         nodedef_key = local_key(n.nodedef) if id(impl) in local_ids else n.nodedef.name

@@ -102,15 +102,36 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     stores, whole = [], set()
     writes_outside = False
     stack = list(nodes)
+    pop, push, extend = stack.pop, stack.append, stack.extend
+    Name, Literal, Construct, Node = ir.Name, ir.Literal, ir.Construct, ir.Node
     while stack:
-        n = stack.pop()
+        n = pop()
         cls = n.__class__
+        if cls is Name:  # most nodes are names and literals, which hold no node: handled first
+            type_name = n.type
+            if type_name is not None:
+                mentioned[type_name] = None
+            kind = n.kind
+            if kind not in LOCAL_KINDS:
+                names.setdefault(n.name)
+                if kind == "uniform":
+                    uniforms.add(n.name)
+                if kind in INTERFACE_KINDS and type_name:
+                    whole.add(type_name.partition("[")[0])  # a uniform's or a stage variable's layout stays
+            continue
+        if cls is Literal:
+            type_name = n.type
+            if type_name is not None:
+                mentioned[type_name] = None
+            continue
+        if cls is Construct and n.exact and n.type in BUILTIN_TYPES:
+            continue  # a value's vector or matrix (code/values.py): numbers of built-in types, no fact
         for field in cls.CHILDREN:
             value = getattr(n, field)
-            if isinstance(value, ir.Node):
-                stack.append(value)
+            if isinstance(value, Node):
+                push(value)
             elif value.__class__ is list or value.__class__ is tuple:
-                stack.extend(v for v in value if isinstance(v, ir.Node))
+                extend([v for v in value if isinstance(v, Node)])
         type_name = getattr(n, "type", None)
         if type_name is not None:
             mentioned[type_name] = None
@@ -119,13 +140,6 @@ def _read(nodes, function: ir.Function | None) -> Facts:
                 builtins.add(n.name)
             else:
                 callees.setdefault(id(n.callee), n.callee)
-        elif cls is ir.Name:
-            if n.kind not in LOCAL_KINDS:
-                names.setdefault(n.name)
-                if n.kind == "uniform":
-                    uniforms.add(n.name)
-                if n.kind in INTERFACE_KINDS and n.type:
-                    whole.add(n.type.partition("[")[0])  # a uniform's or a stage variable's layout stays
         elif cls is ir.Field:
             if not n.swizzle:
                 members[(struct_of(n.base), n.name)] += 1

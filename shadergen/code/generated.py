@@ -5,6 +5,10 @@ names its stage variables itself (a uniform, a stage input or output, vertex dat
 position output) and gives them their IR type, which the checker keeps; and those variables may
 be assigned. The library's symbol table is shared by every request and never
 changed: the generated functions join a copy of it.
+
+What depends only on the library is worked out once per library (`CodeLibrary.generated`): a
+type as written to its IR type, and the overload a call of a library function resolves to for
+its arguments' types; a request then pays for what it adds.
 """
 from . import ir
 from .check import Checker, Symbols
@@ -13,6 +17,34 @@ GENERATED_KINDS = frozenset({"uniform", "input", "output", "vertexdata", "builti
 
 
 class GeneratedChecker(Checker):
+    def __init__(self, path: str, symbols: Symbols, externals: dict[str, str], library_functions: dict,
+                 memo: tuple[dict, dict]):
+        super().__init__(path, symbols, externals)
+        self.library_functions = library_functions  # the library's own families (name -> key -> Function)
+        self.types, self.overloads = memo  # the library's: type -> IR type; (name, argument types) -> Function
+
+    def resolve_type(self, t: str, node) -> str:
+        found = self.types.get(t)
+        if found is None:
+            found = self.types[t] = super().resolve_type(t, node)  # an unknown type raises, and is not kept
+        return found
+
+    def overload(self, e: ir.Call, family: list[ir.Function]) -> tuple[ir.Function, list[ir.Expr]]:
+        """The library's overload for these argument types, resolved once per library; a family a
+        generated function joined (its name is the library's too) is resolved each time."""
+        if self.symbols.functions.get(e.name) is not self.library_functions.get(e.name):
+            return super().overload(e, family)
+        key = (e.name, tuple([a.type for a in e.args]))
+        best = self.overloads.get(key)
+        if best is None:
+            best, args = super().overload(e, family)  # no overload, or an ambiguous call, raises
+            self.overloads[key] = best
+            return best, args
+        for p, a in zip(best.params, e.args):
+            if p.qualifier != "in" and not self.is_lvalue(a):
+                raise self.error(a, f"the {p.qualifier} argument '{p.name}' of '{e.name}' is not a variable")
+        return best, [self.convert(a, p.type) for p, a in zip(best.params, e.args)]
+
     def expr(self, e: ir.Expr) -> ir.Expr:
         """What the generator made typed (its values, an inline template instantiated with its
         inputs' types: code/library.py's `expression`) is typed already, all the way down; a
@@ -39,8 +71,9 @@ def check_generated(library, functions: list[ir.Function], blocks: list[ir.Block
     """Types generated `functions` and root `blocks` in place; `externals`: the stage's variables
     (name -> IR type), which the library's own names take precedence over."""
     base = library.symbols
-    symbols = Symbols(base.structs, base.aliases, dict(base.functions), base.values)
-    checker = GeneratedChecker("generated code", symbols, externals)
+    # the generated functions join a copy of the library's table (none: the table itself, unchanged)
+    symbols = Symbols(base.structs, base.aliases, dict(base.functions) if functions else base.functions, base.values)
+    checker = GeneratedChecker("generated code", symbols, externals, base.functions, library.generated)
     for fn in functions:
         fn.returns = checker.resolve_type(fn.returns, fn)
         for p in fn.params:

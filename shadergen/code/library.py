@@ -56,7 +56,7 @@ class CodeLibrary:
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
     __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "typed", "parsed",
-                 "makers")
+                 "makers", "generated")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
@@ -65,6 +65,7 @@ class CodeLibrary:
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
+        self.generated = ({}, {})  # what typing generated code works out per library (code/generated.py)
 
     @classmethod
     def load(cls, library: Library, externals: dict[str, str]) -> "CodeLibrary":
@@ -88,8 +89,9 @@ class CodeLibrary:
     # -- lookups -----------------------------------------------------------------------------------
     def module(self, path: str) -> ir.Module:
         """A source file's module; `path` absolute or relative to the library folder."""
-        relative = self.relative(path)
-        module = self.modules.get(relative)
+        module = self.modules.get(path)  # the generator asks by the relative paths files_for gives
+        if module is None:
+            module = self.modules.get(self.relative(path))
         if module is None:
             raise ShaderGenError("missing_source", f"'{path}' is not a source file of the library", path)
         return module

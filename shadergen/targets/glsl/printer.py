@@ -243,7 +243,10 @@ class GlslPrinter:
             self.body(s.body, depth, lines)
         else:
             text = self.simple(s, len(pad), len(pad))
-            lines.extend(with_trailing(pad + text + ";", s.comment).split("\n"))
+            if s.comment is None and "\n" not in text:  # most statements: one line, no comment
+                lines.append(pad + text + ";")
+            else:
+                lines.extend(with_trailing(pad + text + ";", s.comment).split("\n"))
 
     def statements_into(self, stmts, depth: int, lines: list[str]) -> None:
         for s in stmts:
