@@ -1,0 +1,87 @@
+"""The white furnace judged by testrender (bench/furnace_truth.py) on a few stress cases: the
+closures translate to OSL's MaterialX closures, agree with ours where both are exact, and
+testrender's single-scattering microfacet is what an independent quadrature says while ours keeps
+the light a white conductor must return."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tests.required_tools import missing, require_renderer
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench"))
+sys.path.insert(0, str(ROOT / "tools"))
+import furnace_truth as ft  # noqa: E402
+import ground_truth_scene as gts  # noqa: E402
+import stress  # noqa: E402
+
+SIDE = 32
+# both exact: Fresnel of a smooth interface, diffuse models with closed-form albedos, a translucent
+AGREEING = ("diel_r0_ior3_R", "cond_r0_gold_film0", "on_r1_qon_c1", "on_r1_eon_c0.5", "translucent_w1")
+CASES = {case.name: case for case in stress.cases()}
+
+
+def closure(name: str) -> ft.Translation:
+    return ft.osl_closure(CASES[name])
+
+
+def test_closures_translate_with_their_parameters_and_limitations():
+    expression, limits, transmits = closure("cond_r1_zero_film0")
+    assert expression == ('conductor_bsdf(N, normalize(dPdu), 1.0, 1.0, color(0.0, 0.0, 0.0), color(0.0, 0.0, 0.0), '
+                          '"ggx")')
+    assert limits == [ft.SINGLE_SCATTERING] and not transmits
+    expression, limits, transmits = closure("diel_r0_film500_ior1.5")
+    assert expression.startswith("dielectric_bsdf(N, normalize(dPdu), color(1.0, 1.0, 1.0), color(1.0, 1.0, 1.0), "
+                                 "0.0001, 0.0001, 1.5,")  # roughness 0 clamped as ours clamps it
+    assert '"thinfilm_thickness", 500.0' in expression and limits == [ft.THIN_FILM] and transmits
+    expression, limits, transmits = closure("layer_sheen_r0.5")
+    assert expression.startswith("layer(sheen_bsdf(N, color(1.0, 1.0, 1.0), 0.5), oren_nayar_diffuse_bsdf(")
+    assert limits == [ft.LAYER] and not transmits
+    assert closure("dielectric_w0").expression.startswith("0.0 * dielectric_bsdf(")
+    assert closure("diel_r0_ior1.5_T").limitations == [ft.TWO_INTERFACES]
+
+
+@pytest.mark.parametrize("name", ["sheen_r0.5_zeltner", "gs_r0.5_tinted_R", "hair_r0.5", "ss_m1_r1_t0_c1_ior1.5"])
+def test_what_osl_cannot_express_is_left_out(name):
+    with pytest.raises(ft.Untranslatable):
+        closure(name)
+
+
+@pytest.fixture(scope="module")
+def judge():
+    for name in ("oslc", "testrender"):
+        if gts.tool(name) is None:
+            missing(name, "scripts/osl.sh builds it")
+    require_renderer()
+    from shadergen.render import Renderer
+
+    world = gts.Scene()
+    renderer = Renderer()
+
+    def run(name: str) -> dict:
+        record = stress.our_records([CASES[name]])[name]
+        return ft.compare(ft.render_ours(renderer, record, SIDE, 64), ft.render_truth(world, closure(name), SIDE, 64), SIDE)
+
+    yield run
+    world.close()
+
+
+@pytest.mark.parametrize("name", AGREEING)
+def test_ours_agrees_with_testrender_where_both_are_exact(judge, name):
+    result = judge(name)
+    assert result["delta"] <= ft.AGREE, result
+    assert result["band_delta"] <= 2 * ft.AGREE, result
+
+
+def test_a_rough_white_conductor_single_scattering_in_testrender_and_kept_in_ours(judge):
+    """F = 1 at GGX alpha 1: every bounce between microfacets reflects all, so the exact answer is
+    1. testrender (single scattering, one bounce) gives the quadrature's value, far below; ours
+    returns ~1."""
+    result = judge("cond_r1_zero_film0")
+    expected = ft.single_scattering_expected(closure("cond_r1_zero_film0").expression, SIDE,
+                                             gts.sphere_mask(SIDE, ft.INSET))
+    assert expected < 0.5
+    np.testing.assert_allclose(result["truth"], expected, atol=0.02)
+    np.testing.assert_allclose(result["ours"], 1.0, atol=0.02)
