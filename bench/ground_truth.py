@@ -123,7 +123,7 @@ def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
     testrender image of the Oren-Nayar check (a scene shader of the same closure as DIFFUSE_CHECK)."""
     from shadergen.api import Generator
 
-    lines = []
+    lines = [f"testrender's cold build (scripts/osl.sh): {gts.build_time()}"]
     side = 32
     furnace = world.render("white_lambert", side, 64, constant=1.0)
     mask = gts.sphere_mask(side)

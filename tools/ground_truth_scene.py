@@ -89,6 +89,17 @@ def testrender() -> str | None:
     return tool("testrender")
 
 
+def build_time() -> str:
+    """scripts/osl.sh's record of the cold build of the testrender in use, or why there is none."""
+    path = testrender()
+    record = os.path.join(os.path.dirname(os.path.dirname(os.path.realpath(path))), "build-time.txt") if path else ""
+    try:
+        with open(record, encoding="utf-8") as f:
+            return f.read().strip()
+    except OSError:
+        return "not recorded (a cache built before scripts/osl.sh kept build-time.txt)"
+
+
 def compile_osl(source: str, folder: str, name: str) -> str | None:
     """`source` compiled to `folder`/`name`.oso; None when it compiled, else oslc's message."""
     path = os.path.join(folder, f"{name}.osl")

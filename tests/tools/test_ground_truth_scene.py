@@ -81,3 +81,14 @@ def test_a_material_shaders_closure_output_is_the_surface(world):
     mask = gts.sphere_mask(16)
     assert layered[mask].mean() > 0.05
     np.testing.assert_allclose(layered, direct, atol=1e-6)
+
+
+def test_build_time_is_read_beside_the_cache_bin(tmp_path, monkeypatch):
+    """scripts/osl.sh writes build-time.txt at the cache folder's top, testrender lies in its bin/."""
+    (tmp_path / "bin").mkdir()
+    program = tmp_path / "bin" / "testrender"
+    program.write_text("")
+    monkeypatch.setattr(gts, "testrender", lambda: str(program))
+    assert gts.build_time().startswith("not recorded")
+    (tmp_path / "build-time.txt").write_text("osl: built in 428 s at -j2 on 2 cores, 2026-12-02\n")
+    assert gts.build_time() == "osl: built in 428 s at -j2 on 2 cores, 2026-12-02"
