@@ -17,7 +17,9 @@ answer says it (a lossless closure in a furnace returns 1 whatever its roughness
   - microfacets are single-scattering GGX (no multiple-scattering energy): rough ones lose light;
     for a white conductor (F = 1) the column `single` gives that loss by an independent quadrature
     of GGX's single-scattering albedo over the sphere's N.V, which testrender should equal;
-  - thin films are ignored (thinfilm_* are parsed and never read);
+  - thin films are ignored (thinfilm_* are parsed and never read), and so are media: medium_vdf
+    and anisotropic_vdf set a ShadingResult's sigma_t that its integrator (simpleraytracer.cpp)
+    never reads; testrender 1.13 cannot judge a thin film's colours or a transmission depth;
   - subsurface_bssrdf is a Lambertian of its albedo;
   - layer() weights the base by 1 - F(N.V) of the top (its own comment: "looses energy");
   - its microfacet sample() keeps reflected directions below the horizon (eval() refuses them):

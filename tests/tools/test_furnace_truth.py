@@ -85,3 +85,28 @@ def test_a_rough_white_conductor_single_scattering_in_testrender_and_kept_in_our
     assert expected < 0.5
     np.testing.assert_allclose(result["truth"], expected, atol=0.02)
     np.testing.assert_allclose(result["ours"], 1.0, atol=0.02)
+
+
+def test_testrender_ignores_thin_films_and_media(judge):
+    """The limitations the bench names (and why testrender cannot judge issue 26's thin-film and
+    transmission-depth materials): a gold mirror with a 500 nm film, and a glass sphere over a
+    strongly absorbing medium_vdf, render as without them."""
+    world, mask = gts.Scene(), gts.sphere_mask(SIDE, ft.INSET)
+    gold = 'conductor_bsdf(N, normalize(dPdu), 0.0001, 0.0001, color(0.18, 0.42, 1.37), color(3.42, 2.35, 1.77), "ggx"'
+    glass = 'dielectric_bsdf(N, normalize(dPdu), color(1), color(1), 0.0001, 0.0001, 1.5, "ggx")'
+    pairs = {"film": (gold + ")", gold + ', "thinfilm_thickness", 500.0, "thinfilm_ior", 1.5)'),
+             "medium": (glass, f"layer({glass}, medium_vdf(color(0), 0.1, color(0.1, 0.5, 0.9), 0.0, 1.5, 0))")}
+    try:
+        for label, (without, with_it) in pairs.items():
+            means = []
+            for closure in (without, with_it):
+                translation = ft.Translation(closure, [], label == "medium")
+                means.append(ft.render_truth(world, translation, SIDE, 16)[mask].mean(0))
+            np.testing.assert_allclose(means[0], means[1], atol=1e-4, err_msg=label)
+    finally:
+        world.close()
+    # and ours does see the film: its gold changes
+    film = judge("cond_r0_gold_film500")
+    plain = judge("cond_r0_gold_film0")
+    assert np.abs(film["ours"] - plain["ours"]).max() > 0.05
+    np.testing.assert_allclose(film["truth"], plain["truth"], atol=1e-4)
