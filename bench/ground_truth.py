@@ -52,6 +52,22 @@ DIFFUSE_CHECK = '''<?xml version="1.0"?>
   <surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" nodename="surf"/></surfacematerial>
 </materialx>
 '''
+# A smooth glass sphere holding an amber medium (OpenPBR's transmission_color over transmission_depth):
+# testrender 1.13 ignores media, so its truth is computed directly (gts.glass_sphere_image).
+GLASS_CHECK = '''<?xml version="1.0"?>
+<materialx version="1.39">
+  <open_pbr_surface name="glass" type="surfaceshader">
+    <input name="base_weight" type="float" value="0"/>
+    <input name="specular_roughness" type="float" value="0"/>
+    <input name="specular_ior" type="float" value="1.5"/>
+    <input name="transmission_weight" type="float" value="1"/>
+    <input name="transmission_color" type="color3" value="{color}"/>
+    <input name="transmission_depth" type="float" value="{depth}"/>
+  </open_pbr_surface>
+  <surfacematerial name="mat" type="material"><input name="surfaceshader" type="surfaceshader" nodename="glass"/></surfacematerial>
+</materialx>
+'''
+AMBER = (0.9, 0.55, 0.15)
 # Pixels within this many of the silhouette are not compared: testrender's pixel filter blends them
 # with the sky, our thumbnail draws them uncovered or covered by a tessellated sphere.
 SILHOUETTE_INSET = 2.0
@@ -123,7 +139,7 @@ def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
     testrender image of the Oren-Nayar check (a scene shader of the same closure as DIFFUSE_CHECK)."""
     from shadergen.api import Generator
 
-    lines = []
+    lines = [f"testrender's cold build (scripts/osl.sh): {gts.build_time()}"]
     side = 32
     furnace = world.render("white_lambert", side, 64, constant=1.0)
     mask = gts.sphere_mask(side)
@@ -147,6 +163,34 @@ def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
                  f"{truth['halves_db']:.1f} dB): {psnr(gl, truth_rgba(rgb)):.1f} dB; against it mirrored left-right "
                  f"{psnr(gl, truth_rgba(rgb[:, ::-1])):.1f} dB, upside down {psnr(gl, truth_rgba(rgb[::-1])):.1f} dB")
     return lines, truth
+
+
+def glass_checks(world: gts.Scene, renderer, args) -> list[str]:
+    """Our GL glass sphere, clear and amber (depth 1), against the sphere computed directly; and the
+    amber one drawn with its depth divided by the sphere's mean chord 2 cos(theta_t), which is what
+    our media would need if they take the transmittance over a unit distance (mx_vdf.glsl)."""
+    from shadergen.api import Generator
+
+    side, inner = args.size, gts.sphere_mask(args.size, SILHOUETTE_INSET)
+    cosine = np.clip(-(gts.camera_rays(side) * gts.sphere_normals(side)).sum(-1), 0.0, 1.0)
+    chord = float((2.0 * np.sqrt(1.0 - (1.0 - cosine ** 2) / 1.5 ** 2))[inner].mean())
+
+    def ours(color, depth):
+        document = GLASS_CHECK.format(color=", ".join(f"{c:g}" for c in color), depth=f"{depth:g}")
+        return renderer.render(Generator().prepare(document).emit(), size=side, env_samples=64).rgba[..., :3]
+
+    def mean(image):
+        return "/".join(f"{c:.3f}" for c in image[inner].mean(0))
+
+    clear_truth = gts.glass_sphere_image(world.radiance, side, 1.5)
+    clear = ours((1.0, 1.0, 1.0), 0.0)
+    amber_truth = gts.glass_sphere_image(world.radiance, side, 1.5, -np.log(np.asarray(AMBER)))
+    amber, scaled = ours(AMBER, 1.0), ours(AMBER, 1.0 / chord)
+    return [f"smooth glass sphere (open_pbr_surface, ior 1.5, transmission 1) against the sphere computed directly "
+            f"(every internal path): clear {gts.psnr_viewed(clear, clear_truth, inner):.1f} dB; transmission_color "
+            f"{'/'.join(f'{c:g}' for c in AMBER)} at depth 1: {gts.psnr_viewed(amber, amber_truth, inner):.1f} dB, "
+            f"mean ours {mean(amber)} exact {mean(amber_truth)}; ours at depth 1/{chord:.2f} (the mean chord): "
+            f"{gts.psnr_viewed(scaled, amber_truth, inner):.1f} dB, mean {mean(scaled)}"]
 
 
 def measure(document: str, truth: np.ndarray, renderers: dict, args) -> list[dict]:
@@ -292,6 +336,7 @@ def main() -> int:
         world = gts.Scene(folder, environment.radiance)
         world.irradiance = environment.irradiance
         checks, diffuse = scene_checks(world, renderers["gl"], args)
+        checks += glass_checks(world, renderers["gl"], args)
         for line in checks:
             print(line, flush=True)
         # the table's machinery on the check: every real-time image of DIFFUSE_CHECK against testrender's

@@ -89,6 +89,17 @@ def testrender() -> str | None:
     return tool("testrender")
 
 
+def build_time() -> str:
+    """scripts/osl.sh's record of the cold build of the testrender in use, or why there is none."""
+    path = testrender()
+    record = os.path.join(os.path.dirname(os.path.dirname(os.path.realpath(path))), "build-time.txt") if path else ""
+    try:
+        with open(record, encoding="utf-8") as f:
+            return f.read().strip()
+    except OSError:
+        return "not recorded (a cache built before scripts/osl.sh kept build-time.txt)"
+
+
 def compile_osl(source: str, folder: str, name: str) -> str | None:
     """`source` compiled to `folder`/`name`.oso; None when it compiled, else oslc's message."""
     path = os.path.join(folder, f"{name}.osl")
@@ -206,6 +217,48 @@ def mirror_image(radiance: np.ndarray, side: int) -> np.ndarray:
     r = d - 2.0 * (d * n).sum(-1, keepdims=True) * n
     direction = np.where(hit[..., None], r, d)
     return lookup(radiance, direction)
+
+
+def fresnel_dielectric(cosine: np.ndarray, ior: float) -> np.ndarray:
+    """Unpolarised Fresnel reflectance of light arriving at `cosine` from outside an interface of
+    relative index `ior` (1 where it is totally reflected, for ior < 1)."""
+    sin2_t = np.maximum(0.0, 1.0 - cosine * cosine) / (ior * ior)
+    cos_t = np.sqrt(np.maximum(0.0, 1.0 - sin2_t))
+    rs = (cosine - ior * cos_t) / (cosine + ior * cos_t)
+    rp = (ior * cosine - cos_t) / (ior * cosine + cos_t)
+    return np.where(sin2_t >= 1.0, 1.0, 0.5 * (rs * rs + rp * rp))
+
+
+def _refract(d: np.ndarray, n: np.ndarray, eta: float) -> np.ndarray:
+    """`d` refracted through the interface of normal `n` (against d), eta = n_from / n_to."""
+    c = -(d * n).sum(-1, keepdims=True)
+    return eta * d + (eta * c - np.sqrt(np.maximum(0.0, 1.0 - eta * eta * (1.0 - c * c)))) * n
+
+
+def glass_sphere_image(radiance: np.ndarray, side: int, ior: float, absorption=(0.0, 0.0, 0.0),
+                       internal: int = 16) -> np.ndarray:
+    """A smooth dielectric unit sphere of index `ior` holding a medium of `absorption` (per unit
+    length: -ln(transmission_color) / transmission_depth) in the lat-long map, computed directly at
+    each pixel centre: the Fresnel reflection F env(r), and every path through the sphere,
+    (1 - F)^2 F^k exp(-absorption L (k + 1)) env(exit_k) for k internal reflections. On a sphere
+    every internal hit meets the surface at the refraction angle theta_t of the entry (so F is the
+    same, by reciprocity, and nothing is totally reflected) and every chord is L = 2 cos(theta_t)."""
+    d = camera_rays(side)
+    hit = sphere_mask(side)
+    n = np.where(hit[..., None], sphere_normals(side), -d)  # -d off the sphere: finite, then replaced
+    cosine = np.clip(-(d * n).sum(-1), 0.0, 1.0)
+    f = fresnel_dielectric(cosine, ior)[..., None]
+    chord = 2.0 * np.sqrt(np.maximum(0.0, 1.0 - (1.0 - cosine * cosine) / (ior * ior)))[..., None]
+    loss = np.exp(-np.asarray(absorption, "f8") * chord)
+    image = f * lookup(radiance, d + 2.0 * cosine[..., None] * n)
+    position, direction, weight = n, _refract(d, n, 1.0 / ior), (1.0 - f) * loss
+    for _ in range(internal):
+        position = position + chord * direction
+        position /= np.linalg.norm(position, axis=-1, keepdims=True)  # rounding must not grow over the bounces
+        image += weight * (1.0 - f) * lookup(radiance, _refract(direction, -position, ior))
+        direction = direction - 2.0 * (direction * position).sum(-1, keepdims=True) * position
+        weight = weight * f * loss
+    return np.where(hit[..., None], image, lookup(radiance, d))
 
 
 def sphere_normals(side: int) -> np.ndarray:

@@ -81,3 +81,37 @@ def test_a_material_shaders_closure_output_is_the_surface(world):
     mask = gts.sphere_mask(16)
     assert layered[mask].mean() > 0.05
     np.testing.assert_allclose(layered, direct, atol=1e-6)
+
+
+def test_build_time_is_read_beside_the_cache_bin(tmp_path, monkeypatch):
+    """scripts/osl.sh writes build-time.txt at the cache folder's top, testrender lies in its bin/."""
+    (tmp_path / "bin").mkdir()
+    program = tmp_path / "bin" / "testrender"
+    program.write_text("")
+    monkeypatch.setattr(gts, "testrender", lambda: str(program))
+    assert gts.build_time().startswith("not recorded")
+    (tmp_path / "build-time.txt").write_text("osl: built in 428 s at -j2 on 2 cores, 2026-12-02\n")
+    assert gts.build_time() == "osl: built in 428 s at -j2 on 2 cores, 2026-12-02"
+
+
+@pytest.mark.parametrize("absorption", [0.0, 0.7])
+def test_glass_sphere_series_in_a_constant_environment(absorption):
+    """The directly computed glass sphere in radiance 1: F + (1 - F)^2 t / (1 - F t) with t the
+    chord's transmittance (1 without a medium: a lossless sphere returns all the light)."""
+    side = 24
+    image = gts.glass_sphere_image(np.ones((16, 32, 3)), side, 1.5, (absorption,) * 3, internal=200)
+    mask = gts.sphere_mask(side)
+    d, n = gts.camera_rays(side)[mask], gts.sphere_normals(side)[mask]
+    cosine = np.clip(-(d * n).sum(-1), 0.0, 1.0)
+    f = gts.fresnel_dielectric(cosine, 1.5)
+    t = np.exp(-absorption * 2.0 * np.sqrt(1.0 - (1.0 - cosine ** 2) / 2.25))
+    expected = f + (1.0 - f) ** 2 * t / (1.0 - f * t)
+    np.testing.assert_allclose(image[mask][:, 0], expected, atol=1e-6)
+    if absorption == 0.0:
+        np.testing.assert_allclose(image[mask], 1.0, atol=1e-6)
+
+
+def test_fresnel_dielectric_known_values():
+    assert gts.fresnel_dielectric(np.array(1.0), 1.5) == pytest.approx(0.04)
+    assert gts.fresnel_dielectric(np.array(0.0), 1.5) == pytest.approx(1.0)
+    assert gts.fresnel_dielectric(np.array(0.5), 1.0 / 1.5) == 1.0  # beyond the critical angle
