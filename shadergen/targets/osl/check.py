@@ -6,6 +6,8 @@ import subprocess
 import sys
 import tempfile
 
+from ..checking import Unavailable
+
 
 def tool(name: str) -> str | None:
     """`name` beside this interpreter (the virtual environment's bin, where scripts/osl.sh links
@@ -21,7 +23,7 @@ def compile_shaders(shaders: dict[str, tuple[str, str]], folder: str) -> dict[st
     rejected one (a warning is a rejection: generated code is product)."""
     oslc = tool("oslc")
     if oslc is None:
-        raise FileNotFoundError("oslc is not installed (scripts/osl.sh builds it)")
+        raise Unavailable("oslc", "scripts/osl.sh builds it into .venv/bin")
     errors = {}
     for n, (label, (_stage, source)) in enumerate(sorted(shaders.items())):
         path = os.path.join(folder, f"shader{n}.osl")

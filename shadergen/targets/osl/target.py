@@ -25,7 +25,7 @@ HEADERS = ("vector2.h", "vector4.h", "matrix33.h")
 # MaterialX type -> OSL parameter type
 PARAMETER_TYPES = {"float": "float", "integer": "int", "boolean": "int", "color3": "color", "vector3": "vector",
                    "vector2": "vector2", "vector4": "vector4", "color4": "vector4", "matrix33": "matrix33",
-                   "matrix44": "matrix", "filename": "string", "string": "string"}
+                   "matrix44": "matrix", "filename": "string", "string": "int"}  # a string: its enum index, as in GLSL
 # the vertex data members the GL targets interpolate -> the shader globals that hold them
 GEOMETRY = {"positionWorld": "P", "positionObject": 'transform("object", P)', "normalWorld": "N",
             "normalObject": 'transform("object", N)', "tangentWorld": "normalize(dPdu)",
@@ -83,7 +83,12 @@ class OslTarget:
             w.line(f'#include "{header}"')
         w.line()
         arrays = {c.name: c for c in code.constants if type(c) is ir.Constant and c.type and is_array(c.type)}
-        items = code.structs + [c for c in code.constants if not (type(c) is ir.Constant and c.name in arrays)]
+        # the GL closures' structs are OSL's closures; a parameter's struct keeps every member, for
+        # its default (the code passes drop those nothing reads)
+        parameter_types = {v.type for block in ("PublicUniforms", "PrivateUniforms") for v in ctx.pixel.blocks[block]}
+        structs = [ctx.code.symbols.items.get(s.name, s) if s.name in parameter_types else s for s in code.structs
+                   if osl_type(s.name) != "closure color"]
+        items = structs + [c for c in code.constants if not (type(c) is ir.Constant and c.name in arrays)]
         for item in items:
             w.extend(self.printer.item(item))
         if items:
@@ -123,13 +128,18 @@ class OslTarget:
 
     def parameter(self, v) -> str:
         osl = PARAMETER_TYPES.get(v.type) or osl_type(v.type)
-        if v.type in ("filename", "string") and not isinstance(v.initializer, (int, float)):
+        if v.type == "filename":
             default = ir.Literal(None, '"' + str(v.initializer or "").replace('"', '\\"') + '"', type="string")
             text = self.printer.render(default, None, 0)
         else:
+            initializer = v.initializer
+            if v.type == "string" and not isinstance(initializer, int):
+                initializer = 0  # a string that is no enum's: none
             listing_type = "integer" if v.type == "string" else v.type
-            text = self.printer.render(value_expr(listing_type, v.initializer), None, 0)
-            if osl in ("vector2", "vector4", "matrix33") and text.startswith(osl + "("):
+            text = self.printer.render(value_expr(listing_type, initializer), None, 0)
+            if osl == "closure color":  # a closure parameter: no closure until one is connected
+                text = "0"
+            elif osl not in ("float", "int", "color", "vector", "matrix") and text.startswith(osl + "("):
                 text = "{" + text[len(osl) + 1:-1] + "}"  # a struct parameter's default is a list
         metadata = [m for m in (self.metadata(hint, key, kind, v) for hint, key, kind in METADATA) if m]
         hints = f" [[ {', '.join(metadata)} ]]" if metadata else ""
