@@ -82,7 +82,7 @@ PROVIDED = frozenset(f"{name}({args})".replace("S", struct) for struct in ("vect
     ("atan2", "S,S"))) | {"mod(vector2,vector2)"}
 # GLSL built-ins taken component by component: on a struct OSL lacks, a helper overload of the name
 COMPONENTWISE = frozenset("""abs sign floor ceil trunc round fract mod min max clamp mix step smoothstep pow exp exp2
-log log2 sqrt inversesqrt sin cos tan asin acos atan2 sinh cosh tanh radians degrees fmod""".split())
+log log2 sqrt inversesqrt sin cos tan asin acos atan2 sinh cosh tanh radians degrees fmod Dx Dy filterwidth""".split())
 STRUCT_TYPES = ("vec2", "vec4", *INT_VECTORS)
 def unsupported(what: str, node) -> ShaderGenError:
     where = getattr(node, "where", None)
@@ -121,6 +121,8 @@ def helpers(items) -> list[str]:
                 helper = operator_helper(node)
                 if helper is not None:
                     wanted.add(helper)
+            elif cls is ir.Index and is_matrix(node.base.type or ""):
+                wanted.add(column_helper(node))
             elif cls is ir.Select and node.type in STRUCT_TYPES + ("mat3",):
                 wanted.add(("osl_select", ("int", osl_type(node.type), osl_type(node.type)), osl_type(node.type)))
             elif cls is ir.Convert and node.type == "float" and node.operand.type == "uint":
@@ -152,7 +154,7 @@ def lvalue(e) -> bool:
     """Whether OSL may index `e` or read its members (a variable, a member, an element)."""
     while type(e) is ir.Field or type(e) is ir.Index:
         e = e.base
-    return type(e) is ir.Name
+    return type(e) is ir.Name and e.kind != "vertexdata"  # (vertex data are spelled as expressions of globals)
 
 
 def operator_helper(e):
@@ -163,20 +165,28 @@ def operator_helper(e):
         return ("__operator__neg__", (osl_type(e.type),), osl_type(e.type)) if e.type in INT_VECTORS else None
     if e.op == ">>" and e.left.type == "uint":
         return USHR
+    if e.op in ("+", "-") and (is_matrix(e.left.type or "") or is_matrix(e.right.type or "")):
+        return (f"osl_matrix_{OPERATORS[e.op]}", (osl_type(e.left.type), osl_type(e.right.type)), osl_type(e.type))
     if (e.left.type in INT_VECTORS or e.right.type in INT_VECTORS) and e.op in OPERATORS:
         return (f"__operator__{OPERATORS[e.op]}__", (osl_type(e.left.type), osl_type(e.right.type)),
                 osl_type(e.type))
     return None
 
 
+def column_helper(e: ir.Index):
+    return "osl_column", (osl_type(e.base.type), "int"), osl_type(e.type)
+
+
 def builtin_helper(call: ir.Call):
     """(name, OSL argument types, OSL return type) of the helper a built-in call needs, or None."""
-    name = "atan2" if call.name == "atan" and len(call.args) == 2 else call.name
+    name = "atan2" if call.name == "atan" and len(call.args) == 2 else RENAMED.get(call.name, call.name)
     types = tuple(osl_type(a.type) for a in call.args)
     if name == "fract":  # (a struct's calls the float one: helper_text)
         return "osl_fract", types, osl_type(call.type)
     if name == "texture":
         return "osl_texture", ("string", "vector2"), "vector4"
+    if name == "textureGrad":
+        return "osl_texture_grad", ("string", "vector2", "vector2", "vector2"), "vector4"
     if name == "distance" and types[0] in ("vector2", "vector4"):
         return "distance", types, "float"
     if name in RELATIONS or name in ("any", "all", "not"):
@@ -203,6 +213,11 @@ def helper_text(name: str, types: tuple, returns: str) -> list[str]:
         return [head, "{", "    float alpha = 1.0;",
                 '    color rgb = texture(a, b.x, 1.0 - b.y, "alpha", alpha, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
+    if name == "osl_texture_grad":  # with the derivatives of the coordinate (t flipped with it)
+        return [head, "{", "    float alpha = 1.0;",
+                '    color rgb = texture(a, b.x, 1.0 - b.y, c.x, -c.y, d.x, -d.y, "alpha", alpha, "missingcolor", color(0.0),',
+                '                        "missingalpha", 0.0);',
+                "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_select":
         return [head, "{", "    if (a)", "        return b;", "    return c;", "}"]
     if name == "osl_component":
@@ -217,6 +232,22 @@ def helper_text(name: str, types: tuple, returns: str) -> list[str]:
         return [head, "{", "    return b == 0 ? a : (a >> b) & ((1 << (32 - b)) - 1);", "}"]
     if name == "osl_uint_float":  # the int holding a uint's bits is negative from 2^31 on
         return [head, "{", "    return a < 0 ? float(a) + 4294967296.0 : float(a);", "}"]
+    if name.startswith("osl_matrix_"):  # element by element (the 3x3 of a matrix33 only)
+        size = 3 if returns == "matrix33" else 4
+        symbol = {v: k for k, v in OPERATORS.items()}[name[11:]]
+
+        def element(t: str, p: str, i: int, j: int) -> str:
+            return {"matrix": f"{p}[{i}][{j}]", "matrix33": f"{p}.m[{i}][{j}]"}.get(t, p)
+        values = [f"{element(types[0], 'a', i, j)} {symbol} {element(types[1], 'b', i, j)}"
+                  if i < size and j < size else ("1.0" if i == j else "0.0") for i in range(4) for j in range(4)]
+        opening = "    return matrix33(matrix(" if returns == "matrix33" else "    return matrix("
+        rows = [", ".join(values[4 * i:4 * i + 4]) for i in range(4)]
+        lines = [opening + rows[0] + ","] + [" " * len(opening) + row + "," for row in rows[1:3]]
+        return [head, "{", *lines, " " * len(opening) + rows[3] + (")" if returns == "matrix33" else "") + ");", "}"]
+    if name == "osl_column":  # GLSL's column i is row i of OSL's transposed storage
+        m = "a.m" if types[0] == "matrix33" else "a"
+        return [head, "{", f"    return {returns}({', '.join(f'{m}[b][{j}]' for j in range(STRUCT_SIZES.get(returns, 3)))});",
+                "}"]
     if name in ("any", "all"):
         joined = (" || " if name == "any" else " && ").join(part(types[0], "a", i) for i in range(STRUCT_SIZES[types[0]]))
         return [head, "{", f"    return {joined};", "}"]
@@ -272,6 +303,8 @@ class OslPrinter(GlslPrinter):
             return self.call_of(e, column, indent)
         if cls is ir.Select and e.type in STRUCT_TYPES + ("mat3",):  # OSL's ?: takes no struct
             return self.call("osl_select", [e.condition, e.if_true, e.if_false], column, indent)
+        if cls is ir.Index and is_matrix(e.base.type or ""):
+            return self.call("osl_column", [e.base, e.index], column, indent)
         if cls is ir.Index and e.base.type in STRUCT_TYPES + ("vec3",):
             if type(e.index) is ir.Literal and lvalue(e.base):
                 return self.component(e.base, int(e.index.value))
@@ -281,8 +314,8 @@ class OslPrinter(GlslPrinter):
             return self.convert(e, column, indent)
         if cls is ir.Binary and e.op == "*" and (is_matrix(e.left.type or "") or is_matrix(e.right.type or "")):
             return self.product(e, column, indent)
-        if cls is ir.Binary and operator_helper(e) == USHR:
-            return self.call("osl_ushr", [e.left, e.right], column, indent)
+        if cls is ir.Binary and (operator_helper(e) or ("",))[0].startswith("osl_"):  # (USHR, matrix sums)
+            return self.call(operator_helper(e)[0], [e.left, e.right], column, indent)
         return super().render(e, column, indent)
 
     def precedence(self, e) -> int:

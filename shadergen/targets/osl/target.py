@@ -66,7 +66,7 @@ class OslTarget:
         if member in GEOMETRY:
             return GEOMETRY[member]
         if member.startswith("texcoord_"):
-            return "vector2(u, v)"
+            return "vector(u, v, 0.0)" if name.type == "vec3" else "vector2(u, v)"
         # colours and geometric properties no global holds: the type's zero (a renderer's
         # attribute lookup would go here)
         return OslPrinter().render(value_expr({"vec4": "vector4", "vec2": "vector2", "vec3": "vector3"}.get(
