@@ -76,6 +76,13 @@ def is_one(value) -> bool:
     return type(value) is ir.Literal and value.value == 1
 
 
+def one_minus(weight):
+    """`1 - weight`, folded for a literal."""
+    if type(weight) is ir.Literal:
+        return number(1.0 - float(weight.value))
+    return binary("-", number(1.0), weight, "float")
+
+
 def scaled(weight, closure):
     """`weight * closure`, without a weight of 1; None (no closure) for none or a weight of 0."""
     if closure is None or is_zero(weight):
@@ -233,7 +240,7 @@ class OslClosureConvention(ClosureConvention):
     def closure_mix(self, ctx, node, v):
         weight = v("mix")
         fg, bg = self.closure_input(ctx, node, "fg"), self.closure_input(ctx, node, "bg")
-        return summed(scaled(weight, fg), scaled(binary("-", number(1.0), weight, "float"), bg))
+        return summed(scaled(weight, fg), scaled(one_minus(weight), bg))
 
     def closure_add(self, ctx, node, v):
         return summed(self.closure_input(ctx, node, "in1"), self.closure_input(ctx, node, "in2"))
@@ -249,7 +256,7 @@ class OslClosureConvention(ClosureConvention):
         if is_one(opacity):
             return surface
         return summed(scaled(opacity, surface),
-                      scaled(binary("-", number(1.0), opacity, "float"), call("transparent_bsdf", [])))
+                      scaled(one_minus(opacity), call("transparent_bsdf", [])))
 
     def closure_surface(self, ctx, node, v):
         bsdf, edf = self.closure_input(ctx, node, "bsdf"), self.closure_input(ctx, node, "edf")

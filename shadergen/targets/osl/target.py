@@ -129,7 +129,7 @@ class OslTarget:
     def parameter(self, v) -> str:
         osl = PARAMETER_TYPES.get(v.type) or osl_type(v.type)
         if v.type == "filename":
-            default = ir.Literal(None, '"' + str(v.initializer or "").replace('"', '\\"') + '"', type="string")
+            default = ir.Literal(None, osl_string(str(v.initializer or "")), type="string")
             text = self.printer.render(default, None, 0)
         else:
             initializer = v.initializer
@@ -151,13 +151,18 @@ class OslTarget:
         if value is None or isinstance(value, (tuple, list)):  # OSL metadata of vectors: not written
             return None
         if kind == "string" or isinstance(value, str):
-            text = str(value).replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ")
-            return f'string {key} = "{text}"'
+            return f"string {key} = {osl_string(str(value).replace(chr(10), ' '))}"
         if isinstance(value, bool):
             return f"int {key} = {int(value)}"
         if isinstance(value, int) and v.type in ("integer", "string"):
             return f"int {key} = {value}"
         return f"float {key} = {float(value)!r}"
+
+
+def osl_string(text: str) -> str:
+    """`text` as an OSL string literal: backslashes, quotes and control characters escaped."""
+    escaped = text.replace("\\", "\\\\").replace('"', '\\"')
+    return '"' + "".join(c if c >= " " else f"\\{ord(c):03o}" for c in escaped) + '"'
 
 
 def with_arrays(function, arrays: dict):
