@@ -104,3 +104,15 @@ def test_a_file_name_is_the_string_it_was(oslc):
     assert file["value"] == 'C:\\tex\\"a\tb.png'
     info = check.oslinfo(rec["stages"]["pixel"])
     assert 'Default value: "C:\\\\tex\\\\\\"a\\tb.png"' in info, info
+
+
+def test_a_component_of_a_swizzle_is_the_component_of_its_vector():
+    """OSL indexes no constructor: `vec4(c.xyz, 1.0)` takes c's own components (oslc rejected
+    `vector(c.x, c.y, c.z)[0]` in OCIO's matrix code)."""
+    from shadergen.code import ir
+    from shadergen.targets.osl.printer import OslPrinter
+    c = ir.Name("c", "local", type="vec4")
+    rgb = ir.Field(c, "xyz", type="vec3", swizzle=True)
+    e = ir.Construct("vec4", [rgb, ir.Literal(1.0, "1.0", type="float")])
+    assert OslPrinter().render(e, None, 0) == "vector4(c.x, c.y, c.z, 1.0)"
+    assert OslPrinter().render(ir.Field(rgb, "zx", type="vec2", swizzle=True), None, 0) == "vector2(c.z, c.x)"

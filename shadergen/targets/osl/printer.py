@@ -345,6 +345,8 @@ class OslPrinter(GlslPrinter):
         return [self.component(e, i) for i in range(size_of(t))]
 
     def component(self, base, i: int) -> str:
+        if type(base) is ir.Field and base.swizzle and len(base.name) > 1:  # of `v.xyz`: of `v` itself
+            return self.component(base.base, COMPONENTS[base.name[i]])
         if base.type in STRUCT_TYPES + ("vec3",) and not lvalue(base):
             return f"osl_component({self.render(base, None, 0)}, {i})"
         text = self.operand(base, None, 0, self.precedence(base) < 15)
