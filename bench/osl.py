@@ -2,14 +2,15 @@
 elements, how many we generate as OSL and how many of those oslc compiles (scripts/osl.sh builds
 it), beside the reference's own OSL (../shared/oracle/mx_oracle.py --target osl) compiled by the
 same oslc; then the generation time of OSL against GLSL on the Examples (warm, interleaved in the
-same run).
+same run); with --agreement, the testshade-vs-GL agreement table of TestSuite/stdlib instead
+(bench/osl_agreement.py).
 
 Ours is compiled with -Werror (a warning is a rejection: generated code is product); the
 reference's without it (its warnings allowed), with its own include folder (mx_funcs.h, found
-beside the oracle venv's MaterialX package, never read here) on oslc's include path. The
-testshade-vs-GL agreement table is not written yet.
+beside the oracle venv's MaterialX package, never read here) on oslc's include path.
 
     .venv/bin/python bench/osl.py [--corpus ../shared/corpus] [--repeats 5]
+    .venv/bin/python bench/osl.py --agreement [--filter math/]
 """
 import argparse
 import collections
@@ -96,9 +97,15 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--corpus", default=os.path.join(SHARED, "corpus"))
     p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--agreement", action="store_true", help="the testshade-vs-GL table of TestSuite/stdlib")
+    p.add_argument("--filter", help="with --agreement: only documents whose path contains this")
     a = p.parse_args()
     corpus = os.path.abspath(a.corpus)
     gen = default_generator()
+    if a.agreement:
+        from bench.osl_agreement import differences, report
+        print("osl: " + report(differences(gen, corpus, a.filter)))
+        return
     include = reference_include()
     figures = []
     print("| corpus | elements (ours / ref) | generated: ours | ref | compiled by oslc: ours | ref "

@@ -107,6 +107,7 @@ class OslClosureConvention(ClosureConvention):
     values = True  # closure nodes are emitted once, as values (emit_closure), not per shading context
 
     def claims(self, node) -> bool:
+        """Every node whose output is a closure or a shader made of them (surface, volume, material)."""
         return any(o.type in DECLARED for o in node.outputs.values())
 
     def arguments(self) -> list[ir.Expr]:
@@ -117,7 +118,8 @@ class OslClosureConvention(ClosureConvention):
 
     # -- closure nodes -----------------------------------------------------------------------------
     def emit_closure(self, ctx, node) -> None:
-        """The closure of one BSDF, EDF or VDF node, as a `closure color` variable."""
+        """The closure of one claimed node (`closure_<category>` below), as a `closure color`
+        variable; a nodegraph of closures written as a function is called as one."""
         emit = getattr(self, "closure_" + node.category, None)
         if emit is None:
             if isinstance(node.impl, GraphFunctionImpl):  # a nodegraph written once as a function

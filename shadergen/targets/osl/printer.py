@@ -209,13 +209,13 @@ def part(osl: str, value: str, i: int) -> str:
 def helper_text(name: str, types: tuple, returns: str) -> list[str]:
     params = ", ".join(f"{t} {p}" for t, p in zip(types, "abcd"))
     head = f"{returns} {name}({params})"
-    if name == "osl_texture":  # GL's texture coordinates start at the bottom row, OSL's `t` at the top
+    if name == "osl_texture":  # (the library's coordinates are the image's already: t from the top row, as OSL's)
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, 1.0 - b.y, "alpha", alpha, "missingcolor", color(0.0), "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, "alpha", alpha, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
-    if name == "osl_texture_grad":  # with the derivatives of the coordinate (t flipped with it)
+    if name == "osl_texture_grad":  # with the derivatives of the coordinate
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, 1.0 - b.y, c.x, -c.y, d.x, -d.y, "alpha", alpha, "missingcolor", color(0.0),',
+                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "alpha", alpha, "missingcolor", color(0.0),',
                 '                        "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_select":

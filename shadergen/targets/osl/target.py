@@ -179,9 +179,10 @@ def with_arrays(function, arrays: dict):
     return ir.replace(function, body=ir.Block(declared + list(body), True))
 
 
-# Library functions OSL writes its own way: an image is read by OSL's texture(), which wraps and
-# filters itself (address modes: constant, clamp, periodic, mirror; filters: closest, linear,
-# cubic), where the GL library reads texels to wrap and filter them
+# Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
+# image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
+# modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
+# reads texels to wrap and filter them
 OWN_FUNCTIONS = {"mx_image_fetch": (
     "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
     "{",
@@ -190,7 +191,7 @@ OWN_FUNCTIONS = {"mx_image_fetch": (
     '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
     '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "bilinear" : "bicubic";',
     "    float alpha = dflt.w;",
-    '    color rgb = texture(tex, uv.x, 1.0 - uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
+    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
     '                        "alpha", alpha, "missingcolor", color(dflt.x, dflt.y, dflt.z), "missingalpha", dflt.w);',
     "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
     "}")}
