@@ -22,6 +22,7 @@ from .shader import PIXEL, VERTEX, Stage, Variable
 from .targets.names import identifier
 
 CLOSURES = ("BSDF", "EDF", "VDF")
+SHADERS = CLOSURES + ("surfaceshader", "volumeshader", "material", "lightshader")  # what a closure language outputs as it is
 CONDITIONS = {"ifgreater": ">", "ifgreatereq": ">=", "ifequal": "=="}  # the IR's comparison
 
 
@@ -225,11 +226,14 @@ class EmitContext:
     # -- calls -------------------------------------------------------------------------------
     def emit_nodes(self, graph: Graph, scope: tuple) -> None:
         branching = {id(cond) for n in graph.nodes for cond, _ in n.scope}  # conditionals with nodes of their own
+        closures = self.target.closures
         for node in graph.nodes:
-            if is_closure_node(node) and self.closure is None:
+            if is_closure_node(node) and self.closure is None and not closures.values:
                 continue  # closures are evaluated per shading context by the surface that reads them
             if node.scope == scope:
-                if id(node) in branching:
+                if closures.claims(node):  # closures that are values of the language (OSL)
+                    closures.emit_closure(self, node)
+                elif id(node) in branching:
                     self.emit_branches(graph, node)
                 else:
                     node.impl.emit_function_call(node, self)
@@ -326,6 +330,11 @@ def assign_outputs(ctx: EmitContext, graph: Graph) -> None:
             raise ShaderGenError("unsupported_output", f"a {out.type} output cannot be drawn by itself: "
                                  "connect it to a surface shader", name)
         var = ctx.namer(ctx.names.output(name))
+        if ctx.target.closures.values and out.type in SHADERS:  # the closure itself (OSL)
+            ctx.add_variable(PIXEL, "Outputs", Variable(var, out.type))
+            value = ctx.vars[id(out)]
+            ctx.body.assign(build.name(var, "output", value.type), value)
+            continue
         ctx.add_variable(PIXEL, "Outputs", Variable(var, "color4"))
         ctx.body.assign(build.name(var, "output", "vec4"), output_color(out.type, ctx.vars[id(out)]))
 

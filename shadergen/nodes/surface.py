@@ -65,6 +65,9 @@ class Surface(NodeImpl):
         return node.inputs["bsdf"].connection is not None and node.facts.get("transmission", True)
 
     def emit_function_definition(self, node, ctx):
+        if ctx.target.closures.values:  # the renderer integrates the closures: no lights, no environment
+            self.lit = False
+            return
         for name, type_name in ENVIRONMENT_UNIFORMS:
             ctx.private_uniform(name, type_name)
         self.lit = node.inputs["bsdf"].connection is not None and ctx.lights and emit_light_support(ctx)

@@ -30,6 +30,13 @@ def constant(name: str) -> ir.Name:
 
 
 class ClosureConvention:
+    values = False  # closures are functions of a shading context here, not values of the language
+
+    def claims(self, node) -> bool:
+        """Whether the convention writes `node` itself (emit_closure) where the graph orders it:
+        none here, the surface evaluates its closures per context."""
+        return False
+
     def arguments(self) -> list[ir.Expr]:
         """What a closure function takes before its inputs: the shading context."""
         return [local("closureData", "ClosureData")]

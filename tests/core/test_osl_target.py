@@ -82,3 +82,37 @@ def test_ui_hints_are_osl_metadata(oslc):
     assert weight["value"] == 0.25 and weight["ui"] == {"softmin": 0.0, "softmax": 1.0}
     assert f'"{weight["name"]}" "float"' in info
     assert "metadata: float slidermin = 0" in info and "metadata: float slidermax = 1" in info
+
+
+def test_a_bad_parameter_value_is_an_error_record():
+    doc = DOCUMENT.replace('<input name="value" type="color3" value="0.8, 0.4, 0.2"/>',
+                           '<input name="value" type="color3" value="0.8, red, 0.2"/>').encode()
+    rec = next(r for r in default_generator().records(doc, target="osl", all=True) if r["element"] == "g/color_out")
+    assert rec["error"]["code"] == "invalid_value" and rec["error"]["where"] == "g/tint/value"
+
+
+def test_a_file_name_is_the_string_it_was(oslc):
+    """Backslashes, quotes and control characters in a file name stay in OSL's string literal as
+    they were (a Windows path's `\\t` is no tab)."""
+    doc = b"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <image name="img" type="color3"><input name="file" type="filename" value="C:\\tex\\&quot;a&#9;b.png"/></image>
+  <output name="out" type="color3" nodename="img"/>
+</materialx>"""
+    [rec] = default_generator().records(doc, target="osl", all=True, values="source")
+    [file] = [v for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["type"] == "filename"]
+    assert file["value"] == 'C:\\tex\\"a\tb.png'
+    info = check.oslinfo(rec["stages"]["pixel"])
+    assert 'Default value: "C:\\\\tex\\\\\\"a\\tb.png"' in info, info
+
+
+def test_a_component_of_a_swizzle_is_the_component_of_its_vector():
+    """OSL indexes no constructor: `vec4(c.xyz, 1.0)` takes c's own components (oslc rejected
+    `vector(c.x, c.y, c.z)[0]` in OCIO's matrix code)."""
+    from shadergen.code import ir
+    from shadergen.targets.osl.printer import OslPrinter
+    c = ir.Name("c", "local", type="vec4")
+    rgb = ir.Field(c, "xyz", type="vec3", swizzle=True)
+    e = ir.Construct("vec4", [rgb, ir.Literal(1.0, "1.0", type="float")])
+    assert OslPrinter().render(e, None, 0) == "vector4(c.x, c.y, c.z, 1.0)"
+    assert OslPrinter().render(ir.Field(rgb, "zx", type="vec2", swizzle=True), None, 0) == "vector2(c.z, c.x)"

@@ -6,11 +6,17 @@ void mx_place2d_vector2(vec2 texcoord, vec2 pivot, vec2 scale, float rotate, vec
     float angle = radians(rotate);
     float c = cos(angle);
     float s = sin(angle);
-    mat2 turn = mat2(c, -s, s, c);  // columns: (c, -s), (s, c)
     vec2 p = texcoord - pivot;
+    // the turn written out, not as a mat2: every target prints it alike (OSL has no 2x2 matrix)
     if (operationorder == 0)
-        p = turn * (p / scale) - offset;
+    {
+        p /= scale;
+        p = vec2(c * p.x + s * p.y, c * p.y - s * p.x) - offset;
+    }
     else
-        p = (turn * (p - offset)) / scale;
+    {
+        p -= offset;
+        p = vec2(c * p.x + s * p.y, c * p.y - s * p.x) / scale;
+    }
     result = p + pivot;
 }

@@ -25,7 +25,7 @@ HEADERS = ("vector2.h", "vector4.h", "matrix33.h")
 # MaterialX type -> OSL parameter type
 PARAMETER_TYPES = {"float": "float", "integer": "int", "boolean": "int", "color3": "color", "vector3": "vector",
                    "vector2": "vector2", "vector4": "vector4", "color4": "vector4", "matrix33": "matrix33",
-                   "matrix44": "matrix", "filename": "string", "string": "string"}
+                   "matrix44": "matrix", "filename": "string", "string": "int"}  # a string: its enum index, as in GLSL
 # the vertex data members the GL targets interpolate -> the shader globals that hold them
 GEOMETRY = {"positionWorld": "P", "positionObject": 'transform("object", P)', "normalWorld": "N",
             "normalObject": 'transform("object", N)', "tangentWorld": "normalize(dPdu)",
@@ -66,7 +66,7 @@ class OslTarget:
         if member in GEOMETRY:
             return GEOMETRY[member]
         if member.startswith("texcoord_"):
-            return "vector2(u, v)"
+            return "vector(u, v, 0.0)" if name.type == "vec3" else "vector2(u, v)"
         # colours and geometric properties no global holds: the type's zero (a renderer's
         # attribute lookup would go here)
         return OslPrinter().render(value_expr({"vec4": "vector4", "vec2": "vector2", "vec3": "vector3"}.get(
@@ -83,7 +83,12 @@ class OslTarget:
             w.line(f'#include "{header}"')
         w.line()
         arrays = {c.name: c for c in code.constants if type(c) is ir.Constant and c.type and is_array(c.type)}
-        items = code.structs + [c for c in code.constants if not (type(c) is ir.Constant and c.name in arrays)]
+        # the GL closures' structs are OSL's closures; a parameter's struct keeps every member, for
+        # its default (the code passes drop those nothing reads)
+        parameter_types = {v.type for block in ("PublicUniforms", "PrivateUniforms") for v in ctx.pixel.blocks[block]}
+        structs = [ctx.code.symbols.items.get(s.name, s) if s.name in parameter_types else s for s in code.structs
+                   if osl_type(s.name) != "closure color"]
+        items = structs + [c for c in code.constants if not (type(c) is ir.Constant and c.name in arrays)]
         for item in items:
             w.extend(self.printer.item(item))
         if items:
@@ -123,13 +128,18 @@ class OslTarget:
 
     def parameter(self, v) -> str:
         osl = PARAMETER_TYPES.get(v.type) or osl_type(v.type)
-        if v.type in ("filename", "string") and not isinstance(v.initializer, (int, float)):
-            default = ir.Literal(None, '"' + str(v.initializer or "").replace('"', '\\"') + '"', type="string")
+        if v.type == "filename":
+            default = ir.Literal(None, osl_string(str(v.initializer or "")), type="string")
             text = self.printer.render(default, None, 0)
         else:
+            initializer = v.initializer
+            if v.type == "string" and not isinstance(initializer, int):
+                initializer = 0  # a string that is no enum's: none
             listing_type = "integer" if v.type == "string" else v.type
-            text = self.printer.render(value_expr(listing_type, v.initializer), None, 0)
-            if osl in ("vector2", "vector4", "matrix33") and text.startswith(osl + "("):
+            text = self.printer.render(value_expr(listing_type, initializer), None, 0)
+            if osl == "closure color":  # a closure parameter: no closure until one is connected
+                text = "0"
+            elif osl not in ("float", "int", "color", "vector", "matrix") and text.startswith(osl + "("):
                 text = "{" + text[len(osl) + 1:-1] + "}"  # a struct parameter's default is a list
         metadata = [m for m in (self.metadata(hint, key, kind, v) for hint, key, kind in METADATA) if m]
         hints = f" [[ {', '.join(metadata)} ]]" if metadata else ""
@@ -141,13 +151,18 @@ class OslTarget:
         if value is None or isinstance(value, (tuple, list)):  # OSL metadata of vectors: not written
             return None
         if kind == "string" or isinstance(value, str):
-            text = str(value).replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ")
-            return f'string {key} = "{text}"'
+            return f"string {key} = {osl_string(str(value).replace(chr(10), ' '))}"
         if isinstance(value, bool):
             return f"int {key} = {int(value)}"
         if isinstance(value, int) and v.type in ("integer", "string"):
             return f"int {key} = {value}"
         return f"float {key} = {float(value)!r}"
+
+
+def osl_string(text: str) -> str:
+    """`text` as an OSL string literal: backslashes, quotes and control characters escaped."""
+    escaped = text.replace("\\", "\\\\").replace('"', '\\"')
+    return '"' + "".join(c if c >= " " else f"\\{ord(c):03o}" for c in escaped) + '"'
 
 
 def with_arrays(function, arrays: dict):
@@ -164,9 +179,10 @@ def with_arrays(function, arrays: dict):
     return ir.replace(function, body=ir.Block(declared + list(body), True))
 
 
-# Library functions OSL writes its own way: an image is read by OSL's texture(), which wraps and
-# filters itself (address modes: constant, clamp, periodic, mirror; filters: closest, linear,
-# cubic), where the GL library reads texels to wrap and filter them
+# Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
+# image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
+# modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
+# reads texels to wrap and filter them
 OWN_FUNCTIONS = {"mx_image_fetch": (
     "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
     "{",
@@ -175,7 +191,7 @@ OWN_FUNCTIONS = {"mx_image_fetch": (
     '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
     '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "bilinear" : "bicubic";',
     "    float alpha = dflt.w;",
-    '    color rgb = texture(tex, uv.x, 1.0 - uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
+    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
     '                        "alpha", alpha, "missingcolor", color(dflt.x, dflt.y, dflt.z), "missingalpha", dflt.w);',
     "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
     "}")}
