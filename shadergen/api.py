@@ -53,6 +53,23 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
     return outputs + [o for o in doc.root.children_of("output") if o.get("type") not in closures]
 
 
+def _named_renderable(doc: Document, scope: Scope, element: str) -> list[Element]:
+    """The renderable elements `element` names (what `_names` answers for each), in order. A
+    client asks for the elements of a document one at a time, so a document without labels is read
+    once into an index by name and path (a scan per element made a document of n outputs cost n^2)."""
+    if doc.labels:
+        return [e for e in renderable_elements(doc, scope) if _names(e, element, doc)]
+    index = doc.memo.get("renderable")
+    if index is None:
+        index = doc.memo["renderable"] = {}
+        for e in renderable_elements(doc, scope):
+            index.setdefault(e.name, []).append(e)
+            path = e.path
+            if path != e.name:
+                index.setdefault(path, []).append(e)
+    return list(index.get(element, ()))
+
+
 def _names(e: Element, element: str, doc: Document) -> bool:
     """Whether `element` names `e`: its name, its path or its label. A document of many outputs is
     asked for each of them in turn, so paths are walked only where the name could end one."""
@@ -260,11 +277,12 @@ class Generator:
             source, base_dir=base_dir, allow_includes=allow_includes, document_format=document_format,
             include_roots=include_roots)
         scope = Scope(self.library, doc.root)
-        elems = renderable_elements(doc, scope)
         if element:
-            elems = [e for e in elems if _names(e, element, doc)] or self._named(doc, element)
-        elif not all:
-            elems = elems[:1]
+            elems = _named_renderable(doc, scope, element) or self._named(doc, element)
+        else:
+            elems = renderable_elements(doc, scope)
+            if not all:
+                elems = elems[:1]
         options = Options(interface, frozenset(keep), values, environment, bool(lights))
         out = []
         for e in elems:

@@ -43,6 +43,9 @@ class Document:
         # path), and the elements that could not be translated, with why.
         self.labels: dict[str, str] = {}
         self.failures: dict[str, ShaderGenError] = {}
+        # what is read of the tree once for every element asked for (api.py: the renderable
+        # elements by name and path); the tree is not changed once read
+        self.memo: dict = {}
 
     def label(self, path: str | None) -> str | None:
         """What users call the element at `path` (or inside it): its own path for MaterialX."""
