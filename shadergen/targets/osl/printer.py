@@ -211,12 +211,12 @@ def helper_text(name: str, types: tuple, returns: str) -> list[str]:
     head = f"{returns} {name}({params})"
     if name == "osl_texture":  # (the library's coordinates are the image's already: t from the top row, as OSL's)
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, "alpha", alpha, "missingcolor", color(0.0), "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, "alpha", alpha, "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_texture_grad":  # with the derivatives of the coordinate
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "alpha", alpha, "missingcolor", color(0.0),',
-                '                        "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "alpha", alpha, "fill", 1.0,',
+                '                        "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_select":
         return [head, "{", "    if (a)", "        return b;", "    return c;", "}"]

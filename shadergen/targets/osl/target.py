@@ -182,7 +182,7 @@ def with_arrays(function, arrays: dict):
 # Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
 # image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
 # modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
-# reads texels to wrap and filter them
+# reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
 OWN_FUNCTIONS = {"mx_image_fetch": (
     "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
     "{",
@@ -192,7 +192,8 @@ OWN_FUNCTIONS = {"mx_image_fetch": (
     '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "bilinear" : "bicubic";',
     "    float alpha = dflt.w;",
     '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
-    '                        "alpha", alpha, "missingcolor", color(dflt.x, dflt.y, dflt.z), "missingalpha", dflt.w);',
+    '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
+    '                        "missingalpha", dflt.w);',
     "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
     "}")}
 
