@@ -34,6 +34,11 @@ class OcioTransform(NodeImpl):
         key = ("ocio_transform", transform.key)
         if key in ctx.memo:
             return
+        if transform.has_luts and not getattr(ctx.target, "functions_see_uniforms", True):
+            # OCIO's LUT functions read their textures as globals of the shader
+            raise ShaderGenError("unsupported_colorspace", f"the transform from '{transform.source}' to "
+                                 f"'{transform.working}' reads LUT textures, which {ctx.target.name} cannot give "
+                                 "OCIO's functions; spaces with analytic transforms work", node.path)
         ctx.memo[key] = function = ctx.namer(f"cm_{transform.slug}")
         text, luts = transform.shader(function)
         module = parse_module(f"OCIO {transform.source} -> {transform.working}", text)

@@ -101,6 +101,15 @@ def test_every_space_of_the_aces_configs_compiles_in_every_target(gen, config):
     assert not ShaderChecker(on_missing=missing).problems(records)
 
 
+def test_osl_refuses_a_lut_transform_by_name_and_takes_an_analytic_one(gen):
+    lut = record(gen, constants(["ACEScc"]), target="osl")
+    assert lut["error"]["code"] == "unsupported_colorspace" and "ACEScc" in lut["error"]["message"]
+    analytic = record(gen, constants(["ACEScct"]), target="osl")
+    assert "error" not in analytic and "cm_" in analytic["stages"]["pixel"]
+    from name_cases import ShaderChecker
+    assert not ShaderChecker(on_missing=missing).problems([(CG, analytic)])  # oslc compiles it
+
+
 def test_lut_transform_drawn_by_webgpu_equals_ocio_cpu_processor():
     """The same LUT transform in our WGSL (OCIO's GLSL through the IR), drawn by wgpu."""
     require_wgpu()

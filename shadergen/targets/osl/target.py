@@ -44,6 +44,8 @@ class OslTarget:
     library = "genglsl"  # the node libraries' implementations, printed from their IR
     reserved, reserved_prefixes, reserved_suffixes = RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
     closures = OslClosureConvention()
+    # an OSL function sees its arguments alone: a shader parameter (a texture) is no global of it
+    functions_see_uniforms = False
 
     def __init__(self):
         self.printer = OslPrinter(self.spell)
