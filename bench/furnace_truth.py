@@ -39,7 +39,7 @@ Cases OSL 1.13 cannot express are left out and counted: chiang_hair (no closure)
 zeltner (one sheen model), generalized Schlick with color82 != 1 (no F82 tint), the shading models
 (their graphs need our OSL target's closures).
 
-    .venv/bin/python bench/furnace_truth.py [--size 64] [--samples 64] [--spp 256] [--family dielectric]
+    .venv/bin/python bench/furnace_truth.py [--size 64] [--samples 64] [--spp 64] [--family dielectric]
         [--table docs/furnace_truth.md]
 """
 import argparse
@@ -378,7 +378,8 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--size", type=int, default=64)
     parser.add_argument("--samples", type=int, default=64, help="our environment samples (FIS), as bench/stress.py")
-    parser.add_argument("--spp", type=int, default=256, help="testrender's samples per pixel")
+    parser.add_argument("--spp", type=int, default=64,
+                        help="testrender's samples per pixel (the figure is a mean over the sphere: few are enough)")
     parser.add_argument("--family", help="only this stress family")
     parser.add_argument("--table", default=os.path.join(ROOT, "docs", "furnace_truth.md"))
     args = parser.parse_args()
