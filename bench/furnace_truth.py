@@ -427,7 +427,7 @@ def main() -> int:
             f"apart with a testrender limitation: {len(explained)} | apart unexplained: {len(unexplained)}"
             + (f" (worst {worst_unexplained['case'].name} {worst_unexplained['delta']:.3f})" if worst_unexplained else "")
             + (f" | worst {worst['case'].name} ours {fmt_rgb(worst['ours'])} testrender {fmt_rgb(worst['truth'])}"
-               if worst else "")
+               f" ({worst['cause'] or 'unexplained'})" if worst else "")
             + f" | left out {len(left_out)}"
             + f" | thin film against Airy: worst band {max(f['band_delta'] for f in films.values()):.4f}"
             + f" | {time.perf_counter() - started:.0f} s")
