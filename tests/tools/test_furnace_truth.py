@@ -35,7 +35,7 @@ def test_closures_translate_with_their_parameters_and_limitations():
     expression, limits, transmits = closure("diel_r0_film500_ior1.5")
     assert expression.startswith("dielectric_bsdf(N, normalize(dPdu), color(1.0, 1.0, 1.0), color(1.0, 1.0, 1.0), "
                                  "0.0001, 0.0001, 1.5,")  # roughness 0 clamped as ours clamps it
-    assert '"thinfilm_thickness", 500.0' in expression and limits == [ft.THIN_FILM] and transmits
+    assert '"thinfilm_thickness", 500.0' in expression and limits == [ft.THIN_FILM, ft.RT_PDF] and transmits
     expression, limits, transmits = closure("layer_sheen_r0.5")
     assert expression.startswith("layer(sheen_bsdf(N, color(1.0, 1.0, 1.0), 0.5), oren_nayar_diffuse_bsdf(")
     assert limits == [ft.LAYER] and not transmits
@@ -124,3 +124,16 @@ def test_our_thin_film_is_the_exact_airy_reflectance():
     assert np.ptp(ft.spectrum_rgb(ft.thin_film_reflectance(one, 1.3, 500.0, 1.5))) > 0.01
     result = ft.film_check(Renderer(), SIDE, 64, 500.0)
     assert result["band_delta"] < 0.01, result
+
+
+def test_testrender_limits_the_bench_names_for_schlick_rt_and_burley(judge):
+    """A white generalized Schlick (F = 1) reflecting and transmitting renders black in testrender
+    (its sampled reflection's pdf is multiplied by the transmission's probability, 0), where the
+    same closure reflecting only returns all; Burley's diffuse as published returns more than
+    arrives at roughness 1 in testrender, ours does not."""
+    white_rt, white_r = judge("gs_r0_white_RT"), judge("gs_r0_white_R")
+    assert white_rt["truth"].max() < 0.05 and white_r["truth"].min() > 0.98
+    np.testing.assert_allclose(white_rt["ours"], 1.0, atol=0.02)
+    burley = judge("burley_r1_c1")
+    assert burley["truth"].min() > 1.02 and burley["ours"].max() <= 1.0
+    assert closure("gs_r0_white_RT").limitations == [ft.RT_PDF] and closure("burley_r1_c1").limitations == [ft.BURLEY]
