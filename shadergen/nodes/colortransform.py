@@ -35,10 +35,12 @@ class OcioTransform(NodeImpl):
         if key in ctx.memo:
             return
         if transform.has_luts and not getattr(ctx.target, "functions_see_uniforms", True):
-            # OCIO's LUT functions read their textures as globals of the shader
+            # OCIO's LUT functions read their textures as globals of the shader; OCIO's own OSL
+            # generator refuses these transforms too ("The Lut1DOp is not yet supported")
             raise ShaderGenError("unsupported_colorspace", f"the transform from '{transform.source}' to "
                                  f"'{transform.working}' reads LUT textures, which {ctx.target.name} cannot give "
-                                 "OCIO's functions; spaces with analytic transforms work", node.path)
+                                 "OCIO's functions (OCIO's own OSL generator refuses it too); spaces with analytic "
+                                 "transforms work", node.path)
         ctx.memo[key] = function = ctx.namer(f"cm_{transform.slug}")
         text, luts = transform.shader(function)
         module = parse_module(f"OCIO {transform.source} -> {transform.working}", text)
