@@ -18,7 +18,7 @@ from shadergen.api import Generator
 from shadergen.errors import ShaderGenError
 
 from ..cache import open_store
-from ..cache.entries import is_graph_hash, is_record
+from ..cache.entries import has_no_warnings, is_graph_hash, is_record
 from ..config import get_settings
 from .child import serve
 
@@ -86,6 +86,8 @@ class GenerateHandler:
         warnings: records are shared by graph hash, and two documents of one graph warn of
         different things (what one upload's layers say is no other client's to read). None for
         an entry that only looks like a record."""
+        if not warnings and has_no_warnings(stored):  # the common hit, answered without parsing it
+            return stored
         try:
             record = json.loads(stored)
         except ValueError:

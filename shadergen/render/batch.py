@@ -124,33 +124,29 @@ def generated_ahead(documents: list[str], options: dict):
 
     # spawned, not forked: this process holds a GL context, which a fork would share
     pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
+
+    def submitted(document: str):
+        """The child's future of the document's records; None once the child is gone."""
+        try:
+            return pool.submit(document_records, document, options)
+        except BrokenProcessPool:
+            return None
+
     queued = iter(documents)
-    pending = deque((d, pool.submit(document_records, d, options)) for d in itertools.islice(queued, AHEAD))
+    pending = deque((d, submitted(d)) for d in itertools.islice(queued, AHEAD))
     try:
         while pending:
             document, future = pending.popleft()
-            try:
-                records = future.result()
-            except BrokenProcessPool:
-                records = document_records(document, options)
             following = next(queued, None)
             if following is not None:
-                try:
-                    pending.append((following, pool.submit(document_records, following, options)))
-                except BrokenProcessPool:
-                    pending.append((following, _here(following, options)))
-            yield document, records
+                pending.append((following, submitted(following)))
+            try:
+                records = future.result() if future is not None else None
+            except BrokenProcessPool:
+                records = None
+            yield document, document_records(document, options) if records is None else records
     finally:
         pool.shutdown(cancel_futures=True)
-
-
-def _here(document: str, options: dict):
-    """A finished future of the document's records, generated in this process."""
-    from concurrent.futures import Future
-
-    future = Future()
-    future.set_result(document_records(document, options))
-    return future
 
 
 def document_records(document: str, options: dict) -> list[dict]:
