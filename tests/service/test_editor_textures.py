@@ -45,10 +45,16 @@ def textures_listed(driver) -> dict[str, str]:
                       ".map(li => [li.dataset.sampler, li.className + ': ' + li.textContent]))")
 
 
-def shown(driver, runs_before: int) -> None:
+def counters(driver) -> tuple[int, int]:
+    """The records shown and frames drawn so far, read before an edit: read after it, a frame
+    that came quickly (same program, new sampler state) would already be counted and never awaited."""
+    return js(driver, "[window.shaderxEditor.runs, window.shaderxEditor.preview.stats.draws]")
+
+
+def shown(driver, before: tuple[int, int]) -> None:
     """The next record shown and drawn (its textures loaded with it)."""
-    draws = js(driver, "window.shaderxEditor.preview.stats.draws")
-    wait_until(lambda: (poll_js(driver, "window.shaderxEditor.runs") or 0) > runs_before, 60, "the record")
+    runs, draws = before
+    wait_until(lambda: (poll_js(driver, "window.shaderxEditor.runs") or 0) > runs, 60, "the record")
     wait_for_draw(driver, draws)
 
 
@@ -67,9 +73,9 @@ def test_a_texture_in_the_roots_is_bound_with_its_sampling_as_the_thumbnail_draw
     inputs = ('<input name="texcoord" type="vector2" nodename="uv3" />'
               '<input name="uaddressmode" type="string" value="mirror" />')
     document = material("quadrants.png", image_inputs=inputs, texcoord=tiled)
-    runs = js(editor, "window.shaderxEditor.runs")
+    before = counters(editor)
     set_document(editor, document)
-    shown(editor, runs)
+    shown(editor, before)
     assert list(textures_listed(editor).values()) == ["loaded: quadrants.png (service)"]
     assert js(editor, "window.shaderxEditor.preview.textureProblems()") == []
     preview = canvas_pixels(editor, tmp_path)
@@ -77,18 +83,18 @@ def test_a_texture_in_the_roots_is_bound_with_its_sampling_as_the_thumbnail_draw
     print(f"\ntextured preview against the service's thumbnail: PSNR {agreement:.1f} dB")
     assert agreement > 35, f"{agreement:.1f} dB"
     # the address mode is what is drawn: constant in u shows the default colour beyond the image
-    runs = js(editor, "window.shaderxEditor.runs")
+    before = counters(editor)
     set_document(editor, document.replace('value="mirror"', 'value="constant"'))
-    shown(editor, runs)
+    shown(editor, before)
     assert psnr(canvas_pixels(editor, tmp_path), preview) < 25
     assert console_problems(editor) == []
     screenshot(editor, "editor-texture.png", tmp_path)
 
 
 def test_a_file_outside_the_roots_draws_its_default_until_a_dropped_image_resolves_it(editor, tmp_path):
-    runs = js(editor, "window.shaderxEditor.runs")
+    before = counters(editor)
     set_document(editor, material("../../../Images/red_paint.png", default="0, 0, 1"))
-    shown(editor, runs)
+    shown(editor, before)
     [listed] = textures_listed(editor).values()
     assert listed.startswith("missing: ../../../Images/red_paint.png: default colour") and "path_not_allowed" in listed
     assert_is(centre_colour(editor, tmp_path), BLUE)
@@ -107,9 +113,9 @@ def test_a_file_outside_the_roots_draws_its_default_until_a_dropped_image_resolv
 
 
 def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as_a_texture(editor, tmp_path):
-    runs = js(editor, "window.shaderxEditor.runs")
+    before = counters(editor)
     set_document(editor, material("maps/green.exr", default="0, 0, 1"))
-    shown(editor, runs)
+    shown(editor, before)
     [listed] = textures_listed(editor).values()
     assert listed.startswith("missing: maps/green.exr: default colour") and "not_found" in listed
     assert_is(centre_colour(editor, tmp_path), BLUE)
@@ -134,9 +140,9 @@ def test_a_dropped_zip_opens_its_document_and_its_folders_resolve_the_references
         z.writestr("look/textures/green.png", png(8, 8, GREEN))
         z.writestr("look/other/green.png", png(8, 8, RED))  # same name, another folder: not the one named
         z.writestr("look/materials/green.mtlx", material("../textures/green.png"))
-    runs = js(editor, "window.shaderxEditor.runs")
+    before = counters(editor)
     drop_files(editor, [("look.zip", archive.getvalue())])
-    shown(editor, runs)
+    shown(editor, before)
     assert "../textures/green.png" in editor.find_element("id", "document").get_attribute("value")
     assert list(textures_listed(editor).values()) == ["loaded: ../textures/green.png (dropped)"]
     assert_is(centre_colour(editor, tmp_path), GREEN)
@@ -145,9 +151,9 @@ def test_a_dropped_zip_opens_its_document_and_its_folders_resolve_the_references
 
 def test_a_dropped_usdz_is_generated_as_it_is_with_its_own_members_as_textures(editor, tmp_path):
     package = usdz([(LAYER, textured_layer("textures/wood.png").encode()), ("textures/wood.png", png(8, 8, BLUE))])
-    runs = js(editor, "window.shaderxEditor.runs")
+    before = counters(editor)
     drop_files(editor, [("wood.usdz", package)])
-    shown(editor, runs)
+    shown(editor, before)
     assert js(editor, "window.shaderxEditor.state.record.element") == "/Looks/Wood"
     assert list(textures_listed(editor).values()) == ["loaded: textures/wood.png (dropped)"]
     assert_is(centre_colour(editor, tmp_path), BLUE)
