@@ -80,6 +80,7 @@ class TextureRequest:
     sampling: Sampling   # MaterialX's address modes, filter and default colour for it
     path: str | None     # the file to read, when it resolved
     problem: str | None  # why there is no path (a warning), None when no file was named
+    file: str | None = None  # the file as the document names it: what messages call it
 
 
 def texture_requests(record: dict, document_dir: str | None, search_paths: list[str], texture_roots: list[str],
@@ -97,7 +98,7 @@ def texture_requests(record: dict, document_dir: str | None, search_paths: list[
         # A `default` folded into the code (reduced, specialized) is not a uniform: the listing
         # gives it with the filename, so every interface shows the same colour for a missing file.
         node_inputs.setdefault("default", variable.get("fallback"))
-        yield TextureRequest(variable["name"], sampling_from(node_inputs), path, problem)
+        yield TextureRequest(variable["name"], sampling_from(node_inputs), path, problem, filename or None)
 
 
 def siblings(variable: dict, variables: list[dict]) -> dict[str, object]:

@@ -98,7 +98,7 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
         written = list(map(os.path.abspath, candidates))
         candidates = [c for c in written if _within(c, written_roots)]
         left = len(candidates) < len(written)
-    outside = None
+    outside = False
     for candidate in candidates:
         try:
             real = os.path.realpath(candidate)
@@ -113,11 +113,13 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
             if has_member(real, member):
                 return f"{real}[{member}]", None
             return None, f"{name}[{member}]: the package has no such file"
-        outside = real
-    if outside:
-        return None, f"{name}: resolves to {outside}, outside the allowed folders"
+        outside = True
+    if outside:  # a link's target is named to no one: it is a path of the server's
+        return None, f"{name}: resolves (through a link) outside the allowed folders"
     if left:
         return None, f"{name}: outside the allowed folders"
+    if confined:  # the service's folders are not the client's business
+        return None, f"{name}: not found in the document's folder, its search paths or the texture roots"
     where = ", ".join(bases) if bases else "no folder (give a document folder or search paths)"
     return None, f"{name}: not found (looked in {where})"
 
@@ -140,15 +142,17 @@ class TextureCache:
         self._files: OrderedDict[tuple, object] = OrderedDict()
         self._constants: dict[tuple, object] = {}
 
-    def file(self, upload, path: str):
-        """The texture of a path resolve_file returned (a package member included)."""
+    def file(self, upload, path: str, name: str | None = None):
+        """The texture of a path resolve_file returned (a package member included). A refusal
+        calls a file `name` (as the document wrote it, not where the server keeps it), a package's
+        member by its name in the package."""
         package, member = split_member(path)
         stat = os.stat(package)
         key = (path, stat.st_mtime_ns, stat.st_size)
         texture = self._files.get(key)
         if texture is None:
             if member is None:
-                image = read_image(path, max_values=self.max_image_values)
+                image = read_image(path, name, self.max_image_values)
             else:
                 with member_file(package, member) as copy:
                     image = read_image(copy, member, self.max_image_values)
@@ -169,11 +173,11 @@ class TextureCache:
         problem = request.problem
         if request.path:
             try:
-                return self.file(upload, request.path), None
+                return self.file(upload, request.path, request.file), None
             except RenderError as exc:
                 if exc.code in REFUSALS:
                     raise
-                problem = f"{request.path}: {exc.message}"
+                problem = exc.message
         warning = f"texture for {request.name} unusable, using its default colour: {problem}" if problem else None
         return self.constant(upload, request.sampling.border), warning
 

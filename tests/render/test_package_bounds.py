@@ -97,7 +97,7 @@ def test_a_huge_image_header_is_refused_beside_a_layer_and_as_an_environment(gen
     (tmp_path / "huge.png").write_bytes(huge_png_header(60000, 60000))
     (tmp_path / "scene.usda").write_text(textured_layer("huge.png"))
     error = refusal(gen, renderer, str(tmp_path / "scene.usda"), tmp_path)
-    assert error.code == "too_large" and error.where == str(tmp_path / "huge.png")
+    assert error.code == "too_large" and error.where == "huge.png"  # as the layer names it
     with pytest.raises(RenderError) as caught:
         Environment.load(str(tmp_path / "huge.png"))
     assert caught.value.code == "too_large"

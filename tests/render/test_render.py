@@ -103,6 +103,7 @@ def test_one_channel_images_read_as_grey(renderer):
 def test_missing_texture_warns_and_shows_the_default(renderer):
     result = renderer.render(texture_record(file="no_such_image.png"), size=SIZE, mesh="plane", document_dir=str(DATA))
     assert any("no_such_image.png" in w and "not found" in w for w in result.warnings)
+    assert not any(str(DATA) in w for w in result.warnings)  # the server's folders are no client's business
     np.testing.assert_allclose(result.rgba[SIZE // 2, SIZE // 2][:3], DEFAULT, atol=1e-6)
 
 
@@ -114,6 +115,12 @@ def test_textures_outside_the_allowed_folders_are_not_read(renderer, tmp_path):
     escaping = texture_record(file="../" * 12 + str(secret).lstrip("/"))
     result = renderer.render(escaping, size=32, mesh="plane", document_dir=str(DATA))
     assert any("outside the allowed folders" in w for w in result.warnings)
+    # a link out of the document's folder: refused without naming where it leads
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "link.png").symlink_to(secret)
+    result = renderer.render(texture_record(file="link.png"), size=32, mesh="plane", document_dir=str(tmp_path / "docs"))
+    assert any("link.png" in w and "outside the allowed folders" in w for w in result.warnings)
+    assert not any(str(secret) in w for w in result.warnings)
 
 
 def test_light_rig_binds_lightdata_with_materialx_type_ids(renderer):
