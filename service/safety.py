@@ -8,6 +8,8 @@ import os
 import re
 from pathlib import Path
 
+from shadergen.paths import inside
+
 from .errors import ServiceError
 
 # what may come before the root element besides a DOCTYPE: space, comments, processing instructions
@@ -35,10 +37,6 @@ def check_document(raw: bytes) -> str:
     if "\x00" in text:
         raise ServiceError("invalid_document", "the document contains a NUL character")
     return text
-
-
-def _inside(path: Path, root: Path) -> bool:
-    return path == root or root in path.parents
 
 
 def check_texture_paths(record: dict, roots: list[str]) -> None:
@@ -70,15 +68,15 @@ def texture_in_roots(value: str, roots: list[Path]) -> Path | None:
     candidate = Path(value)
     if candidate.is_absolute():
         written = Path(os.path.normpath(candidate))
-        if not any(_inside(written, root) for root in roots):
+        if not any(inside(written, root) for root in roots):
             return None
         real = Path(os.path.realpath(written))
-        return real if any(_inside(real, root) for root in roots) else None
+        return real if any(inside(real, root) for root in roots) else None
     # relative names are looked up under a root and must stay under that same root; the first
     # root that holds the file, else the first the name stays in (a missing file is no escape)
-    inside = [real for root in roots if _inside(written := Path(os.path.normpath(root / candidate)), root)
-              and _inside(real := Path(os.path.realpath(written)), root)]
-    return next((real for real in inside if _is_file(real)), inside[0] if inside else None)
+    staying = [real for root in roots if inside(written := Path(os.path.normpath(root / candidate)), root)
+               and inside(real := Path(os.path.realpath(written)), root)]
+    return next((real for real in staying if _is_file(real)), staying[0] if staying else None)
 
 
 def _is_file(path: Path) -> bool:

@@ -16,6 +16,7 @@ import pyexpat as expat
 
 from .element import Element
 from .errors import ShaderGenError
+from .paths import inside
 from .upgrade import upgrade
 
 # a namespaced element is named as ElementTree names it, `{uri}local`, whatever prefix the document chose
@@ -229,22 +230,18 @@ class IncludeRoots:
             raise ShaderGenError("include_refused", f"xi:include of '{href}': only relative paths inside the "
                                  "include roots may be included", href)
         leaves = False
-        for root in (r for r in self.roots if from_dir is None or _inside(from_dir, r)):
+        for root in (r for r in self.roots if from_dir is None or inside(from_dir, r)):
             named = os.path.join(from_dir or root, href)
             real = os.path.realpath(named)
-            if _inside(real, root):
+            if inside(real, root):
                 if os.path.isfile(real):
                     return real
-            elif os.path.lexists(named) or not _inside(os.path.normpath(named), root):
+            elif os.path.lexists(named) or not inside(os.path.normpath(named), root):
                 leaves = True  # by its name, or through a link
         if leaves:
             raise ShaderGenError("include_refused", f"xi:include of '{href}' leaves the include roots", href)
         raise ShaderGenError("invalid_document", f"cannot read included file '{href}': not in the include roots",
                              href)
-
-
-def _inside(path: str, root: str) -> bool:
-    return path == root or path.startswith(root.rstrip(os.sep) + os.sep)
 
 
 def _expand_includes(root: Element, base_dir: str | None, allow: bool, seen: tuple[str, ...],

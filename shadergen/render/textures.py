@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..paths import inside
 from .errors import RenderError
 from .context import gl_extras
 from .imageio import read_image
@@ -125,7 +126,7 @@ def resolve_file(name: str, document_dir: str | None, search_paths: list[str],
 
 
 def _within(path: str, folders: list[str]) -> bool:
-    return any(os.path.commonpath([path, folder]) == folder for folder in folders)
+    return any(inside(path, folder) for folder in folders)
 
 
 class TextureCache:
