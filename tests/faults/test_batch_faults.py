@@ -5,7 +5,7 @@ import httpx
 import pytest
 
 from faults_testing import kill, wait_ready
-from service_testing import Server, cmdline, descendants, wait_until
+from service_testing import Server, children, cmdline, wait_until
 
 pytestmark = pytest.mark.usefixtures("renderer_required")
 DOCUMENTS = 24
@@ -24,16 +24,7 @@ def material(i: int) -> str:
 
 def api_workers(server) -> list[int]:
     """uvicorn's worker processes: the children its supervisor spawned (not the render pool's)."""
-    return [pid for pid in descendants(server.proc.pid)
-            if "spawn_main" in cmdline(pid) and server.proc.pid == parent(pid)]
-
-
-def parent(pid: int) -> int | None:
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return int(f.read().rsplit(")", 1)[1].split()[1])
-    except OSError:
-        return None
+    return [pid for pid in children(server.proc.pid) if "spawn_main" in cmdline(pid)]
 
 
 @pytest.fixture(scope="module")

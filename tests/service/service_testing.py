@@ -134,20 +134,31 @@ def document(name: str) -> str:
     return (DOCS / name).read_text()
 
 
+def parent(pid: int) -> int | None:
+    """The parent process of `pid`, from /proc; None once it is gone."""
+    try:
+        stat = (Path("/proc") / str(pid) / "stat").read_text()
+    except OSError:
+        return None
+    return int(stat.rsplit(")", 1)[1].split()[1])  # the name in parentheses may hold spaces
+
+
+def parents() -> dict[int, int | None]:
+    """Every process's parent, from one reading of /proc."""
+    return {int(e.name): parent(int(e.name)) for e in Path("/proc").iterdir() if e.name.isdigit()}
+
+
+def children(pid: int, known: dict[int, int | None] | None = None) -> list[int]:
+    """The processes `pid` started itself (from `known`, a reading of parents(), when given)."""
+    return [child for child, ppid in (known or parents()).items() if ppid == pid]
+
+
 def descendants(pid: int) -> list[int]:
-    """Every process below `pid`, from /proc."""
-    children: dict[int, list[int]] = {}
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                stat = (entry / "stat").read_text()
-            except OSError:
-                continue
-            ppid = int(stat.rsplit(")", 1)[1].split()[1])
-            children.setdefault(ppid, []).append(int(entry.name))
+    """Every process below `pid`, from one reading of /proc."""
+    known = parents()
     found, todo = [], [pid]
     while todo:
-        for child in children.get(todo.pop(), []):
+        for child in children(todo.pop(), known):
             found.append(child)
             todo.append(child)
     return found
