@@ -117,18 +117,11 @@ class ChildPeakMemory:
         return self.peak_kib / 1024
 
     def sample(self) -> None:
-        from service_testing import cmdline, descendants
+        from processes import cmdline, descendants, peak_rss_kib
 
         for pid in descendants(self.server_pid):
-            if f"-m {GENERATOR_MODULE}" not in cmdline(pid):
-                continue
-            try:
-                status = Path(f"/proc/{pid}/status").read_text()
-            except OSError:
-                continue  # gone between the listing and the read
-            for line in status.splitlines():
-                if line.startswith("VmHWM:"):
-                    self.peak_kib = max(self.peak_kib, int(line.split()[1]))
+            if f"-m {GENERATOR_MODULE}" in cmdline(pid):
+                self.peak_kib = max(self.peak_kib, peak_rss_kib(pid) or 0)  # 0: gone since the listing
 
     def _run(self) -> None:
         while not self._stop.wait(self.pause_s):

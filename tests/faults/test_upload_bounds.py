@@ -15,7 +15,8 @@ import pytest
 from faults_testing import poll_job, processes, wait_ready
 from hostile_packages import LAYER, deep_exr, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
     with_directory_size
-from service_testing import Server, assert_error, descendants, is_png
+from processes import descendants, peak_rss_kib
+from service_testing import Server, assert_error, is_png
 
 pytestmark = pytest.mark.usefixtures("renderer_required")
 
@@ -48,16 +49,10 @@ def warm(server) -> None:
     assert_renders(server, textured_package(png(8, 8, (230, 20, 20))))
 
 
-def peak_rss_kib(server) -> dict[int, int]:
+def peak_rss_kibs(server) -> dict[int, int]:
     """VmHWM (peak resident memory) of the server and of every process under it."""
-    peaks = {}
-    for pid in [server.proc.pid, *descendants(server.proc.pid)]:
-        try:
-            status = open(f"/proc/{pid}/status").read()
-        except OSError:
-            continue  # gone between the listing and the read
-        peaks[pid] = int(status.split("VmHWM:")[1].split()[0])
-    return peaks
+    peaks = {pid: peak_rss_kib(pid) for pid in [server.proc.pid, *descendants(server.proc.pid)]}
+    return {pid: peak for pid, peak in peaks.items() if peak is not None}  # none: gone since the listing
 
 
 def textured_package(texture: bytes) -> bytes:
@@ -80,11 +75,11 @@ def test_a_stored_package_renders_its_own_texture(server, warm):
 def test_a_deflate_bomb_member_is_refused_unread(server, warm):
     bomb = deflate_bomb_package(TEXTURE, BOMB_BYTES)
     assert len(bomb) < 1 << 20
-    before = peak_rss_kib(server)
+    before = peak_rss_kibs(server)
     for route in ("/v1/generate", "/v1/thumbnails"):
         error = assert_error(server.client.post(route, content=bomb, headers=USDZ), 400, "invalid_document")
         assert error["where"] == TEXTURE and "compressed" in error["message"]
-    after = peak_rss_kib(server)
+    after = peak_rss_kibs(server)
     assert set(after) == set(before)  # no process died or was replaced on the way
     growth_kib = {pid: after[pid] - before[pid] for pid in before}
     assert max(growth_kib.values()) * 1024 < BOMB_BYTES // 8, growth_kib

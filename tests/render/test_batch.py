@@ -6,6 +6,8 @@ import signal
 import subprocess
 import sys
 
+from processes import children, cmdline
+
 
 def material(shader: str, tint: str, mat: str, color: str) -> str:
     return f"""<?xml version="1.0"?>
@@ -84,18 +86,7 @@ def test_a_batch_of_nothing_is_one_error_line(tmp_path):
 def _generator_children(pid: int) -> list[int]:
     """The process's children that run the generator (multiprocessing's spawned workers, not its
     resource tracker)."""
-    found = []
-    for entry in filter(str.isdigit, os.listdir("/proc")):
-        try:
-            with open(f"/proc/{entry}/stat") as f:
-                parent = int(f.read().rsplit(")", 1)[1].split()[1])
-            with open(f"/proc/{entry}/cmdline", "rb") as f:
-                command = f.read()
-        except (OSError, ValueError):
-            continue
-        if parent == pid and b"spawn_main" in command:
-            found.append(int(entry))
-    return found
+    return [child for child in children(pid) if "spawn_main" in cmdline(child)]
 
 
 def test_the_generator_child_killed_mid_batch_loses_no_material(tmp_path):
