@@ -153,6 +153,8 @@ def read_usd(path: str, library: Library) -> Document:
 def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
     """An uploaded layer (`usda` text) or package (`usdz`), confined to itself (usd_confine.py)."""
     Sdf, _, _, _ = _pxr()
+    from .usd_budget import check_composed_size
+
     if document_format == "usda":
         from .usd_confine import confine_layer
 
@@ -166,6 +168,7 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
             with usd_errors("<document>"):
                 layer.ImportFromString(text)
                 confine_layer(layer)
+                check_composed_size(layer, [layer])
             return _translate(layer, [layer], library, None, AssetPaths())
 
         return _in_public(translate, None)
@@ -185,6 +188,8 @@ def parse_usd(data: bytes, document_format: str, library: Library) -> Document:
 
             def translate():
                 layer, layers = _open_package(package)
+                with usd_errors("<document>"):
+                    check_composed_size(layer, layers)
                 return _translate(layer, layers, library, None, AssetPaths(package=package))
 
             return _in_public(translate, folder)

@@ -126,3 +126,15 @@ def _png(width: int, height: int, idat: bytes) -> bytes:
 
     header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", idat) + chunk(b"IEND", b"")
+
+
+def nested_references(depth: int, fan_out: int = 2) -> str:
+    """A layer of `depth` prims, each with `fan_out` children referencing the prim before it: a
+    few kilobytes that compose to about fan_out ** depth prims."""
+    prims = ['def "L0"\n{\n    def "leaf"\n    {\n    }\n}']
+    for level in range(1, depth + 1):
+        children = "".join(f'    def "c{c}" (\n        references = </L{level - 1}>\n    )\n    {{\n    }}\n'
+                           for c in range(fan_out))
+        prims.append(f'def "L{level}"\n{{\n{children}}}')
+    return "#usda 1.0\n" + "\n".join(prims) + "\n"
+

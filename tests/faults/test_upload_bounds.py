@@ -13,8 +13,8 @@ require_module("pxr", "usd-core: pip install -e '.[usd]', which scripts/test.sh 
 import pytest
 
 from faults_testing import poll_job, processes, wait_ready
-from hostile_packages import LAYER, deep_exr, deflate_bomb_package, huge_png_header, png, textured_layer, usdz, \
-    with_directory_size
+from hostile_packages import LAYER, deep_exr, deflate_bomb_package, huge_png_header, nested_references, png, \
+    textured_layer, usdz, with_directory_size
 from processes import descendants, peak_rss_kib
 from service_testing import Server, assert_error, is_png
 
@@ -170,3 +170,18 @@ def test_a_package_of_more_layers_than_the_limit_is_refused_before_they_are_walk
     assert_error(r, 413, "too_large")
     assert f"{MAX_PACKAGE_LAYERS + 1} layers" in r.json()["error"]["message"]
     assert assert_renders(server, usdz(members + empties[:-1]))
+
+
+def test_a_small_layer_that_composes_to_millions_of_prims_is_refused_before_it_composes(server, warm):
+    """2.4 kB of nested references (2 ** 19 prims) held a generator child until its time limit
+    (504), and minutes on the command line: counted from its specs, it is refused at once, as a
+    layer and inside a package (where the root references a member that holds it)."""
+    layer = nested_references(18)
+    package = usdz([(LAYER, b'#usda 1.0\ndef "Scene" (\n    references = @./nested.usda@</L18>\n)\n{\n}\n'),
+                    ("nested.usda", layer.encode())])
+    for body, headers in ((layer.encode(), {"content-type": "model/vnd.usda"}), (package, USDZ)):
+        for route in ("/v1/generate", "/v1/thumbnails"):
+            error = assert_error(server.client.post(route, content=body, headers=headers), 413, "too_large")
+            assert "compose" in error["message"], error
+    assert "Traceback" not in server.log_text()
+
