@@ -174,3 +174,17 @@ def test_an_upload_of_exponentially_many_prims_is_refused_before_it_composes():
     assert time.monotonic() - started < 5  # a bound on a hang, not a speed: the walk is linear in the specs
     layer.ImportFromString(nested_references(11))  # 12,280 prims: within the budget
     check_composed_size(layer, [layer])
+
+
+def test_the_errors_of_a_cycle_composed_many_times_are_listed_a_few_times():
+    """A cycle under a prim referenced 64 times: usd-core reports it for every copy (128 errors,
+    79 kB of warnings from a 2 kB layer); the record lists the first ten and how many more."""
+    from shadergen.api import Generator
+    from shadergen.usd import MAX_COMPOSITION_WARNINGS, parse_usd
+
+    doc = parse_usd(SHAPES["a cycle under prims referenced many times"].encode(), "usda", Generator().library)
+    composition = [w for w in doc.warnings if w.startswith("USD composition:")]
+    assert len(composition) == MAX_COMPOSITION_WARNINGS + 1
+    assert composition[-1] == f"USD composition: {128 - MAX_COMPOSITION_WARNINGS} more errors not listed"
+    assert all("Cycle detected" in w for w in composition[:-1])
+
