@@ -39,11 +39,9 @@ def _mix(bg, fg, t):
 
 
 def _round(x):
-    """GLSL's round(): a value halfway between two integers goes either way as the implementation
-    chooses (Mesa rounds it to even), so such a value is left to the GPU, as complete leaves it."""
-    if x - math.floor(x) == 0.5:
-        raise NotFoldable
-    return math.floor(x + 0.5)
+    """The library's roundEven(): a value halfway between two integers to the even one (as
+    Python's round)."""
+    return float(round(x))
 
 
 def _glsl_mod(x, y):

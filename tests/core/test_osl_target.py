@@ -147,3 +147,56 @@ def test_an_image_reads_as_gl_reads_it(oslc, tmp_path):
     values = [line.split(":")[1].split() for line in done.stdout.splitlines() if line.strip().startswith("out1")]
     # testshade's row y shades v = (y + 0.5) / 2: pixel (0, 0) is v = 0.25, pixel (0, 1) v = 0.75
     assert values == [["0", "0", "1"], ["1"], ["1", "0", "0"], ["1"]], done.stdout
+
+
+def test_a_matrix_product_is_swapped_once():
+    """OSL holds the transpose of GLSL's matrix: GLSL's `B * A` is OSL's `A * B`, also where the
+    GLSL printer renders the product again to see whether it fits its line (it was swapped back)."""
+    from shadergen.code import ir
+    from shadergen.targets.osl.printer import OslPrinter
+    a, b = (ir.Name(n, "local", type="mat3") for n in "ab")
+    product = ir.Binary("*", b, ir.Call("inverse", [a], type="mat3", builtin=True), type="mat3")
+    assert OslPrinter().render(product, None, 0) == "1.0 / a * b"
+    assert OslPrinter().render(product, 20, 4) == "1.0 / a * b"
+
+
+def test_matrix_arithmetic_and_round_evaluate_as_in_glsl(oslc, tmp_path):
+    """testshade evaluates multiply and divide of matrices as MaterialX orders them (a row vector
+    times in1 then in2; MaterialX's values are rows), and round takes a tie to the even integer,
+    as the GLSL library does."""
+    import subprocess
+    if check.tool("testshade") is None:
+        missing("testshade", "scripts/osl.sh builds it")
+    doc = b"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <multiply name="m" type="matrix33">
+    <input name="in1" type="matrix33" value="0, 1.5, 0,  0.5, 0, 0,  0, 0, 1"/>
+    <input name="in2" type="matrix33" value="0, 1, 0,  1, 0, 0,  0, 0, 1"/>
+  </multiply>
+  <divide name="d" type="matrix44">
+    <input name="in1" type="matrix44" value="1.5, 1.5, 0, 0,  0, 1.5, 1.5, 0,  0, 0, 1.5, 1.5,  0, 0, 0, 1"/>
+    <input name="in2" type="matrix44" value="1, 1, 0, 0,  0, 1, 1, 0,  0, 0, 1, 1,  0, 0, 0, 1"/>
+  </divide>
+  <transformmatrix name="tm" type="vector3">
+    <input name="in" type="vector3" value="0.5, 0.5, 0.5"/><input name="mat" type="matrix33" nodename="m"/>
+  </transformmatrix>
+  <transformmatrix name="td" type="vector4">
+    <input name="in" type="vector4" value="0.5, 0.25, 0.5, 1"/><input name="mat" type="matrix44" nodename="d"/>
+  </transformmatrix>
+  <round name="r" type="vector3"><input name="in" type="vector3" value="-0.5, 2.5, 1.5"/></round>
+  <output name="mout" type="vector3" nodename="tm"/>
+  <output name="dout" type="vector4" nodename="td"/>
+  <output name="rout" type="vector3" nodename="r"/>
+</materialx>"""
+    printed = {}
+    for rec in default_generator().records(doc, target="osl", all=True, values="source"):
+        failed = check.compile_shaders({"shader": ("pixel", rec["stages"]["pixel"])}, str(tmp_path))
+        assert not failed, failed
+        done = subprocess.run([check.tool("testshade"), "--res", "1", "1", "--print", "-o", "out1", "null",
+                               "-o", "out1_alpha", "null", str(tmp_path / "shader0")],
+                              capture_output=True, text=True, timeout=120, check=True)
+        lines = [line for line in done.stdout.splitlines() if line.strip().startswith("out1")]
+        printed[rec["element"]] = [float(x) for line in lines for x in line.split(":")[1].split()]
+    # (0.5, 0.5, 0.5) in1 in2 (in2 in1: 0.25, 0.75, 0.5); (0.5, 0.25, 0.5, 1) in1 inverse(in2)
+    # (inverse(in2) in1: alpha 1.375)
+    assert printed == {"mout": [0.75, 0.25, 0.5, 1.0], "dout": [0.75, 0.375, 0.75, 1.0], "rout": [0.0, 2.0, 2.0, 1.0]}

@@ -75,16 +75,16 @@ def test_compositing_guards_give_what_the_library_gives():
     ("divide", {"in1": 1.0, "in2": 0.0}),  # infinity: no literal holds it
     ("sqrt", {"in": -1.0}),
     ("noise3d", {"amplitude": 1.0}),  # not computable here
-    ("round", {"in": 0.5}),  # GLSL rounds a tie either way: Mesa gives 0, floor(x + 0.5) gave 1
-    ("round", {"in": -2.5}),
 ])
 def test_what_cannot_be_computed_is_not_folded(category, inputs):
     with pytest.raises(NotFoldable):
         evaluate_outputs(category, inputs, [("out", "float")])
 
 
-def test_round_away_from_a_tie_folds():
-    assert [evaluate_outputs("round", {"in": x}, [("out", "float")])["out"] for x in (0.4, 0.6, -1.7)] == [0.0, 1.0, -2.0]
+def test_round_folds_as_the_library_rounds_a_tie_to_even():
+    values = (0.4, 0.6, -1.7, 0.5, -0.5, 1.5, -2.5)
+    assert [evaluate_outputs("round", {"in": x}, [("out", "float")])["out"] for x in values] == [
+        0.0, 1.0, -2.0, 0.0, 0.0, 2.0, -2.0]
 
 
 # -- fold ----------------------------------------------------------------------------------------------

@@ -30,8 +30,8 @@ What has no OSL form raises ShaderGenError("unsupported_node", ...).
 from ...code import ir
 from ...code.types import array_element, array_size, is_array, is_matrix, scalar_of, size_of
 from ...errors import ShaderGenError
-from ..glsl.printer import UNARY, PRIMARY, GlslPrinter, literal_text
-from ..printing import INDENT
+from ..glsl.printer import BINARY, UNARY, PRIMARY, GlslPrinter, literal_text
+from ..printing import INDENT, binary_text
 
 # OSL's keywords, reserved words, shader globals and the standard library's functions a library
 # name would hide or misuse
@@ -72,6 +72,8 @@ RELATIONS = {"lessThan": "<", "lessThanEqual": "<=", "greaterThan": ">", "greate
              "notEqual": "!="}
 COMPONENTS = {c: i for names in ("xyzw", "rgba", "stpq") for i, c in enumerate(names)}
 RENAMED = {"dFdx": "Dx", "dFdy": "Dy", "fwidth": "filterwidth"}
+# built-ins OSL lacks in every type -> their helpers (a struct's calls the float one per component)
+OWN_HELPERS = {"fract": "osl_fract", "roundEven": "osl_round_even"}
 # the struct overloads OSL's vector2.h and vector4.h declare (S: either struct)
 PROVIDED = frozenset(f"{name}({args})".replace("S", struct) for struct in ("vector2", "vector4") for name, args in (
     ("abs", "S"), ("ceil", "S"), ("floor", "S"), ("sqrt", "S"), ("exp", "S"), ("log", "S"), ("log2", "S"),
@@ -140,6 +142,8 @@ def helpers(items) -> list[str]:
                     wanted.add(("osl_component", (osl_type(base.type), "int"), "float"))
     if any(h[0] == "osl_fract" and h[2] in STRUCT_SIZES for h in wanted):
         wanted.add(("osl_fract", ("float",), "float"))
+    if any(h[0] == "osl_round_even" and h[2] != "float" for h in wanted):  # (a triple's too)
+        wanted.add(("osl_round_even", ("float",), "float"))
     declarations = [line for name in sorted(structs) for line in [
         f"struct {name}", "{", *(f"{INDENT}int {c};" for c in STRUCT_FIELDS[:int(name[-1])]), "};", ""]]
     return declarations + [line for helper in sorted(wanted, key=lambda h: (h[0], h[2] != "float", h))
@@ -181,8 +185,8 @@ def builtin_helper(call: ir.Call):
     """(name, OSL argument types, OSL return type) of the helper a built-in call needs, or None."""
     name = "atan2" if call.name == "atan" and len(call.args) == 2 else RENAMED.get(call.name, call.name)
     types = tuple(osl_type(a.type) for a in call.args)
-    if name == "fract":  # (a struct's calls the float one: helper_text)
-        return "osl_fract", types, osl_type(call.type)
+    if name in OWN_HELPERS:
+        return OWN_HELPERS[name], types, osl_type(call.type)
     if name == "texture":
         return "osl_texture", ("string", "vector2"), "vector4"
     if name == "textureGrad":
@@ -209,14 +213,17 @@ def part(osl: str, value: str, i: int) -> str:
 def helper_text(name: str, types: tuple, returns: str) -> list[str]:
     params = ", ".join(f"{t} {p}" for t, p in zip(types, "abcd"))
     head = f"{returns} {name}({params})"
-    if name == "osl_texture":  # (the library's coordinates are the image's already: t from the top row, as OSL's)
+    # (the library's coordinates are the image's already: t from the top row, as OSL's; a texture the
+    # library samples itself repeats, as the GL renderer's sampler does, where OSL's default is black)
+    if name == "osl_texture":
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, "alpha", alpha, "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, "wrap", "periodic", "alpha", alpha, "fill", 1.0,',
+                '                        "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_texture_grad":  # with the derivatives of the coordinate
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "alpha", alpha, "fill", 1.0,',
-                '                        "missingcolor", color(0.0), "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "wrap", "periodic", "alpha", alpha,',
+                '                        "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_select":
         return [head, "{", "    if (a)", "        return b;", "    return c;", "}"]
@@ -270,9 +277,10 @@ def helper_text(name: str, types: tuple, returns: str) -> list[str]:
         parts = [f"{part(types[2], 'c', i)} ? {part(types[1], 'b', i)} : {part(types[0], 'a', i)}" for i in range(size)]
     elif returns in ("float", "vector") and name == "osl_fract":  # fract of a float or a triple
         return [head, "{", "    return a - floor(a);", "}"]
+    elif returns == "float" and name == "osl_round_even":  # OSL's round takes a tie away from zero
+        return [head, "{", "    return abs(a - trunc(a)) == 0.5 ? 2.0 * round(0.5 * a) : round(a);", "}"]
     else:
-        inner = "osl_fract" if name == "osl_fract" else name
-        parts = [f"{inner}({', '.join(part(t, p, i) for t, p in zip(types, 'abcd'))})" for i in range(size)]
+        parts = [f"{name}({', '.join(part(t, p, i) for t, p in zip(types, 'abcd'))})" for i in range(size)]
     return [head, "{", f"    return {returns}({', '.join(parts)});", "}"]
 
 
@@ -321,6 +329,8 @@ class OslPrinter(GlslPrinter):
     def precedence(self, e) -> int:
         if type(e) is ir.Literal:  # (a uint's bits may be written as a negative int)
             return UNARY if self.literal(e).startswith("-") else PRIMARY
+        if type(e) is ir.Call and e.builtin and e.callee is None and e.name == "inverse":  # `1.0 / m`
+            return BINARY["/"]
         return super().precedence(e)
 
     @staticmethod
@@ -434,7 +444,11 @@ class OslPrinter(GlslPrinter):
     def product(self, e: ir.Binary, column, indent) -> str:
         left, right = e.left, e.right
         if is_matrix(left.type) and is_matrix(right.type):  # transposed storage: (AB)' = B'A'
-            return super().render(ir.Binary("*", right, left, type=e.type), column, indent)
+            # written here: the GLSL printer's render prints a wrapped node once more through this
+            # render, which would swap a swapped product back
+            return binary_text(lambda at, i: self.operand(right, at, i, self.precedence(right) < BINARY["*"]), "*",
+                               lambda at, i: self.operand(left, at, i, self.precedence(left) <= BINARY["*"]),
+                               column, indent)
         if is_matrix(left.type):
             return self.call("transform", [left, right], column, indent)
         return self.call("transform", [ir.Call("transpose", [right], type=right.type, builtin=True), left],
@@ -450,7 +464,7 @@ class OslPrinter(GlslPrinter):
         if name == "atan" and len(args) == 2:
             return self.call("atan2", args, column, indent)
         if name == "inverse":
-            return "1.0 / " + self.operand(args[0], None, indent, True)
+            return "1.0 / " + self.operand(args[0], None, indent, self.precedence(args[0]) <= BINARY["/"])
         if name in ("textureLod", "textureSize", "texelFetch", "textureQueryLod", "textureQueryLevels",
                     "floatBitsToInt", "floatBitsToUint", "intBitsToFloat", "uintBitsToFloat",
                     "matrixCompMult", "outerProduct"):

@@ -12,7 +12,7 @@ parameter per pixel output: a colour and its alpha (`<output>_alpha`) for a valu
 globals (`P`, `N`, `u`, `v`, `dPdu`, `dPdv`), object space through `transform("object", ...)`.
 """
 from ...code import ir
-from ...code.types import is_array
+from ...code.types import is_array, size_of
 from ...code.values import value_expr
 from ...shader import Writer
 from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
@@ -69,10 +69,12 @@ class OslTarget:
             return GEOMETRY[member]
         if member.startswith("texcoord_"):
             return "vector(u, v, 0.0)" if name.type == "vec3" else "vector2(u, v)"
-        # colours and geometric properties no global holds: the type's zero (a renderer's
-        # attribute lookup would go here)
-        return OslPrinter().render(value_expr({"vec4": "vector4", "vec2": "vector2", "vec3": "vector3"}.get(
-            name.type, "float"), None), None, 0)
+        # colours and geometric properties no global holds (a renderer's attribute lookup would go
+        # here): what the GL renderer binds for a mesh without them, white colours (render/geometry.py),
+        # else the type's zero
+        materialx_type = {"vec4": "vector4", "vec2": "vector2", "vec3": "vector3"}.get(name.type, "float")
+        white = (1.0,) * size_of(name.type) if member.startswith("color_") else None
+        return OslPrinter().render(value_expr(materialx_type, white), None, 0)
 
     # -- assembly ----------------------------------------------------------------------------------
     def assemble_vertex(self, ctx) -> None:
@@ -192,8 +194,9 @@ OWN_FUNCTIONS = {"mx_image_fetch": (
     "        return dflt;",
     '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
     '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "bilinear" : "bicubic";',
+    "    float width = filtertype == 0 ? 0.0 : 1.0;",
     "    float alpha = dflt.w;",
-    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp,',
+    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, "width", width,',
     '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
     '                        "missingalpha", dflt.w);',
     "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
