@@ -1,28 +1,35 @@
 """The Vulkan checker (targets/checking.py): glslangValidator -V compiling each stage to SPIR-V
 for Vulkan 1.0 (the same compile as the record's, spirv.py), then spirv-val (Debian spirv-tools),
-the Khronos validator of SPIR-V modules, on what it wrote."""
+the Khronos validator of SPIR-V modules, on what it wrote. `spirv_errors` validates modules already
+compiled (a record's "spirv": bench/targets.py, which would otherwise compile every stage twice)."""
 import os
 import subprocess
 import tempfile
 
 from ...errors import ShaderGenError
 from ..checking import Unavailable, tool
-from .spirv import TARGET_ENV, compile_stage
+from .spirv import TARGET_ENV, compile_stages
 
 
 def errors(shaders: dict[str, tuple[str, str]]) -> dict[str, str]:
     tool("glslangValidator", "glslang-tools")
+    found, modules = {}, {}
+    for label, (stage, source) in shaders.items():
+        try:
+            modules[label] = compile_stages({stage: source})[stage]
+        except ShaderGenError as exc:
+            if exc.code == "missing_tool":
+                raise Unavailable("glslangValidator", exc.message) from None
+            found[label] = exc.message[:600]
+    return found | spirv_errors(modules)
+
+
+def spirv_errors(modules: dict[str, bytes]) -> dict[str, str]:
+    """label -> spirv-val's message, for each module (SPIR-V bytes) it rejects."""
     spirv_val = tool("spirv-val", "spirv-tools")
     found = {}
     with tempfile.TemporaryDirectory(prefix="shadergen-spirv-val-") as folder:
-        for k, (label, (stage, source)) in enumerate(shaders.items()):
-            try:
-                module = compile_stage(stage, source)
-            except ShaderGenError as exc:
-                if exc.code == "missing_tool":
-                    raise Unavailable("glslangValidator", exc.message) from None
-                found[label] = exc.message[:600]
-                continue
+        for k, (label, module) in enumerate(modules.items()):
             path = os.path.join(folder, f"s{k}.spv")
             with open(path, "wb") as f:
                 f.write(module)
