@@ -14,14 +14,30 @@ from .spirv import TARGET_ENV, compile_stages
 def errors(shaders: dict[str, tuple[str, str]]) -> dict[str, str]:
     tool("glslangValidator", "glslang-tools")
     found, modules = {}, {}
-    for label, (stage, source) in shaders.items():
-        try:
-            modules[label] = compile_stages({stage: source})[stage]
-        except ShaderGenError as exc:
-            if exc.code == "missing_tool":
-                raise Unavailable("glslangValidator", exc.message) from None
-            found[label] = exc.message[:600]
+    items = list(shaders.items())
+    k = 0
+    while k < len(items):  # a vertex and a pixel stage in turn: one glslang run (spirv.py)
+        size = 2 if k + 1 < len(items) and items[k][1][0] != items[k + 1][1][0] else 1
+        _compile(items[k:k + size], found, modules)
+        k += size
     return found | spirv_errors(modules)
+
+
+def _compile(batch: list, found: dict[str, str], modules: dict[str, bytes]) -> None:
+    """Each (label, (stage, source)) of `batch` (stages apart) into `modules`, or its message into
+    `found`; a pair glslang refuses is compiled again a stage at a time, for each one's message."""
+    try:
+        compiled = compile_stages({stage: source for _, (stage, source) in batch})
+    except ShaderGenError as exc:
+        if exc.code == "missing_tool":
+            raise Unavailable("glslangValidator", exc.message) from None
+        if len(batch) == 1:
+            found[batch[0][0]] = exc.message[:600]
+        else:
+            for one in batch:
+                _compile([one], found, modules)
+        return
+    modules.update((label, compiled[stage]) for label, (stage, _) in batch)
 
 
 def spirv_errors(modules: dict[str, bytes]) -> dict[str, str]:

@@ -28,9 +28,9 @@ def compile_stages(stages: dict[str, str]) -> dict[str, bytes]:
     """Each stage's SPIR-V module; ShaderGenError(compile_error) with glslang's first errors (where:
     "stage:LINE") for the first stage it refuses."""
     with tempfile.TemporaryDirectory(prefix="shadergen-spirv-") as folder:
-        files = {stage: os.path.join(folder, f"{stage}.{STAGE_NAMES[stage]}") for stage in stages}
+        files = {stage: f"{stage}.{STAGE_NAMES[stage]}" for stage in stages}  # in `folder`, its working folder
         for stage, source in stages.items():
-            with open(files[stage], "w", encoding="utf-8") as f:
+            with open(os.path.join(folder, files[stage]), "w", encoding="utf-8") as f:
                 f.write(source)
         # without -o each module is written to the working folder as <vert|frag>.spv
         try:
