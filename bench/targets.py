@@ -12,7 +12,7 @@ specialized: the count at >= 40 dB PSNR and the lowest.
 
     .venv/bin/python bench/targets.py [--corpus ../shared/corpus] [--targets glsl,essl,...]
         [--interfaces complete,specialized] [--no-reference] [--no-images] [--sample N] [--failures N]
-        [--journal FILE]
+        [--journal FILE] [--no-conformance]
 
 `--sample N` keeps every Nth document of each corpus (for development; the full run is the figure).
 Prints a row per target, interface and corpus, the most common failures, and last
@@ -216,6 +216,8 @@ def main() -> int:
     parser.add_argument("--interfaces", default="complete,specialized")
     parser.add_argument("--no-reference", action="store_true")
     parser.add_argument("--no-images", action="store_true")
+    parser.add_argument("--no-conformance", action="store_true",
+                        help="generate and validate nothing: the journal's steps only (and the image check)")
     parser.add_argument("--sample", type=int, default=1, help="every Nth document of each corpus")
     parser.add_argument("--size", type=int, default=128, help="image size of the drawn check")
     parser.add_argument("--failures", type=int, default=15)
@@ -238,6 +240,8 @@ def main() -> int:
         for interface in interfaces:
             for corpus, docs in corpora.items():
                 step = (target, interface, corpus)
+                if step not in journal.steps and args.no_conformance:
+                    continue
                 if step not in journal.steps:
                     found: collections.Counter = collections.Counter()
                     records = {doc: ours(generator, doc, target, interface) for doc in docs}
