@@ -12,12 +12,14 @@ specialized: the count at >= 40 dB PSNR and the lowest.
 
     .venv/bin/python bench/targets.py [--corpus ../shared/corpus] [--targets glsl,essl,...]
         [--interfaces complete,specialized] [--no-reference] [--no-images] [--sample N] [--failures N]
+        [--journal FILE] [--no-conformance]
 
 `--sample N` keeps every Nth document of each corpus (for development; the full run is the figure).
 Prints a row per target, interface and corpus, the most common failures, and last
 `targets: <target> gen% / valid% (ref gen% / valid%) [img n/N >= 40 dB] | ...` over all corpora.
 """
 import argparse
+import base64
 import collections
 import json
 import math
@@ -35,6 +37,7 @@ from shadergen.api import Generator  # noqa: E402
 from shadergen.targets import checker_for  # noqa: E402
 from shadergen.targets.checking import Unavailable  # noqa: E402
 from shadergen.targets.msl.check import ENTRY as MSL_ENTRY, Declarations  # noqa: E402
+from shadergen.targets.vulkan.check import spirv_errors  # noqa: E402
 
 TARGETS = ("glsl", "essl", "wgsl", "vulkan", "hlsl", "slang", "msl")
 CORPORA = {"stdlib": "resources/Materials/TestSuite/stdlib", "pbrlib": "resources/Materials/TestSuite/pbrlib",
@@ -119,8 +122,11 @@ def reference_msl_errors(shaders: dict[str, tuple[str, str]]) -> dict[str, str]:
 class Row:
     """One target, interface and corpus, of ours or the reference."""
 
-    def __init__(self):
-        self.elements = self.generated = self.valid = 0
+    def __init__(self, elements: int = 0, generated: int = 0, valid: int = 0):
+        self.elements, self.generated, self.valid = elements, generated, valid
+
+    def counts(self) -> list[int]:
+        return [self.elements, self.generated, self.valid]
 
     def add(self, other: "Row") -> None:
         self.elements += other.elements
@@ -133,26 +139,70 @@ class Row:
         return f"{100 * self.generated / self.elements:.1f}% / {100 * self.valid / max(self.generated, 1):.1f}%"
 
 
+class Journal:
+    """Finished steps (target, interface, corpus: our Row, the reference's, the failures counted)
+    and image checks, appended to a JSON-lines file as each finishes and read back on the next
+    run with the same --sample: a run cut short resumes where it stopped, and the table can be
+    printed from steps run apart (the image check after a renderer change)."""
+
+    def __init__(self, path: Path | None, sample: int):
+        self.path, self.sample = path, sample
+        self.steps: dict[tuple, tuple] = {}
+        self.images: dict[str, list[dict]] = {}
+        if path is None or not path.exists():
+            return
+        for line in path.read_text().splitlines():
+            entry = json.loads(line)
+            if entry["sample"] != sample:
+                continue
+            if "images" in entry:
+                self.images[entry["images"]] = [dict(r, psnr=float(r["psnr"])) for r in entry["scored"]]
+            else:
+                self.steps[tuple(entry["step"])] = (Row(*entry["ours"]), entry["ref"] and Row(*entry["ref"]),
+                                                    collections.Counter(entry["reasons"]))
+
+    def _append(self, entry: dict) -> None:
+        if self.path is not None:
+            with self.path.open("a") as f:
+                f.write(json.dumps(dict(entry, sample=self.sample)) + "\n")
+
+    def write(self, step: tuple, mine: Row, theirs: Row | None, reasons: collections.Counter) -> None:
+        self.steps[step] = (mine, theirs, reasons)
+        self._append({"step": step, "ours": mine.counts(), "ref": theirs and theirs.counts(), "reasons": reasons})
+
+    def write_images(self, target: str, scored: list[dict]) -> None:
+        self.images[target] = scored
+        self._append({"images": target, "scored": [dict(r, psnr=str(r["psnr"])) for r in scored]})
+
+
 def check(records_by_doc: dict[Path, list[dict]], target: str, errors, counterparts, reasons, who: str) -> Row:
     """Counts the elements, those generated and those whose every stage the checker accepts."""
     row = Row()
     for doc, records in records_by_doc.items():
-        shaders, labels, wgsl = {}, [], {}
+        shaders, labels, wgsl, modules = {}, [], {}, {}
         for record in records:
             if record.get("error", {}).get("code") == "no_renderable_element":
                 continue
             row.elements += 1
+            label = f"{doc.name} {record['element']}"
+            if record.get("error", {}).get("code") == "compile_error":  # our vulkan: glslang refused the source
+                row.generated += 1
+                reasons[f"{who} {target} invalid: {record['error']['message'][:150]} ({doc.name})"] += 1
+                continue
             if "error" in record:
                 reasons[f"{who} {target} not generated: {record['error']['message'][:110]}"] += 1
                 continue
             row.generated += 1
-            label = f"{doc.name} {record['element']}"
             labels.append(label)
             for stage in ("vertex", "pixel"):
                 shaders[f"{label} {stage}"] = (stage, record["stages"][stage])
+                if "spirv" in record:
+                    modules[f"{label} {stage}"] = base64.b64decode(record["spirv"][stage])
                 if record["element"] in counterparts.get(doc, {}):
                     wgsl[f"{label} {stage}"] = counterparts[doc][record["element"]]["stages"][stage]
-        rejected = errors(shaders, wgsl) if counterparts else errors(shaders)
+        # our vulkan record holds the SPIR-V glslang compiled from its source: compiling it again
+        # would write the same module (spirv.py), so spirv-val checks the record's
+        rejected = spirv_errors(modules) if modules else errors(shaders, wgsl) if counterparts else errors(shaders)
         for message in rejected.values():
             reasons[f"{who} {target} invalid: {message[:150]} ({doc.name})"] += 1
         row.valid += sum(1 for label in labels if not any(k.startswith(label + " ") for k in rejected))
@@ -166,15 +216,19 @@ def main() -> int:
     parser.add_argument("--interfaces", default="complete,specialized")
     parser.add_argument("--no-reference", action="store_true")
     parser.add_argument("--no-images", action="store_true")
+    parser.add_argument("--no-conformance", action="store_true",
+                        help="generate and validate nothing: the journal's steps only (and the image check)")
     parser.add_argument("--sample", type=int, default=1, help="every Nth document of each corpus")
     parser.add_argument("--size", type=int, default=128, help="image size of the drawn check")
     parser.add_argument("--failures", type=int, default=15)
+    parser.add_argument("--journal", type=Path, help="JSON lines: each finished step appended; steps found are reused")
     args = parser.parse_args()
     targets, interfaces = args.targets.split(","), args.interfaces.split(",")
     corpora = documents(args.corpus, args.sample)
     generator = Generator()
     reasons: collections.Counter = collections.Counter()
     rows: dict[tuple, Row] = {}
+    journal = Journal(args.journal, args.sample)
     started = time.perf_counter()
     for target in targets:
         try:
@@ -185,24 +239,35 @@ def main() -> int:
             continue
         for interface in interfaces:
             for corpus, docs in corpora.items():
-                records = {doc: ours(generator, doc, target, interface) for doc in docs}
-                counterparts = {doc: {r["element"]: r for r in ours(generator, doc, "wgsl", interface) if "error" not in r}
-                                for doc in docs} if target == "msl" else {}
-                rows[target, interface, corpus, "ours"] = check(records, target, errors, counterparts, reasons, "ours")
-                if interface == "complete" and target in REFERENCE_TARGETS and not args.no_reference:
-                    rows[target, interface, corpus, "ref"] = check(
-                        reference(docs, target), target, reference_msl_errors if target == "msl" else errors, {}, reasons, "ref")
-                theirs = rows.get((target, interface, corpus, "ref"))
-                print(f"  {target} {interface} {corpus}: {rows[target, interface, corpus, 'ours'].figures()}"
-                      f"{f' (ref {theirs.figures()})' if theirs else ''} ({time.perf_counter() - started:.0f} s)",
-                      file=sys.stderr, flush=True)
+                step = (target, interface, corpus)
+                if step not in journal.steps and args.no_conformance:
+                    continue
+                if step not in journal.steps:
+                    found: collections.Counter = collections.Counter()
+                    records = {doc: ours(generator, doc, target, interface) for doc in docs}
+                    counterparts = {doc: {r["element"]: r for r in ours(generator, doc, "wgsl", interface)
+                                          if "error" not in r} for doc in docs} if target == "msl" else {}
+                    mine = check(records, target, errors, counterparts, found, "ours")
+                    theirs = check(reference(docs, target), target, reference_msl_errors if target == "msl" else errors,
+                                   {}, found, "ref") \
+                        if interface == "complete" and target in REFERENCE_TARGETS and not args.no_reference else None
+                    journal.write(step, mine, theirs, found)
+                mine, theirs, found = journal.steps[step]
+                rows[(*step, "ours")] = mine
+                if theirs:
+                    rows[(*step, "ref")] = theirs
+                reasons.update(found)
+                print(f"  {target} {interface} {corpus}: {mine.figures()}{f' (ref {theirs.figures()})' if theirs else ''}"
+                      f" ({time.perf_counter() - started:.0f} s)", file=sys.stderr, flush=True)
     images = {}
     if not args.no_images:
         examples = [str(d) for d in corpora["Examples"]]
         for target in (t for t in targets if t in DRAWN):
-            scored = compare_images(examples, target, [str(args.corpus)], size=args.size, interface="specialized",
-                                    show=lambda line: print(line, file=sys.stderr, flush=True))
-            values = [r["psnr"] for r in scored]
+            if target not in journal.images:
+                journal.write_images(target, compare_images(examples, target, [str(args.corpus)], size=args.size,
+                                                            interface="specialized",
+                                                            show=lambda line: print(line, file=sys.stderr, flush=True)))
+            values = [r["psnr"] for r in journal.images[target]]
             images[target] = (sum(v >= PASS_DB for v in values if not math.isnan(v)), len(values),
                               min((v for v in values if not math.isnan(v)), default=math.nan))
 

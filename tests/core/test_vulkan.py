@@ -87,6 +87,21 @@ def test_the_checker_refuses_bad_source_with_the_line():
     assert "uniform" in errors["loose"]  # Vulkan has no loose uniforms
 
 
+def test_a_pair_compiled_in_one_run_names_the_stage_glslang_refused(glslang):
+    """Both stages go to one glslang run (spirv.py): its error names the refused stage and line,
+    and the checker flags that stage only."""
+    from shadergen.errors import ShaderGenError
+    from shadergen.targets.vulkan.spirv import compile_stages
+
+    vertex = "#version 450\nvoid main()\n{\n    gl_Position = vec4(0.0);\n}\n"
+    pixel = "#version 450\nlayout(location = 0) out vec4 o;\nvoid main()\n{\n    o = undefined;\n}\n"
+    with pytest.raises(ShaderGenError) as refused:
+        compile_stages({"vertex": vertex, "pixel": pixel})
+    assert refused.value.where == "pixel:5" and "undefined" in refused.value.message
+    errors = checker_for("vulkan").errors({"a vertex": ("vertex", vertex), "a pixel": ("pixel", pixel)})
+    assert set(errors) == {"a pixel"}
+
+
 def test_generated_shaders_of_every_interface_pass_the_checker(gen, glslang):
     from required_tools import missing
     text = doc('<image name="i" type="color3"><input name="file" type="filename" value="a.png"/></image>'

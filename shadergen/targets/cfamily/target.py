@@ -11,6 +11,8 @@ and kept in a static `vd` in the pixel stage, so library functions read it as GL
 app data is `AppData` (`ATTRIBUTE<i>`). The fragment built-ins the code reads (gl_FrontFacing)
 come in as the entry point's parameters, copied into statics.
 """
+from functools import lru_cache
+
 from ...code import ir
 from ...code.types import ir_type
 from ...errors import ShaderGenError
@@ -52,8 +54,18 @@ class CFamilyTarget:
             return "vd.position"
         return safe_name(n.name)
 
-    def printer(self) -> CFamilyPrinter:
+    def printer(self, key: tuple = ()) -> CFamilyPrinter:
+        """The printer; `key` is what else its spelling depends on (MSL's boolean uniforms)."""
         return CFamilyPrinter(self.syntax, self.spell, safe_name)
+
+    def item(self, printer: CFamilyPrinter, item, key: tuple = ()) -> tuple[str, ...]:
+        """An item's lines: a library item's printed once per process for the same target and key,
+        as GLSL's are (glsl/target.py; they recur in every request, and the code passes hand back
+        the same rewritten item for the same edit): printing them again was most of the time an
+        HLSL, Slang or MSL record took beyond GLSL's."""
+        if item.where is None:  # generated for this shader
+            return tuple(printer.item(item))
+        return printed(type(self), key, item)
 
     # -- stage assembly ----------------------------------------------------------------------------
     def assemble_pixel(self, ctx) -> str:
@@ -65,7 +77,7 @@ class CFamilyTarget:
         w = Writer()
         for items in (code.structs, code.constants):
             for item in items:
-                w.extend(printer.item(item))
+                w.extend(self.item(printer, item))
             if items:
                 w.line()
         self._uniforms(ctx.pixel, "PixelUniforms", w)
@@ -77,7 +89,7 @@ class CFamilyTarget:
         w.line()
         w.extend(helpers(code.functions + [code.main], self.syntax, code.structs, safe_name))
         for function in code.functions:
-            w.extend(printer.item(function))
+            w.extend(self.item(printer, function))
             w.line()
         w.line('[shader("pixel")]')
         parameters = ["VertexData vertexData"] + [f"bool {FRAGMENT_BUILTINS[name]}_in : SV_IsFrontFace"
@@ -153,3 +165,8 @@ class CFamilyTarget:
             w.line(f"    {self._type(v.type)} {v.name} : TEXCOORD{i};")
         w.line("};")
         w.line()
+
+
+@lru_cache(maxsize=8192)
+def printed(target_class, key: tuple, item) -> tuple[str, ...]:
+    return tuple(target_class().printer(key).item(item))

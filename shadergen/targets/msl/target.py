@@ -37,16 +37,23 @@ class MslTarget(CFamilyTarget):
         return {stage: uniform_layout(ctx.stages[stage], 0) for stage in (VERTEX, PIXEL)}
 
     # -- names -------------------------------------------------------------------------------------
-    def names(self, stage, buffer: str):
-        booleans = frozenset(v.name for block in ("PrivateUniforms", "PublicUniforms") for v in stage.blocks[block]
-                             if v.type == "boolean")
+    def printer(self, key: tuple = ()) -> CFamilyPrinter:
+        """key: (the stage's buffer, its boolean uniforms), what reading a uniform depends on."""
+        if not key:
+            return super().printer()
+        buffer, booleans = key
 
         def spell(n: ir.Name) -> str:
             if n.kind == "uniform" and n.type != "sampler2D":
                 read = f"{buffer}.{n.name}"
                 return f"({read} != 0)" if n.name in booleans else read
             return self.spell(n)
-        return spell
+        return CFamilyPrinter(self.syntax, spell, safe_name)
+
+    @staticmethod
+    def key(stage, buffer: str) -> tuple:
+        return buffer, frozenset(v.name for block in ("PrivateUniforms", "PublicUniforms")
+                                 for v in stage.blocks[block] if v.type == "boolean")
 
     # -- stage assembly ----------------------------------------------------------------------------
     def assemble_pixel(self, ctx) -> str:
@@ -54,13 +61,14 @@ class MslTarget(CFamilyTarget):
         outputs = list(ctx.pixel.blocks["Outputs"])
         if len(outputs) != 1:
             raise ShaderGenError("unsupported_output", "msl shaders have exactly one output", "msl")
-        printer = CFamilyPrinter(self.syntax, self.names(ctx.pixel, "pu"), safe_name)
+        key = self.key(ctx.pixel, "pu")
+        printer = self.printer(key)
         w = Writer()
         for line in HEADER:
             w.line(line)
         for items in (code.structs, code.constants):
             for item in items:
-                w.extend(printer.item(item))
+                w.extend(self.item(printer, item, key))
             if items:
                 w.line()
         layout = uniform_layout(ctx.pixel, 0)
@@ -79,7 +87,7 @@ class MslTarget(CFamilyTarget):
         w.line()
         w.extend(helpers(code.functions + [code.main], self.syntax, code.structs, safe_name))
         for function in code.functions:
-            w.extend(printer.item(function))
+            w.extend(self.item(printer, function, key))
             w.line()
         w.line("float4 shade()")
         w.line("{")
@@ -106,7 +114,7 @@ class MslTarget(CFamilyTarget):
         return w.text()
 
     def assemble_vertex(self, ctx) -> str:
-        printer = CFamilyPrinter(self.syntax, self.names(ctx.vertex, "vu"), safe_name)
+        printer = self.printer(self.key(ctx.vertex, "vu"))
         w = Writer()
         for line in HEADER:
             w.line(line)

@@ -17,7 +17,7 @@ from ...shader import Writer
 from ..glsl.target import GlslTarget
 from .layout import SETS, std140_layout
 from .printer import VulkanPrinter
-from .spirv import compile_stage
+from .spirv import compile_stages
 
 
 class VulkanTarget(GlslTarget):
@@ -35,8 +35,8 @@ class VulkanTarget(GlslTarget):
     @staticmethod
     def compiled(stages: dict[str, str]) -> dict:
         """The record's "spirv": each stage's module, base64."""
-        return {"spirv": {stage: base64.b64encode(compile_stage(stage, source)).decode("ascii")
-                          for stage, source in stages.items()}}
+        return {"spirv": {stage: base64.b64encode(module).decode("ascii")
+                          for stage, module in compile_stages(stages).items()}}
 
     @staticmethod
     def io(direction: str, location: int) -> str:

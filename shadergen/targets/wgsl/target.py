@@ -10,6 +10,8 @@ variable `vd` in the pixel stage, so functions may read it as GLSL's `vd.` block
 built-ins the code reads (gl_FrontFacing) come in as the entry point's parameters, copied into
 private variables.
 """
+from functools import lru_cache
+
 from ...code import ir
 from ...code.passes.rewrite import items_in
 from ...code.types import ir_type
@@ -44,14 +46,16 @@ class WgslTarget:
         items = [runtime.statement(i) if isinstance(i, ir.Function) and i.where is None else i for i in code.functions]
         items = list(runtime.functions.values()) + items
         functions = [f for item in items for f in items_in(item) if isinstance(f, ir.Function)]
-        printer = WgslPrinter(function_names(functions), lambda n: self._pixel_name(n, booleans))
+        names = function_names(functions)
+        printer = WgslPrinter(names, lambda n: self._pixel_name(n, booleans))
+        key = (frozenset(names.items()), booleans)
         w = Writer()
         for item in code.structs:
-            w.extend(printer.item(item))
+            w.extend(library_item(printer, item, key))
         if code.structs:
             w.line()
         for item in code.constants:
-            w.extend(printer.item(item))
+            w.extend(library_item(printer, item, key))
         if code.constants:
             w.line()
         self._uniform_struct(ctx.pixel, 1, "pu", w)
@@ -68,7 +72,7 @@ class WgslTarget:
             w.line()
         w.extend(helpers(items + [main]))
         for function in items:
-            w.extend(printer.item(function))
+            w.extend(library_item(printer, function, key))
             w.line()
         w.line("@fragment")
         parameters = (["vertexData: VertexData"] if interpolated else []) + \
@@ -163,3 +167,19 @@ FRAGMENT_INPUTS = {name: (wgsl, "bool") for name, wgsl in FRAGMENT_BUILTINS.item
 
 def _type(materialx_type: str) -> str:
     return wgsl_type(ir_type(materialx_type))
+
+
+def library_item(printer: WgslPrinter, item, key: tuple) -> tuple[str, ...]:
+    """An item's lines: a library item's printed once per process for the same key (the shader's
+    function names, which name overloads by what else the shader holds, and its boolean uniforms:
+    all the printing depends on), as GLSL's are (glsl/target.py); a material requested again, or
+    another of the same node graph, prints none of them again."""
+    if item.where is None:  # generated for this shader
+        return tuple(printer.item(item))
+    return _printed(key, item)
+
+
+@lru_cache(maxsize=8192)
+def _printed(key: tuple, item) -> tuple[str, ...]:
+    names, booleans = key
+    return tuple(WgslPrinter(dict(names), lambda n: WgslTarget._name(n, "pu", booleans)).item(item))
