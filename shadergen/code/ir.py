@@ -266,8 +266,8 @@ class Item(Node):
     the library when read before, so a cold process need not walk the library's functions; a
     copy `replace` makes starts without: its fields may differ). Added by code/facts.py's author.
     `pending`: on an item read from the library's cache, the fields still in the file
-    (code/cachefile.py: a function's body, a constant's value), read when one is first asked for;
-    unset on any other item, None once read."""
+    (code/cachefile.py: a function's facts and body, a constant's value), each read when first
+    asked for; unset on any other item."""
     __slots__ = ("comment", "facts", "pending")
     KEYWORDS = (("where", None), ("comment", None))
     INITIAL = (("facts", None),)
@@ -278,9 +278,7 @@ class Item(Node):
             pending = object.__getattribute__(self, "pending")
         except AttributeError:
             raise AttributeError(name) from None
-        if pending is None:
-            raise AttributeError(name)
-        pending.restore(self)
+        pending.restore(self, name)
         return object.__getattribute__(self, name)
 
 

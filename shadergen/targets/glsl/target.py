@@ -14,6 +14,7 @@ from ...code.values import value_expr
 from ...shader import Writer
 from ..closures import ClosureConvention
 from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+from ..printed import PrintedLibrary
 from .printer import GlslPrinter
 
 BUILTINS = {"position": "gl_Position"}
@@ -41,12 +42,15 @@ class GlslTarget:
             return BUILTINS.get(name.name, name.name)  # the library reads GLSL's own (gl_FrontFacing)
         return name.name
 
-    def item(self, item) -> tuple[str, ...]:
-        """An item's lines: a library item's printed once per process (they recur in every
-        request, and the code passes hand back the same rewritten item for the same edit)."""
+    def item(self, item, ctx) -> tuple[str, ...]:
+        """An item's lines: a library item's as printed once per library (targets/printed.py), a
+        copy a pass made once per process (the code passes hand back the same rewritten item for
+        the same edit)."""
         if item.where is None:  # generated for this shader
             return tuple(self.printer.item(item))
-        return printed(type(self), item)
+        lines = ctx.scope.library.fact(("printed", self.name),
+                                       lambda: PrintedLibrary(ctx.code, self.name, self.printer.item)).lines(item)
+        return lines if lines is not None else printed(type(self), item)
 
     def layout(self, ctx) -> dict | None:
         """Where a client puts each uniform: GLSL uniforms are bound by name."""
@@ -58,7 +62,7 @@ class GlslTarget:
         w = self._start()
         items = code.structs + code.constants
         for item in items:
-            w.extend(self.item(item))
+            w.extend(self.item(item, ctx))
         if items:
             w.line()
         self._uniforms(ctx.pixel, w)
@@ -67,7 +71,7 @@ class GlslTarget:
             w.line(f"{self.io('out', location)} vec4 {v.name};")
         w.line()
         for function in code.functions:
-            w.extend(self.item(function))
+            w.extend(self.item(function, ctx))
             w.line()
         self._main(code.main, w)
         return w.text()
