@@ -59,7 +59,7 @@ def macros_in(item) -> tuple[str, ...]:
         for inner in (*item.body, *(item.other or ())):
             found.update(macros_in(inner))
         return tuple(sorted(found))
-    return tuple(sorted(facts(item).macros))
+    return tuple(sorted(facts(item).macros)) if isinstance(item, ir.Item) else ()  # (a comment: none)
 
 
 @lru_cache(maxsize=16384)
