@@ -28,7 +28,7 @@ __all__ = [
     "Stmt", "Declare", "Assign", "ExprStatement", "If", "For", "While", "Return", "Break", "Continue",
     "Discard", "Block", "Comment", "Section",
     "Item", "Struct", "Constant", "Global", "Param", "Function", "Module",
-    "replace", "children", "walk",
+    "replace", "children", "walk", "shape",
 ]
 
 
@@ -387,3 +387,18 @@ def replace(node, **changes):
     if isinstance(new, Item):
         new.facts = changes.get("facts")
     return new
+
+
+def shape(value):
+    """A hashable value equal for two trees exactly when they are built alike: every slot of every
+    node (its `where` left out: where a node was written does not change what it does; a call's
+    `callee` too, which its name and its arguments' types decide). Numbers keep their Python type,
+    since 1 == 1.0 == True."""
+    if isinstance(value, Node):
+        return (type(value),) + tuple(shape(getattr(value, name)) for name in slots_of(type(value))
+                                      if name not in ("where", "callee"))
+    if isinstance(value, (list, tuple)):
+        return tuple(shape(v) for v in value)
+    if isinstance(value, (bool, int, float)):
+        return type(value), value
+    return value
