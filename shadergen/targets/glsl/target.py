@@ -108,10 +108,9 @@ class GlslTarget:
             if variables:
                 w.line(f"// Uniform block: {block}")
                 for v in variables:
-                    init = None
-                    if self.uniform_initializers and v.initializer is not None and v.type not in ("filename", "LightData"):
-                        init = value_expr(v.type, v.initializer, {"enum": ""})  # listing values of enums are indices
-                    w.line(self.printer.global_declaration(ir.Global(listed_type(v), v.name, "uniform", None, init)))
+                    initialised = self.uniform_initializers and v.type not in ("filename", "LightData")
+                    w.line(uniform_declaration(type(self), listed_type(v), v.name, v.type,
+                                               v.initializer if initialised else None))
                 w.line()
 
     def _vertex_data(self, stage, w: Writer, direction: str) -> None:
@@ -133,6 +132,25 @@ class GlslTarget:
 @lru_cache(maxsize=8192)
 def printed(target_class, item) -> tuple[str, ...]:
     return tuple(target_class().printer.item(item))
+
+
+def uniform_declaration(target_class, listed: str, name: str, materialx_type: str, value) -> str:
+    """A uniform's declaration, initialised to `value` where it has one. Materials share most of
+    their uniforms (a node's inputs at their defaults), so each is printed once per process; equal
+    values print alike (value_expr writes a value as its type's numbers: 1, 1.0 and True are one
+    float's 1.0)."""
+    try:
+        return _shared_declaration(target_class, listed, name, materialx_type, value)
+    except TypeError:  # a value no cache can key (a list): printed each time
+        return _declaration(target_class, listed, name, materialx_type, value)
+
+
+def _declaration(target_class, listed: str, name: str, materialx_type: str, value) -> str:
+    init = None if value is None else value_expr(materialx_type, value, {"enum": ""})  # listed enums are indices
+    return target_class().printer.global_declaration(ir.Global(listed, name, "uniform", None, init))
+
+
+_shared_declaration = lru_cache(maxsize=16384)(_declaration)
 
 
 def listed_type(v) -> str:
