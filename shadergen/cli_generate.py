@@ -1,5 +1,4 @@
 """`shadergen generate`: JSON Lines records on stdout, or stage files and listings under --out."""
-import base64
 import json
 import os
 import sys
@@ -86,6 +85,7 @@ class OutputFiles:
         files = {f"{stem}.{STAGE_SUFFIX.get(stage, stage) if record['target'] != 'osl' else 'osl'}": src
                  for stage, src in record["stages"].items() if src is not None}
         for stage, module in record.get("spirv", {}).items():  # vulkan: each stage's SPIR-V as it is
+            import base64  # here: only a vulkan record needs it, and a cold process pays for each import
             files[f"{stem}.{STAGE_SUFFIX.get(stage, stage)}.spv"] = base64.b64decode(module)
         files[f"{stem}.json"] = json.dumps({k: v for k, v in record.items() if k not in ("stages", "spirv")}, indent=1)
         owner = f"{document} {record['element']}"

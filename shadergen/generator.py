@@ -374,7 +374,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)
     finish(ctx, graph.interface_mode == "specialized", graph.passes)
-    stages = {VERTEX: ctx.target.assemble_vertex(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
+    stages = {VERTEX: code_passes.vertex_stage(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
     return {name: text for name, text in stages.items() if text is not None}  # OSL has no vertex stage
 
 
@@ -401,7 +401,6 @@ def finish(ctx: EmitContext, variables: bool, counts: dict) -> None:
         for block in ("AppData", "PrivateUniforms"):
             vb = ctx.vertex.blocks[block]
             vb.variables = {n: v for n, v in vb.variables.items() if n in vertex_used}
-    code_passes.finish_vertex(ctx)
 
 
 FIXED_VERTEX = {"i_position", "u_worldMatrix", "u_viewProjectionMatrix"}  # the position transform always runs

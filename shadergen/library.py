@@ -244,6 +244,28 @@ def write_atomically(path: str | os.PathLike, data: bytes) -> None:
     os.replace(tmp, path)
 
 
+def write_checked(path: str, body: bytes) -> None:
+    """`body` written atomically after its digest (read_checked's format); a read-only home is
+    not fatal: the next process computes it again."""
+    try:
+        write_atomically(path, hashlib.sha256(body).hexdigest().encode() + b"\n" + body)
+    except OSError:
+        pass
+
+
+def read_checked(path: str) -> bytes | None:
+    """What write_checked wrote, or None (missing, or damaged: the digest does not match)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError:
+        return None
+    digest, body = data[:64], data[65:]
+    if data[64:65] != b"\n" or hashlib.sha256(body).hexdigest().encode() != digest:
+        return None
+    return body
+
+
 @contextmanager
 def collection_paused():
     """The cyclic garbage collector paused: a library is tens of thousands of new containers and

@@ -11,7 +11,7 @@ A signature's parameter and return types are patterns over one generic type T, b
 `families` are the types T may be. The table covers what the libraries call and their GLSL
 neighbours; a call of anything else is an error of the library source.
 """
-from typing import NamedTuple
+from collections import namedtuple
 
 __all__ = ["Builtin", "BUILTINS", "BUILTIN_VARIABLES", "FAMILIES"]
 
@@ -24,11 +24,9 @@ FAMILIES = {"F": F, "FIU": F + I + U, "FI": F + I, "V": F[1:] + I[1:] + U[1:], "
             "BV": B[1:], "M": M, "I": I, "U": U, "": ()}
 
 
-class Builtin(NamedTuple):
-    name: str
-    params: tuple[str, ...]
-    returns: str
-    families: tuple[str, ...]
+# name, params (IR types), returns, families (collections' namedtuple: typing's import costs a
+# cold process)
+Builtin = namedtuple("Builtin", "name params returns families")
 
 
 def _table(rows) -> dict[str, tuple[Builtin, ...]]:

@@ -53,14 +53,14 @@ class Facts:
     derivative built-in itself; forwards: (target Function, arguments) when the item is a function
     whose whole body is `return target(...)`, each parameter passed once in its order with the
     qualifier and type of the target's parameter it becomes, the others literals, and the return
-    types equal; else None.
+    types equal; else None; macros: the macros its sections test.
     """
     __slots__ = ("callees", "calls", "builtins", "names", "uniforms", "types", "members", "stores", "whole",
-                 "writes_params", "writes_outside", "derivatives", "forwards")
+                 "writes_params", "writes_outside", "derivatives", "forwards", "macros")
 
     # Pickled with the library's items (code/library.py), whose cache must be the same bytes however
     # the library was read: a set's order depends on how it was filled, so sets go as sorted tuples.
-    SETS = frozenset({"builtins", "uniforms", "whole"})
+    SETS = frozenset({"builtins", "uniforms", "whole", "macros"})
 
     def __getstate__(self):
         state = {name: getattr(self, name) for name in self.__slots__}
@@ -99,7 +99,7 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     callees: dict[int, ir.Function] = {}
     builtins, names, uniforms, mentioned = set(), {}, set(), {}
     members: Counter = Counter()
-    stores, whole = [], set()
+    stores, whole, macros = [], set(), set()
     writes_outside = False
     stack = list(nodes)
     pop, push, extend = stack.pop, stack.append, stack.extend
@@ -155,6 +155,8 @@ def _read(nodes, function: ir.Function | None) -> Facts:
             stored = stored_members(n.target)
             if stored:
                 stores.append(Store(n, stored, _occurrences(n), not _has_effects(n)))
+        elif cls is ir.Section:
+            macros.add(n.macro)
         elif cls is ir.Function:
             mentioned[n.returns] = None
         elif cls is ir.Struct:
@@ -176,6 +178,7 @@ def _read(nodes, function: ir.Function | None) -> Facts:
     out.writes_outside = writes_outside
     out.derivatives = not DERIVATIVE_BUILTINS.isdisjoint(builtins)
     out.forwards = _forwards(function) if function is not None else None
+    out.macros = frozenset(macros)
     return out
 
 

@@ -28,7 +28,7 @@ __all__ = [
     "Stmt", "Declare", "Assign", "ExprStatement", "If", "For", "While", "Return", "Break", "Continue",
     "Discard", "Block", "Comment", "Section",
     "Item", "Struct", "Constant", "Global", "Param", "Function", "Module",
-    "replace", "children", "walk",
+    "replace", "children", "walk", "shape",
 ]
 
 
@@ -66,8 +66,9 @@ class Node:
 
     def __getstate__(self):
         # (None, slots): pickle and copy set the slots themselves, without a Python call per
-        # node (a fifth of the library cache's load time)
-        return None, {name: getattr(self, name) for cls in type(self).__mro__ for name in getattr(cls, "__slots__", ())}
+        # node (a fifth of the library cache's load time); an item's `pending` is the cache's own
+        return None, {name: getattr(self, name) for cls in type(self).__mro__ for name in getattr(cls, "__slots__", ())
+                      if name != "pending"}
 
     def __repr__(self):
         inner = ", ".join(f"{n}={getattr(self, n)!r}" for n in self.FIELDS)
@@ -263,10 +264,22 @@ class Item(Node):
     """A top-level definition. `comment`: the comment lines above it in the source (kept).
     `facts`: what code/facts.py read of the item, memoised on it (None until read; pickled with
     the library when read before, so a cold process need not walk the library's functions; a
-    copy `replace` makes starts without: its fields may differ). Added by code/facts.py's author."""
-    __slots__ = ("comment", "facts")
+    copy `replace` makes starts without: its fields may differ). Added by code/facts.py's author.
+    `pending`: on an item read from the library's cache, the fields still in the file
+    (code/cachefile.py: a function's facts and body, a constant's value), each read when first
+    asked for; unset on any other item."""
+    __slots__ = ("comment", "facts", "pending")
     KEYWORDS = (("where", None), ("comment", None))
     INITIAL = (("facts", None),)
+
+    def __getattr__(self, name):
+        # reached only where a slot is unset: a field the cache's file still holds, or a mistake
+        try:
+            pending = object.__getattribute__(self, "pending")
+        except AttributeError:
+            raise AttributeError(name) from None
+        pending.restore(self, name)
+        return object.__getattribute__(self, name)
 
 
 class Struct(Item):
@@ -357,11 +370,11 @@ _SLOTS: dict[type, tuple[str, ...]] = {}
 
 def slots_of(cls: type) -> tuple[str, ...]:
     """Every slot of a node class, its bases' included (an item's `facts` left out: a copy's are
-    read again, Item's doc)."""
+    read again, Item's doc; and its `pending`, the cache's)."""
     found = _SLOTS.get(cls)
     if found is None:
         found = _SLOTS[cls] = tuple(name for c in cls.__mro__ for name in getattr(c, "__slots__", ())
-                                    if name != "facts")
+                                    if name not in ("facts", "pending"))
     return found
 
 
@@ -374,3 +387,18 @@ def replace(node, **changes):
     if isinstance(new, Item):
         new.facts = changes.get("facts")
     return new
+
+
+def shape(value):
+    """A hashable value equal for two trees exactly when they are built alike: every slot of every
+    node (its `where` left out: where a node was written does not change what it does; a call's
+    `callee` too, which its name and its arguments' types decide). Numbers keep their Python type,
+    since 1 == 1.0 == True."""
+    if isinstance(value, Node):
+        return (type(value),) + tuple(shape(getattr(value, name)) for name in slots_of(type(value))
+                                      if name not in ("where", "callee"))
+    if isinstance(value, (list, tuple)):
+        return tuple(shape(v) for v in value)
+    if isinstance(value, (bool, int, float)):
+        return type(value), value
+    return value

@@ -8,19 +8,16 @@ documents the file, not the definition below). Comments' text is without `//` or
 token per line of a block comment. Errors name file:line:col.
 """
 import re
-from typing import NamedTuple
+from collections import namedtuple
 
 from ..errors import ShaderGenError
 
 __all__ = ["Token", "tokenize", "source_error"]
 
 
-class Token(NamedTuple):
-    kind: str
-    text: str
-    line: int
-    column: int
-    blank: bool
+# (as the module's doc says; collections' namedtuple: typing's NamedTuple costs a cold process the
+# import of typing)
+Token = namedtuple("Token", "kind text line column blank")
 
 
 TOKEN = re.compile(r"""

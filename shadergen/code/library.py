@@ -19,8 +19,8 @@ import re
 
 from ..errors import ShaderGenError
 from ..fingerprint import library_files
-from ..library import Library, cache_dir, collection_paused, read_source, write_atomically
-from . import ir
+from ..library import Library, cache_dir, collection_paused, read_checked, read_source, write_checked
+from . import cachefile, ir
 from .check import check_expression, check_modules, flat_items, library_symbols
 from .facts import facts
 from .generated import check_generated
@@ -31,7 +31,7 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-2"
+CACHE_FORMAT = b"shadergen-code-3"
 # an identifier as the libraries' sources spell one (comments and strings included: only ever more)
 _SOURCE_IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
 
@@ -232,21 +232,15 @@ def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:
 
 def read_cache(path: str, key: str) -> tuple | None:
     """The cached state, or None (missing, damaged, or another key's)."""
+    body = read_checked(path)
+    if body is None:
+        return None
     try:
-        with open(path, "rb") as f:
-            data = f.read()
-        digest, body = data[:64], data[65:]
-        if data[64:65] != b"\n" or hashlib.sha256(body).hexdigest().encode() != digest:
-            return None
-        state = pickle.loads(body)
+        state = cachefile.loads(body, lambda state: state[1])
         return state if isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key else None
-    except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
+    except (pickle.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
 
 
 def write_cache(path: str, state: tuple) -> None:
-    body = pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
-    try:
-        write_atomically(path, hashlib.sha256(body).hexdigest().encode() + b"\n" + body)
-    except OSError:
-        pass  # a read-only home is not fatal: the next process parses again
+    write_checked(path, cachefile.dumps(state, state[1]))

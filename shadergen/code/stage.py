@@ -60,7 +60,7 @@ def externals(ctx, stage: str) -> dict[str, str]:
 
 
 def run(ctx, counts: dict) -> StageCode:
-    """The pixel stage's code through the passes; its `vertex_main` is left to `finish_vertex`,
+    """The pixel stage's code through the passes; its `vertex_main` is left to `vertex_stage`,
     once the generator knows which vertex data the pixel stage reads."""
     code = ctx.code
     main = ctx.pixel.main.block()
@@ -87,8 +87,27 @@ def has_function(item) -> bool:
     return isinstance(item, ir.Function)
 
 
-def finish_vertex(ctx) -> None:
-    """The vertex stage's main, typed, once its vertex data is final."""
+VERTEX_STAGES: dict = {}  # vertex_stage's memo, key -> text; at most MAX_VERTEX_STAGES, oldest out first
+MAX_VERTEX_STAGES = 256
+
+
+def vertex_stage(ctx) -> str | None:
+    """The vertex stage's text (None where the target has none), once its vertex data is final:
+    its main built, typed and printed. Many materials share one (the same vertex data for the same
+    target), so it is made once per process for each key that covers what its text depends on: the
+    target, the library (which types the code), the stage's variables and its main's statements."""
+    blocks = tuple((block.name, tuple((v.name, v.type, repr(v.value), repr(v.initializer)) for v in block))
+                   for block in ctx.vertex.blocks.values())
+    key = (type(ctx.target), ctx.code.key, blocks, ir.shape(list(ctx.vertex_main.values())))
+    try:
+        return VERTEX_STAGES[key]
+    except KeyError:
+        pass
     vertex = vertex_main(ctx)
     ctx.code.check_generated([], [vertex], externals(ctx, VERTEX))
     ctx.pixel.code.vertex_main = vertex
+    text = ctx.target.assemble_vertex(ctx)
+    if len(VERTEX_STAGES) >= MAX_VERTEX_STAGES:
+        del VERTEX_STAGES[next(iter(VERTEX_STAGES))]
+    VERTEX_STAGES[key] = text
+    return text

@@ -1,13 +1,17 @@
 """What follows from the library alone (resolved nodedefs, parsed implementations, expanded
 nodegraph bodies) is memoised in the Library across requests: a warm generator must write exactly
 what a fresh one writes, and a library edit (a new Library, a new key) must never see the old facts."""
+import functools
 import shutil
 from pathlib import Path
 
 import pytest
 
 from shadergen.api import Generator
+from shadergen.code import build, ir
+from shadergen.code import stage as code_stage
 from shadergen.library import DEFAULT_LIBRARY_ROOT, Library
+from shadergen.targets.glsl import target as glsl_target
 
 from .conftest import doc
 
@@ -56,3 +60,43 @@ def test_a_library_edit_is_never_served_from_the_old_librarys_memo(tmp_path, mon
     edited = after.prepare(MARBLE).emit()
     assert marker in edited["stages"]["pixel"] and marker not in first["stages"]["pixel"]
     assert edited["hash"] != first["hash"]
+
+
+class Forgetful(dict):
+    """A vertex stage memo that keeps nothing: every stage built, typed and printed afresh."""
+
+    def __setitem__(self, key, value):
+        pass
+
+
+@pytest.mark.parametrize("target", ["glsl", "essl", "wgsl", "osl"])
+def test_a_vertex_stage_from_the_memo_is_the_one_built_afresh(target, monkeypatch):
+    warm = Generator(Library.load())
+    for document in DOCUMENTS:  # every document's vertex stages memoised first
+        records(warm, document, interface="specialized", target=target)
+    served = [records(warm, document, interface="specialized", target=target) for document in DOCUMENTS]
+    vertex_stages = {r["stages"].get("vertex") for rs in served for r in rs}
+    assert target == "osl" or len(vertex_stages) > 1  # stages the memo could confuse (OSL has none)
+    monkeypatch.setattr(code_stage, "VERTEX_STAGES", Forgetful())
+    assert served == [records(warm, document, interface="specialized", target=target) for document in DOCUMENTS]
+
+
+def test_the_vertex_stage_memo_tells_apart_code_that_prints_differently():
+    x = build.name("x", "input", "vec3")
+    assert ir.shape(build.construct("vec4", x, build.number(1.0))) == ir.shape(build.construct("vec4", x, build.number(1.0)))
+    assert ir.shape(build.construct("vec4", x, build.number(1.0))) != ir.shape(build.construct("vec3", x, build.number(1.0)))
+    assert ir.shape(ir.Literal(1, None, type="float")) != ir.shape(ir.Literal(1.0, None, type="float"))
+    assert ir.shape(build.name("x", "input")) != ir.shape(build.name("x", "vertexdata"))
+
+
+@pytest.mark.parametrize("target", ["glsl", "essl"])
+def test_uniform_declarations_from_the_cache_are_the_ones_printed_afresh(target, monkeypatch):
+    warm = Generator(Library.load())
+    for document in DOCUMENTS:  # every document's uniforms cached first
+        records(warm, document, interface="complete", target=target)
+    served = [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+    monkeypatch.setattr(glsl_target, "_shared_declaration", glsl_target._declaration)
+    assert served == [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+    # values Python compares equal are one key: they print alike
+    declare = functools.partial(glsl_target.uniform_declaration, glsl_target.GlslTarget, "vec2", "u", "vector2")
+    assert declare((1, 0)) == declare((1.0, 0.0)) == "uniform vec2 u = vec2(1.0, 0.0);"

@@ -13,6 +13,7 @@ macros it mentions, so a request only looks up what it decides.
 from functools import lru_cache
 
 from .. import ir
+from ..facts import facts
 from .rewrite import rebuild_list
 
 FEATURE_PREFIX = "MX_FEATURE_"
@@ -51,26 +52,14 @@ def decision(macro: str, features: frozenset | None, decided: dict) -> bool | No
 
 @lru_cache(maxsize=16384)
 def macros_in(item) -> tuple[str, ...]:
-    """The macros the sections of an item test, sorted. Sections are statements or items: only
-    those are walked, not the expressions (most of an item's nodes)."""
-    found, stack = set(), [item]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, ir.Section):
-            found.add(node.macro)
-            stack.extend(node.body)
-            stack.extend(node.other or ())
-        elif isinstance(node, ir.Block):
-            stack.extend(node.body)
-        elif isinstance(node, ir.Function):
-            stack.append(node.body)
-        elif isinstance(node, ir.If):
-            stack.append(node.then)
-            if node.other is not None:
-                stack.append(node.other)
-        elif isinstance(node, (ir.For, ir.While)):
-            stack.append(node.body)
-    return tuple(sorted(found))
+    """The macros the sections of a top-level item or Section test, sorted: an item's from its
+    facts (read once per library item, without its body where the library's cache holds them)."""
+    if isinstance(item, ir.Section):
+        found = {item.macro}
+        for inner in (*item.body, *(item.other or ())):
+            found.update(macros_in(inner))
+        return tuple(sorted(found))
+    return tuple(sorted(facts(item).macros)) if isinstance(item, ir.Item) else ()  # (a comment: none)
 
 
 @lru_cache(maxsize=16384)

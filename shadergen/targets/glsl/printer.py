@@ -21,6 +21,8 @@ SELECT, UNARY, PRIMARY = 1, 13, 15
 BITWISE, SHIFTS, ARITHMETIC = frozenset("&|^"), frozenset({"<<", ">>"}), frozenset("+-*/%")
 
 DIALECTS = ("glsl", "essl")
+# the methods whose rules `GlslPrinter.line` inlines
+ONE_LINE_RULES = ("render", "operand", "call")
 
 
 def literal_text(node: ir.Literal) -> str:
@@ -89,7 +91,7 @@ def split_else_section(section: ir.Section):
 class GlslPrinter:
     """`item`, `statements` and `expression` of typed IR as GLSL text; `spell(name_node)` decides
     how a Name is written (the stage assembler's vertex data `vd.x` against `vd_x`)."""
-    __slots__ = ("dialect", "spell", "convert_implicit")
+    __slots__ = ("dialect", "spell", "convert_implicit", "one_line")
 
     def __init__(self, dialect: str = "glsl", spell=None):
         if dialect not in DIALECTS:
@@ -97,6 +99,10 @@ class GlslPrinter:
         self.dialect = dialect
         self.spell = spell
         self.convert_implicit = dialect == "essl"  # ESSL 3.00 has no implicit conversions
+        # `line` prints what `render` prints on one line, in fewer calls; a printer that changes
+        # how an expression is rendered (OSL's, the C family's) renders every part itself
+        cls = type(self)
+        self.one_line = all(getattr(cls, m) is getattr(GlslPrinter, m) for m in ONE_LINE_RULES)
 
     # -- expressions -------------------------------------------------------------------------------
     def expression(self, expr: ir.Expr) -> str:
@@ -126,8 +132,54 @@ class GlslPrinter:
         operand = e.operand.type
         return operand is not None and scalar_of(operand) != scalar_of(e.type)
 
+    def line(self, e) -> str:
+        """`render(e, None, indent)`: `e` on one line (what every statement of main is, printed in
+        every request: render's rules for column None, inlined)."""
+        cls = type(e)
+        if cls is ir.Name:
+            return self.spell(e) if self.spell is not None else e.name
+        if cls is ir.Literal:
+            return literal_text(e)
+        if cls is ir.Call:
+            return e.name + "(" + ", ".join([self.line(a) for a in self.call_arguments(e)]) + ")"
+        if cls is ir.Binary:
+            p = BINARY[e.op]
+            left, right = self.line(e.left), self.line(e.right)
+            if self.precedence(e.left) < p or (type(e.left) is not ir.Literal and self.mixed(e, e.left)):
+                left = "(" + left + ")"
+            if self.precedence(e.right) <= p or self.mixed(e, e.right):
+                right = "(" + right + ")"
+            return left + " " + e.op + " " + right
+        if cls is ir.Construct:
+            return e.type + "(" + ", ".join([self.line(a) for a in e.args]) + ")"
+        if cls is ir.Field:
+            base = self.line(e.base)
+            return ("(" + base + ")" if self.precedence(e.base) < PRIMARY else base) + "." + e.name
+        if cls is ir.Unary:
+            operand = self.line(e.operand)
+            return e.op + ("(" + operand + ")" if self.precedence(e.operand) <= UNARY else operand)
+        if cls is ir.Index:
+            base = self.line(e.base)
+            return ("(" + base + ")" if self.precedence(e.base) < PRIMARY else base) + "[" + self.line(e.index) + "]"
+        if cls is ir.Select:
+            condition, if_true = self.line(e.condition), self.line(e.if_true)
+            if self.precedence(e.condition) <= SELECT or type(e.condition) is ir.Binary:
+                condition = "(" + condition + ")"
+            if type(e.if_true) is ir.Select:
+                if_true = "(" + if_true + ")"
+            return condition + " ? " + if_true + " : " + self.line(e.if_false)
+        if cls is ir.Convert:
+            if not self.written(e):
+                return self.line(e.operand)
+            if type(e.operand) is ir.Literal and e.type == "float" and isinstance(e.operand.value, int):
+                return _float(float(e.operand.value))
+            return e.type + "(" + self.line(e.operand) + ")"
+        raise unsupported(f"a {cls.__name__} expression", e)
+
     def render(self, e, column, indent) -> str:
         """`e` as text starting at `column` (None: on one line), wrapping long argument lists."""
+        if column is None and self.one_line:
+            return self.line(e)
         cls = type(e)
         if cls is ir.Name:
             return self.spell(e) if self.spell is not None else e.name

@@ -14,6 +14,7 @@ from ...code.values import value_expr
 from ...shader import Writer
 from ..closures import ClosureConvention
 from ..names import RESERVED, RESERVED_PREFIXES, RESERVED_SUFFIXES
+from ..printed import PrintedLibrary
 from .printer import GlslPrinter
 
 BUILTINS = {"position": "gl_Position"}
@@ -41,12 +42,15 @@ class GlslTarget:
             return BUILTINS.get(name.name, name.name)  # the library reads GLSL's own (gl_FrontFacing)
         return name.name
 
-    def item(self, item) -> tuple[str, ...]:
-        """An item's lines: a library item's printed once per process (they recur in every
-        request, and the code passes hand back the same rewritten item for the same edit)."""
+    def item(self, item, ctx) -> tuple[str, ...]:
+        """An item's lines: a library item's as printed once per library (targets/printed.py), a
+        copy a pass made once per process (the code passes hand back the same rewritten item for
+        the same edit)."""
         if item.where is None:  # generated for this shader
             return tuple(self.printer.item(item))
-        return printed(type(self), item)
+        lines = ctx.scope.library.fact(("printed", self.name),
+                                       lambda: PrintedLibrary(ctx.code, self.name, self.printer.item)).lines(item)
+        return lines if lines is not None else printed(type(self), item)
 
     def layout(self, ctx) -> dict | None:
         """Where a client puts each uniform: GLSL uniforms are bound by name."""
@@ -58,7 +62,7 @@ class GlslTarget:
         w = self._start()
         items = code.structs + code.constants
         for item in items:
-            w.extend(self.item(item))
+            w.extend(self.item(item, ctx))
         if items:
             w.line()
         self._uniforms(ctx.pixel, w)
@@ -67,7 +71,7 @@ class GlslTarget:
             w.line(f"{self.io('out', location)} vec4 {v.name};")
         w.line()
         for function in code.functions:
-            w.extend(self.item(function))
+            w.extend(self.item(function, ctx))
             w.line()
         self._main(code.main, w)
         return w.text()
@@ -104,10 +108,9 @@ class GlslTarget:
             if variables:
                 w.line(f"// Uniform block: {block}")
                 for v in variables:
-                    init = None
-                    if self.uniform_initializers and v.initializer is not None and v.type not in ("filename", "LightData"):
-                        init = value_expr(v.type, v.initializer, {"enum": ""})  # listing values of enums are indices
-                    w.line(self.printer.global_declaration(ir.Global(listed_type(v), v.name, "uniform", None, init)))
+                    initialised = self.uniform_initializers and v.type not in ("filename", "LightData")
+                    w.line(uniform_declaration(type(self), listed_type(v), v.name, v.type,
+                                               v.initializer if initialised else None))
                 w.line()
 
     def _vertex_data(self, stage, w: Writer, direction: str) -> None:
@@ -129,6 +132,25 @@ class GlslTarget:
 @lru_cache(maxsize=8192)
 def printed(target_class, item) -> tuple[str, ...]:
     return tuple(target_class().printer.item(item))
+
+
+def uniform_declaration(target_class, listed: str, name: str, materialx_type: str, value) -> str:
+    """A uniform's declaration, initialised to `value` where it has one. Materials share most of
+    their uniforms (a node's inputs at their defaults), so each is printed once per process; equal
+    values print alike (value_expr writes a value as its type's numbers: 1, 1.0 and True are one
+    float's 1.0)."""
+    try:
+        return _shared_declaration(target_class, listed, name, materialx_type, value)
+    except TypeError:  # a value no cache can key (a list): printed each time
+        return _declaration(target_class, listed, name, materialx_type, value)
+
+
+def _declaration(target_class, listed: str, name: str, materialx_type: str, value) -> str:
+    init = None if value is None else value_expr(materialx_type, value, {"enum": ""})  # listed enums are indices
+    return target_class().printer.global_declaration(ir.Global(listed, name, "uniform", None, init))
+
+
+_shared_declaration = lru_cache(maxsize=16384)(_declaration)
 
 
 def listed_type(v) -> str:
