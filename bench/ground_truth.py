@@ -68,6 +68,31 @@ GLASS_CHECK = '''<?xml version="1.0"?>
 </materialx>
 '''
 AMBER = (0.9, 0.55, 0.15)
+# The cause of each material below GOAL_DB or below the reference, with the evidence, measured by
+# hand from the cached truths (ours and the reference's GL images at fis 256, 128x128, against the
+# truth: PSNR, the mean per channel and the signed error per N.V band over the sphere).
+CAUSES = {
+    "standard_surface_brick_procedural": (
+        "testrender limitation, in part: its sphere's (u, v) are not ours; with our OSL reading (u - 0.5, 1 - v) "
+        "the error falls from 30.1 to 32.1 dB (64x64, 64 spp). Not aliasing: ours at 256x256 averaged 2x2 gains 0.7 dB "
+        "(29.4 -> 30.1). The rest is per-brick brightness, the same in ours and the reference (29.5 dB): not found"),
+    "standard_surface_thin_film": (
+        "testrender limitation: it ignores thin films (see furnace_truth); ours with thin_film_thickness 0 is 38.6 dB "
+        "from the truth, ours with the 550 nm film 18.2 dB (the reference's too): the truth is the film-less glass"),
+    "standard_surface_velvet": (
+        "environment method: our sheen's environment term is the irradiance at N times the lobe's albedo "
+        "(mx_sheen_bsdf.glsl), not the lobe's directions; per N.V band ours is within 0.005 of the truth, but the "
+        "sky-facing rim is +0.06/+0.17 (R/B) brighter and the ground-facing one darker; the reference likewise (25.8 dB)"),
+    "standard_surface_wood_tiled": (
+        "testrender limitation: its sphere's (u, v) are not ours; with our OSL reading (u - 0.5, 1 - v) the error "
+        "falls from 35.9 to 41.4 dB (64x64, 64 spp)"),
+    "standard_surface_brass_tiled": (
+        "testrender limitation: its sphere's (u, v) are not ours; with our OSL reading (u - 0.5, 1 - v) the error "
+        "falls from 36.9 to 40.3 dB (64x64, 64 spp)"),
+    "standard_surface_glass": (
+        "fixed here: the transmission applied the interface's Fresnel twice; before (067970f) ours was 35.7 dB from "
+        "that graph's truth and 32.2 dB from this one (fis 256)"),
+}
 # Pixels within this many of the silhouette are not compared: testrender's pixel filter blends them
 # with the sky, our thumbnail draws them uncovered or covered by a tessellated sphere.
 SILHOUETTE_INSET = 2.0
@@ -109,6 +134,14 @@ def cached_truth(key: str, compute, cache: str) -> dict:
     return {**result, "cached": False}
 
 
+def scene_form(source: str) -> str:
+    """Our OSL as testrender can run it: testrender 1.13 aborts on a transform from "object" space
+    (SimpleRaytracer::get_matrix reads the object matrix its spheres do not have; gdb backtrace from
+    standard_surface_marble_solid's `transform("object", P)`). The scene's sphere is the unit sphere
+    at the origin, so object space is common (world) space there."""
+    return source.replace('transform("object", ', 'transform("common", ')
+
+
 def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
     """The ground truth of the document's first renderable element, or {"error": message}."""
     from shadergen.api import generate_file
@@ -118,7 +151,7 @@ def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
         return {"error": f"OSL target: {record['error']['message']}", "element": record.get("element")}
     source = record["stages"]["pixel"]
     name = f"material_{gts.digest(source)}"
-    if (message := world.add_surface(source, name)) is not None:
+    if (message := world.add_surface(scene_form(source), name)) is not None:
         return {"error": f"oslc: {message.splitlines()[0]}", "element": record.get("element")}
     output = world.closure_output(name)
     if output is None:
@@ -166,14 +199,12 @@ def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
 
 
 def glass_checks(world: gts.Scene, renderer, args) -> list[str]:
-    """Our GL glass sphere, clear and amber (depth 1), against the sphere computed directly; and the
-    amber one drawn with its depth divided by the sphere's mean chord 2 cos(theta_t), which is what
-    our media would need if they take the transmittance over a unit distance (mx_vdf.glsl)."""
+    """Our GL glass sphere, clear and amber (depth 1), against the sphere computed directly (every
+    internal path; testrender 1.13 ignores media). Our media take the transmittance along the
+    refracted chord of the unit sphere our refraction assumes (mx_vdf.glsl)."""
     from shadergen.api import Generator
 
     side, inner = args.size, gts.sphere_mask(args.size, SILHOUETTE_INSET)
-    cosine = np.clip(-(gts.camera_rays(side) * gts.sphere_normals(side)).sum(-1), 0.0, 1.0)
-    chord = float((2.0 * np.sqrt(1.0 - (1.0 - cosine ** 2) / 1.5 ** 2))[inner].mean())
 
     def ours(color, depth):
         document = GLASS_CHECK.format(color=", ".join(f"{c:g}" for c in color), depth=f"{depth:g}")
@@ -185,12 +216,11 @@ def glass_checks(world: gts.Scene, renderer, args) -> list[str]:
     clear_truth = gts.glass_sphere_image(world.radiance, side, 1.5)
     clear = ours((1.0, 1.0, 1.0), 0.0)
     amber_truth = gts.glass_sphere_image(world.radiance, side, 1.5, -np.log(np.asarray(AMBER)))
-    amber, scaled = ours(AMBER, 1.0), ours(AMBER, 1.0 / chord)
+    amber = ours(AMBER, 1.0)
     return [f"smooth glass sphere (open_pbr_surface, ior 1.5, transmission 1) against the sphere computed directly "
-            f"(every internal path): clear {gts.psnr_viewed(clear, clear_truth, inner):.1f} dB; transmission_color "
-            f"{'/'.join(f'{c:g}' for c in AMBER)} at depth 1: {gts.psnr_viewed(amber, amber_truth, inner):.1f} dB, "
-            f"mean ours {mean(amber)} exact {mean(amber_truth)}; ours at depth 1/{chord:.2f} (the mean chord): "
-            f"{gts.psnr_viewed(scaled, amber_truth, inner):.1f} dB, mean {mean(scaled)}"]
+            f"(every internal path): clear {gts.psnr_viewed(clear, clear_truth, inner):.1f} dB, mean ours {mean(clear)} "
+            f"exact {mean(clear_truth)}; transmission_color {'/'.join(f'{c:g}' for c in AMBER)} at depth 1: "
+            f"{gts.psnr_viewed(amber, amber_truth, inner):.1f} dB, mean ours {mean(amber)} exact {mean(amber_truth)}"]
 
 
 def measure(document: str, truth: np.ndarray, renderers: dict, args) -> list[dict]:
@@ -237,6 +267,19 @@ def summary(material: dict) -> dict:
             "thumbnail": thumbnail["psnr"] if thumbnail else float("nan")}
 
 
+def summary_line(materials: list[dict]) -> str:
+    measured = [summary(m) for m in materials if "rows" in m]
+    ours = [s["ours_best"] for s in measured]
+    reference = [s["reference_best"] for s in measured]
+
+    def stats(values):
+        return f"min {fmt(min(values))} dB median {fmt(statistics.median(values))} dB" if values else "min - median -"
+
+    below = sum(v < GOAL_DB for v in ours)
+    return (f"ground truth: {len(measured)} materials | ours {stats(ours)} | reference {stats(reference)} | "
+            f"ours below {GOAL_DB:.0f} dB: {below} | no ground truth: {len(materials) - len(measured)} of {len(materials)}")
+
+
 def write_table(path: str, checks: list[str], materials: list[dict], args, last_line: str) -> None:
     lines = ["# Accuracy against ground truth (OSL testrender)", "",
              f"Written by `bench/ground_truth.py` ({args.size}x{args.size}). The ground truth is our OSL "
@@ -253,7 +296,7 @@ def write_table(path: str, checks: list[str], materials: list[dict], args, last_
         s = summary(m)
         lines.append(f"| {m['name']} | {m['truth']['samples']} | {fmt(m['truth']['halves_db'])} | {fmt(s['ours_best'])} | "
                      f"{fmt(s['ours_in_budget'])} | {fmt(s['ref16'])} | {fmt(s['reference_best'])} | {fmt(s['thumbnail'])} | "
-                     f"{m.get('cause', '')} |")
+                     f"{m.get('cause') or CAUSES.get(m['name'], '')} |")
     measured = [m for m in materials if "rows" in m]
     if measured:
         lines += ["", "## Every point", "", "| material | shader | interface | point | frame ms | PSNR dB |",
@@ -373,16 +416,9 @@ def main() -> int:
             print(f"{name}: truth {truth['samples']} spp (halves {truth['halves_db']:.1f} dB, "
                   f"{took}); ours best {fmt(s['ours_best'])} dB, "
                   f"reference best {fmt(s['reference_best'])} dB", flush=True)
-    measured = [summary(m) for m in materials if "rows" in m]
-    ours = [s["ours_best"] for s in measured]
-    reference = [s["reference_best"] for s in measured]
-
-    def stats(values):
-        return f"min {fmt(min(values))} dB median {fmt(statistics.median(values))} dB" if values else "min - median -"
-
-    below = sum(v < GOAL_DB for v in ours)
-    last = (f"ground truth: {len(measured)} materials | ours {stats(ours)} | reference {stats(reference)} | "
-            f"ours below {GOAL_DB:.0f} dB: {below} | no ground truth: {len(materials) - len(measured)} of {len(materials)}")
+            # the table so far, so that a run stopped early leaves the materials it finished
+            write_table(args.table, checks, [check] + materials, args, summary_line(materials) + " (so far)")
+    last = summary_line(materials)
     write_table(args.table, checks, [check] + materials, args, last)
     plot([check] + materials, args.plot, args)
     print(last)

@@ -508,6 +508,7 @@ var<private> MX_ALBEDO_SHEEN_RENORMALISED: array<f32, 256> = array<f32, 256>(
     0.307557, 0.274147, 0.241081, 0.208134, 0.175027, 0.141425);
 // The shaders' floor on r: 1/r is an exponent.
 const MX_SHEEN_MIN_ROUGHNESS: f32 = 0.005;
+const MX_MEDIUM_IOR: f32 = 1.5;
 // the model as published, at roughness = row / 15, mu = (column / 15)^2; 96^2 cosine-distributed directions each
 var<private> MX_ALBEDO_OREN_NAYAR: array<f32, 256> = array<f32, 256>(
     1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000,
@@ -580,47 +581,47 @@ struct PixelUniforms {
     u_viewPosition: vec3f,  // offset 80
     u_numActiveLightSources: i32,  // offset 92
     u_lightData: array<LightData, MAX_LIGHT_SOURCES>,  // offset 96
-    u_n70_diffuse_roughness: f32,  // offset 336
-    u_n70_metalness: f32,  // offset 340
-    u_n70_specular: f32,  // offset 344
-    u_n70_specular_color: vec3f,  // offset 352
-    u_n70_specular_roughness: f32,  // offset 364
-    u_n70_specular_IOR: f32,  // offset 368
-    u_n70_specular_anisotropy: f32,  // offset 372
-    u_n70_specular_rotation: f32,  // offset 376
-    u_n70_transmission: f32,  // offset 380
-    u_n70_transmission_color: vec3f,  // offset 384
-    u_n70_transmission_depth: f32,  // offset 396
-    u_n70_transmission_scatter: vec3f,  // offset 400
-    u_n70_transmission_scatter_anisotropy: f32,  // offset 412
-    u_n70_transmission_dispersion: f32,  // offset 416
-    u_n70_transmission_extra_roughness: f32,  // offset 420
-    u_n70_subsurface: f32,  // offset 424
-    u_n70_subsurface_color: vec3f,  // offset 432
-    u_n70_subsurface_radius: vec3f,  // offset 448
-    u_n70_subsurface_scale: f32,  // offset 460
-    u_n70_subsurface_anisotropy: f32,  // offset 464
-    u_n70_sheen: f32,  // offset 468
-    u_n70_sheen_color: vec3f,  // offset 480
-    u_n70_sheen_roughness: f32,  // offset 492
-    u_n70_coat: f32,  // offset 496
-    u_n70_coat_color: vec3f,  // offset 512
-    u_n70_coat_roughness: f32,  // offset 524
-    u_n70_coat_anisotropy: f32,  // offset 528
-    u_n70_coat_rotation: f32,  // offset 532
-    u_n70_coat_IOR: f32,  // offset 536
-    u_n70_coat_affect_color: f32,  // offset 540
-    u_n70_coat_affect_roughness: f32,  // offset 544
-    u_n70_thin_film_thickness: f32,  // offset 548
-    u_n70_thin_film_IOR: f32,  // offset 552
-    u_n70_emission: f32,  // offset 556
-    u_n70_emission_color: vec3f,  // offset 560
-    u_n70_opacity: vec3f,  // offset 576
-    u_n70_thin_walled: i32,  // offset 588
-    u_n70_base: f32,  // offset 592
-    u_n70_base_color: vec3f,  // offset 608
-    u_n69_backsurfaceshader: surfaceshader,  // offset 624
-    u_n69_displacementshader: displacementshader,  // offset 656
+    u_n71_diffuse_roughness: f32,  // offset 336
+    u_n71_metalness: f32,  // offset 340
+    u_n71_specular: f32,  // offset 344
+    u_n71_specular_color: vec3f,  // offset 352
+    u_n71_specular_roughness: f32,  // offset 364
+    u_n71_specular_IOR: f32,  // offset 368
+    u_n71_specular_anisotropy: f32,  // offset 372
+    u_n71_specular_rotation: f32,  // offset 376
+    u_n71_transmission: f32,  // offset 380
+    u_n71_transmission_color: vec3f,  // offset 384
+    u_n71_transmission_depth: f32,  // offset 396
+    u_n71_transmission_scatter: vec3f,  // offset 400
+    u_n71_transmission_scatter_anisotropy: f32,  // offset 412
+    u_n71_transmission_dispersion: f32,  // offset 416
+    u_n71_transmission_extra_roughness: f32,  // offset 420
+    u_n71_subsurface: f32,  // offset 424
+    u_n71_subsurface_color: vec3f,  // offset 432
+    u_n71_subsurface_radius: vec3f,  // offset 448
+    u_n71_subsurface_scale: f32,  // offset 460
+    u_n71_subsurface_anisotropy: f32,  // offset 464
+    u_n71_sheen: f32,  // offset 468
+    u_n71_sheen_color: vec3f,  // offset 480
+    u_n71_sheen_roughness: f32,  // offset 492
+    u_n71_coat: f32,  // offset 496
+    u_n71_coat_color: vec3f,  // offset 512
+    u_n71_coat_roughness: f32,  // offset 524
+    u_n71_coat_anisotropy: f32,  // offset 528
+    u_n71_coat_rotation: f32,  // offset 532
+    u_n71_coat_IOR: f32,  // offset 536
+    u_n71_coat_affect_color: f32,  // offset 540
+    u_n71_coat_affect_roughness: f32,  // offset 544
+    u_n71_thin_film_thickness: f32,  // offset 548
+    u_n71_thin_film_IOR: f32,  // offset 552
+    u_n71_emission: f32,  // offset 556
+    u_n71_emission_color: vec3f,  // offset 560
+    u_n71_opacity: vec3f,  // offset 576
+    u_n71_thin_walled: i32,  // offset 588
+    u_n71_base: f32,  // offset 592
+    u_n71_base_color: vec3f,  // offset 608
+    u_n70_backsurfaceshader: surfaceshader,  // offset 624
+    u_n70_displacementshader: displacementshader,  // offset 656
 }
 @group(1) @binding(0) var<uniform> pu: PixelUniforms;
 
@@ -1542,11 +1543,17 @@ fn mx_conductor_bsdf(closureData: ClosureData, lobe: SpecularLobe, bsdf: ptr<fun
     (*bsdf).response = reflected * lobe.weight;
 }
 
+fn mx_medium_path(closureData: ClosureData) -> f32 {
+    let NdotV: f32 = clamp(dot(closureData.N, closureData.V), 0.0, 1.0);
+    let sinThetaT2: f32 = (1.0 - NdotV * NdotV) / (MX_MEDIUM_IOR * MX_MEDIUM_IOR);
+    return 2.0 * sqrt(1.0 - sinThetaT2);
+}
+
 // <absorption_vdf>: a purely absorbing medium.
 fn mx_absorption_vdf(closureData: ClosureData, absorption: vec3f, result: ptr<function, VDF>) {
     if (closureData.closureType == CLOSURE_TYPE_TRANSMISSION) {
         (*result).response = vec3f(0.0);
-        (*result).throughput = exp(-absorption);
+        (*result).throughput = exp(-absorption * mx_medium_path(closureData));
     }
 }
 
@@ -1576,6 +1583,12 @@ fn mx_layer_vdf(closureData: ClosureData, top: BSDF, base: VDF, result: ptr<func
 fn mx_mix_bsdf(closureData: ClosureData, fg: BSDF, bg: BSDF, mixValue: f32, result: ptr<function, BSDF>) {
     (*result).response = mix(bg.response, fg.response, vec3f(mixValue));
     (*result).throughput = mix(bg.throughput, fg.throughput, vec3f(mixValue));
+}
+
+// Responses add; so do the lobes' albedos (1 - throughput), hence t1 + t2 - 1, kept >= 0.
+fn mx_add_bsdf(closureData: ClosureData, in1: BSDF, in2: BSDF, result: ptr<function, BSDF>) {
+    (*result).response = in1.response + in2.response;
+    (*result).throughput = max(in1.throughput + in2.throughput - 1.0, vec3f(0.0));
 }
 
 fn mx_translucent_bsdf(closureData: ClosureData, weight: f32, color: vec3f, N: vec3f,
@@ -1830,94 +1843,94 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
     vd = vertexData;
     var out1: vec4f;
     var n0_out: vec2f;
-    mx_roughness_anisotropy(pu.u_n70_coat_roughness, pu.u_n70_coat_anisotropy, &n0_out);
+    mx_roughness_anisotropy(pu.u_n71_coat_roughness, pu.u_n71_coat_anisotropy, &n0_out);
     var n1_out: vec3f = normalize(vd.normalWorld);
     var n2_out: vec3f = normalize(vd.tangentWorld);
-    var n3_out: f32 = pu.u_n70_coat_rotation * 180.0;
+    var n3_out: f32 = pu.u_n71_coat_rotation * 180.0;
     var n4_out: vec3f;
     mx_rotate3d_vector3(n2_out, n3_out, n1_out, &n4_out);
-    var n7_out: f32 = pu.u_n70_coat * pu.u_n70_coat_affect_color;
+    var n7_out: f32 = pu.u_n71_coat * pu.u_n71_coat_affect_color;
     var n8_out: f32 = n7_out + 1.0;
-    var n9_out: vec3f = pow(pu.u_n70_base_color, vec3f(n8_out));
-    var n10_out: vec3f = n9_out * pu.u_n70_base;
+    var n9_out: vec3f = pow(pu.u_n71_base_color, vec3f(n8_out));
+    var n10_out: vec3f = n9_out * pu.u_n71_base;
     var n11_ior: vec3f;
     var n11_extinction: vec3f;
-    mx_artistic_ior(n10_out, pu.u_n70_specular_color, &n11_ior, &n11_extinction);
-    var n12_out: f32 = pu.u_n70_coat * pu.u_n70_coat_affect_roughness;
-    var n13_out: f32 = n12_out * pu.u_n70_coat_roughness;
-    var n14_out: f32 = mix(pu.u_n70_specular_roughness, 1.0, n13_out);
+    mx_artistic_ior(n10_out, pu.u_n71_specular_color, &n11_ior, &n11_extinction);
+    var n12_out: f32 = pu.u_n71_coat * pu.u_n71_coat_affect_roughness;
+    var n13_out: f32 = n12_out * pu.u_n71_coat_roughness;
+    var n14_out: f32 = mix(pu.u_n71_specular_roughness, 1.0, n13_out);
     var n15_out: vec2f;
-    mx_roughness_anisotropy(n14_out, pu.u_n70_specular_anisotropy, &n15_out);
-    var n16_out: f32 = pu.u_n70_specular_rotation * 180.0;
+    mx_roughness_anisotropy(n14_out, pu.u_n71_specular_anisotropy, &n15_out);
+    var n16_out: f32 = pu.u_n71_specular_rotation * 180.0;
     var n17_out: vec3f;
     mx_rotate3d_vector3(n2_out, n16_out, n1_out, &n17_out);
-    var n20_out: f32 = select(0.0, 1.0, pu.u_n70_transmission_depth > 0.0);
-    var n21_out: vec3f = mix(pu.u_n70_transmission_color, vec3f(1.0, 1.0, 1.0), vec3f(n20_out));
-    var n22_out: f32 = n14_out + pu.u_n70_transmission_extra_roughness;
+    var n20_out: f32 = select(0.0, 1.0, pu.u_n71_transmission_depth > 0.0);
+    var n21_out: vec3f = mix(pu.u_n71_transmission_color, vec3f(1.0, 1.0, 1.0), vec3f(n20_out));
+    var n22_out: f32 = n14_out + pu.u_n71_transmission_extra_roughness;
     var n23_out: f32 = clamp(n22_out, 0.0, 1.0);
     var n24_out: vec2f;
-    mx_roughness_anisotropy(n23_out, pu.u_n70_specular_anisotropy, &n24_out);
-    var n26_out: vec3f = pu.u_n70_transmission_color;
+    mx_roughness_anisotropy(n23_out, pu.u_n71_specular_anisotropy, &n24_out);
+    var n26_out: vec3f = pu.u_n71_transmission_color;
     var n27_out: vec3f = max(n26_out, vec3f(1.0e-6));
     var n28_out: vec3f = log(n27_out);
-    var n29_out: f32 = max(pu.u_n70_transmission_depth, 1.0e-6);
+    var n29_out: f32 = max(pu.u_n71_transmission_depth, 1.0e-6);
     var n30_out: vec3f = n28_out / n29_out;
-    var n31_out: vec3f = pu.u_n70_transmission_scatter;
+    var n31_out: vec3f = pu.u_n71_transmission_scatter;
     var n32_out: vec3f = n31_out / n29_out;
     var n33_out: vec3f = n30_out + n32_out;
     var n34_out: vec3f = min(n33_out, vec3f(0.0));
     var n35_out: vec3f = n34_out * -1.0;
-    var n39_out: vec3f = pow(pu.u_n70_subsurface_color, vec3f(n8_out));
-    var n41_out: vec3f = pu.u_n70_subsurface_radius * pu.u_n70_subsurface_scale;
-    var n43_out: f32 = f32((pu.u_n70_thin_walled != 0));
-    var n51_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), pu.u_n70_coat_color, vec3f(pu.u_n70_coat));
-    var n54_out: f32 = pu.u_n70_coat_IOR - 1.0;
-    var n55_out: f32 = pu.u_n70_coat_IOR + 1.0;
-    var n56_out: f32 = n54_out / n55_out;
-    var n57_out: f32 = n56_out * n56_out;
-    var n58_out: f32 = 1.0 - n57_out;
-    var n59_out: vec3f = pu.u_n70_coat_color * n58_out;
-    var n60_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), n59_out, vec3f(pu.u_n70_coat));
-    var n61_out: f32 = 1.0 - pu.u_n70_coat;
-    var n62_out: vec3f = vec3f(n61_out);
-    var n63_out: vec3f = pu.u_n70_emission_color * pu.u_n70_emission;
-    var n66_out: vec3f = pu.u_n70_opacity;
-    var n67_out: f32 = dot(n66_out, vec3f(0.333333, 0.333333, 0.333334));
-    var n68_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
+    var n40_out: vec3f = pow(pu.u_n71_subsurface_color, vec3f(n8_out));
+    var n42_out: vec3f = pu.u_n71_subsurface_radius * pu.u_n71_subsurface_scale;
+    var n44_out: f32 = f32((pu.u_n71_thin_walled != 0));
+    var n52_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), pu.u_n71_coat_color, vec3f(pu.u_n71_coat));
+    var n55_out: f32 = pu.u_n71_coat_IOR - 1.0;
+    var n56_out: f32 = pu.u_n71_coat_IOR + 1.0;
+    var n57_out: f32 = n55_out / n56_out;
+    var n58_out: f32 = n57_out * n57_out;
+    var n59_out: f32 = 1.0 - n58_out;
+    var n60_out: vec3f = pu.u_n71_coat_color * n59_out;
+    var n61_out: vec3f = mix(vec3f(1.0, 1.0, 1.0), n60_out, vec3f(pu.u_n71_coat));
+    var n62_out: f32 = 1.0 - pu.u_n71_coat;
+    var n63_out: vec3f = vec3f(n62_out);
+    var n64_out: vec3f = pu.u_n71_emission_color * pu.u_n71_emission;
+    var n67_out: vec3f = pu.u_n71_opacity;
+    var n68_out: f32 = dot(n67_out, vec3f(0.333333, 0.333333, 0.333334));
+    var n69_out: surfaceshader = surfaceshader(vec3f(0.0), vec3f(0.0));
     {
         var N: vec3f = normalize(vd.normalWorld);
         var V: vec3f = normalize(pu.u_viewPosition - vd.positionWorld);
         var P: vec3f = vd.positionWorld;
         var L: vec3f = vec3f(0.0);
         var occlusion: f32 = 1.0;
-        var surfaceOpacity: f32 = n67_out;
+        var surfaceOpacity: f32 = n68_out;
         // lobes under a mix: weight 0 where the mix leaves them out
-        var n48_reached: bool = pu.u_n70_metalness != 1.0;
-        var n46_reached: bool = n48_reached && pu.u_n70_transmission != 1.0;
-        var n45_active_weight: f32 = select(0.0, pu.u_n70_base, n46_reached && pu.u_n70_subsurface != 1.0);
-        var n44_reached: bool = n46_reached && pu.u_n70_subsurface != 0.0;
-        var n42_active_weight: f32 = select(0.0, 1.0, n44_reached && n43_out != 1.0);
-        var n40_active_weight: f32 = select(0.0, 1.0, n44_reached && n43_out != 0.0);
-        var n38_reached: bool = n48_reached && pu.u_n70_transmission != 0.0;
-        var n37_reached: bool = n38_reached && n20_out != 0.0;
-        var n25_active_weight: f32 = select(0.0, 1.0, (n38_reached && n20_out != 1.0) || n37_reached);
-        var n19_active_weight: f32 = select(0.0, pu.u_n70_specular, n48_reached);
-        var n18_active_weight: f32 = select(0.0, 1.0, pu.u_n70_metalness != 0.0);
+        var n49_reached: bool = pu.u_n71_metalness != 1.0;
+        var n48_reached: bool = n49_reached && pu.u_n71_transmission != 1.0;
+        var n46_active_weight: f32 = select(0.0, pu.u_n71_base, n48_reached && pu.u_n71_subsurface != 1.0);
+        var n45_reached: bool = n48_reached && pu.u_n71_subsurface != 0.0;
+        var n43_active_weight: f32 = select(0.0, 1.0, n45_reached && n44_out != 1.0);
+        var n41_active_weight: f32 = select(0.0, 1.0, n45_reached && n44_out != 0.0);
+        var n39_reached: bool = n49_reached && pu.u_n71_transmission != 0.0;
+        var n37_reached: bool = n39_reached && n20_out != 0.0;
+        var n25_active_weight: f32 = select(0.0, 1.0, (n39_reached && n20_out != 1.0) || n37_reached);
+        var n19_active_weight: f32 = select(0.0, pu.u_n71_specular, n48_reached || n39_reached);
+        var n18_active_weight: f32 = select(0.0, 1.0, pu.u_n71_metalness != 0.0);
         // lobes prepared once per shading point, before any light
         var pointData: ClosureData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         var n5_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, pu.u_n70_coat, vec3f(1.0, 1.0, 1.0), pu.u_n70_coat_IOR,
+        mx_dielectric_bsdf_prepare(pointData, pu.u_n71_coat, vec3f(1.0, 1.0, 1.0), pu.u_n71_coat_IOR,
                                        n0_out, false, 0.0, 1.5, n1_out, n4_out, 0, 0, &n5_lobe);
         var n18_lobe: SpecularLobe;
         mx_conductor_bsdf_prepare(pointData, n18_active_weight, n11_ior, n11_extinction, n15_out, false,
-                                      pu.u_n70_thin_film_thickness, pu.u_n70_thin_film_IOR, n1_out, n17_out,
+                                      pu.u_n71_thin_film_thickness, pu.u_n71_thin_film_IOR, n1_out, n17_out,
                                       0, &n18_lobe);
         var n19_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, n19_active_weight, pu.u_n70_specular_color,
-                                       pu.u_n70_specular_IOR, n15_out, false, pu.u_n70_thin_film_thickness,
-                                       pu.u_n70_thin_film_IOR, n1_out, n17_out, 0, 0, &n19_lobe);
+        mx_dielectric_bsdf_prepare(pointData, n19_active_weight, pu.u_n71_specular_color,
+                                       pu.u_n71_specular_IOR, n15_out, false, pu.u_n71_thin_film_thickness,
+                                       pu.u_n71_thin_film_IOR, n1_out, n17_out, 0, 0, &n19_lobe);
         var n25_lobe: SpecularLobe;
-        mx_dielectric_bsdf_prepare(pointData, n25_active_weight, n21_out, pu.u_n70_specular_IOR, n24_out,
+        mx_dielectric_bsdf_prepare(pointData, n25_active_weight, n21_out, pu.u_n71_specular_IOR, n24_out,
                                        false, 0.0, 1.5, n1_out, n17_out, 0, 1, &n25_lobe);
         for (var activeLightIndex: i32 = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++) {
             var lightShader: lightshader;
@@ -1927,7 +1940,7 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
             var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_dielectric_bsdf(closureData, n5_lobe, &n5_out);
             var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_sheen_bsdf(closureData, pu.u_n70_sheen, pu.u_n70_sheen_color, pu.u_n70_sheen_roughness,
+            mx_sheen_bsdf(closureData, pu.u_n71_sheen, pu.u_n71_sheen_color, pu.u_n71_sheen_roughness,
                               n1_out, 0, &n6_out);
             var n18_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_conductor_bsdf(closureData, n18_lobe, &n18_out);
@@ -1936,37 +1949,39 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
             var n25_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_dielectric_bsdf(closureData, n25_lobe, &n25_out);
             var n36_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
-            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n70_transmission_scatter_anisotropy,
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n71_transmission_scatter_anisotropy,
                                    &n36_out);
             var n37_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_layer_vdf(closureData, n25_out, n36_out, &n37_out);
             var n38_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, &n38_out);
-            var n40_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, &n40_out);
-            var n42_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out,
-                                   pu.u_n70_subsurface_anisotropy, n1_out, &n42_out);
-            var n44_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, &n44_out);
+            var n39_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_add_bsdf(closureData, n19_out, n38_out, &n39_out);
+            var n41_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_translucent_bsdf(closureData, n41_active_weight, n40_out, n1_out, &n41_out);
+            var n43_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_subsurface_bsdf(closureData, n43_active_weight, n40_out, n42_out,
+                                   pu.u_n71_subsurface_anisotropy, n1_out, &n43_out);
             var n45_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, pu.u_n70_diffuse_roughness,
-                                           n1_out, false, &n45_out);
+            mx_mix_bsdf(closureData, n41_out, n43_out, n44_out, &n45_out);
             var n46_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n44_out, n45_out, pu.u_n70_subsurface, &n46_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, n46_active_weight, n9_out, pu.u_n71_diffuse_roughness,
+                                           n1_out, false, &n46_out);
             var n47_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n38_out, n46_out, pu.u_n70_transmission, &n47_out);
+            mx_mix_bsdf(closureData, n45_out, n46_out, pu.u_n71_subsurface, &n47_out);
             var n48_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_layer_bsdf(closureData, n19_out, n47_out, &n48_out);
             var n49_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n18_out, n48_out, pu.u_n70_metalness, &n49_out);
+            mx_mix_bsdf(closureData, n39_out, n48_out, pu.u_n71_transmission, &n49_out);
             var n50_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, n6_out, n49_out, &n50_out);
-            var n52_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, &n52_out);
+            mx_mix_bsdf(closureData, n18_out, n49_out, pu.u_n71_metalness, &n50_out);
+            var n51_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n6_out, n50_out, &n51_out);
             var n53_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, n5_out, n52_out, &n53_out);
-            n68_out.color += lightShader.intensity * n53_out.response;
+            mx_multiply_bsdf_color3(closureData, n51_out, n52_out, &n53_out);
+            var n54_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n5_out, n53_out, &n54_out);
+            n69_out.color += lightShader.intensity * n54_out.response;
         }
         // environment
         {
@@ -1974,7 +1989,7 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
             var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_dielectric_bsdf(closureData, n5_lobe, &n5_out);
             var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_sheen_bsdf(closureData, pu.u_n70_sheen, pu.u_n70_sheen_color, pu.u_n70_sheen_roughness,
+            mx_sheen_bsdf(closureData, pu.u_n71_sheen, pu.u_n71_sheen_color, pu.u_n71_sheen_roughness,
                               n1_out, 0, &n6_out);
             var n18_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_conductor_bsdf(closureData, n18_lobe, &n18_out);
@@ -1983,46 +1998,48 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
             var n25_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_dielectric_bsdf(closureData, n25_lobe, &n25_out);
             var n36_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
-            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n70_transmission_scatter_anisotropy,
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n71_transmission_scatter_anisotropy,
                                    &n36_out);
             var n37_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_layer_vdf(closureData, n25_out, n36_out, &n37_out);
             var n38_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, &n38_out);
-            var n40_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, &n40_out);
-            var n42_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out,
-                                   pu.u_n70_subsurface_anisotropy, n1_out, &n42_out);
-            var n44_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, &n44_out);
+            var n39_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_add_bsdf(closureData, n19_out, n38_out, &n39_out);
+            var n41_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_translucent_bsdf(closureData, n41_active_weight, n40_out, n1_out, &n41_out);
+            var n43_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_subsurface_bsdf(closureData, n43_active_weight, n40_out, n42_out,
+                                   pu.u_n71_subsurface_anisotropy, n1_out, &n43_out);
             var n45_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, pu.u_n70_diffuse_roughness,
-                                           n1_out, false, &n45_out);
+            mx_mix_bsdf(closureData, n41_out, n43_out, n44_out, &n45_out);
             var n46_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n44_out, n45_out, pu.u_n70_subsurface, &n46_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, n46_active_weight, n9_out, pu.u_n71_diffuse_roughness,
+                                           n1_out, false, &n46_out);
             var n47_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n38_out, n46_out, pu.u_n70_transmission, &n47_out);
+            mx_mix_bsdf(closureData, n45_out, n46_out, pu.u_n71_subsurface, &n47_out);
             var n48_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_layer_bsdf(closureData, n19_out, n47_out, &n48_out);
             var n49_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n18_out, n48_out, pu.u_n70_metalness, &n49_out);
+            mx_mix_bsdf(closureData, n39_out, n48_out, pu.u_n71_transmission, &n49_out);
             var n50_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, n6_out, n49_out, &n50_out);
-            var n52_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, &n52_out);
+            mx_mix_bsdf(closureData, n18_out, n49_out, pu.u_n71_metalness, &n50_out);
+            var n51_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n6_out, n50_out, &n51_out);
             var n53_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, n5_out, n52_out, &n53_out);
-            n68_out.color += occlusion * n53_out.response;
+            mx_multiply_bsdf_color3(closureData, n51_out, n52_out, &n53_out);
+            var n54_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n5_out, n53_out, &n54_out);
+            n69_out.color += occlusion * n54_out.response;
         }
         // emission
         {
             var closureData: ClosureData = ClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
-            var n64_out: vec3f = vec3f(0.0);
-            mx_uniform_edf(closureData, n63_out, &n64_out);
             var n65_out: vec3f = vec3f(0.0);
-            mx_generalized_schlick_edf(closureData, n60_out, n62_out, 5.0, n64_out, &n65_out);
-            n68_out.color += n65_out;
+            mx_uniform_edf(closureData, n64_out, &n65_out);
+            var n66_out: vec3f = vec3f(0.0);
+            mx_generalized_schlick_edf(closureData, n61_out, n63_out, 5.0, n65_out, &n66_out);
+            n69_out.color += n66_out;
         }
         // transmission, seen along the view direction
         {
@@ -2030,7 +2047,7 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
             var n5_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_dielectric_bsdf(closureData, n5_lobe, &n5_out);
             var n6_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_sheen_bsdf(closureData, pu.u_n70_sheen, pu.u_n70_sheen_color, pu.u_n70_sheen_roughness,
+            mx_sheen_bsdf(closureData, pu.u_n71_sheen, pu.u_n71_sheen_color, pu.u_n71_sheen_roughness,
                               n1_out, 0, &n6_out);
             var n18_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_conductor_bsdf(closureData, n18_lobe, &n18_out);
@@ -2039,42 +2056,44 @@ fn fragmentMain(vertexData: VertexData) -> @location(0) vec4f {
             var n25_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_dielectric_bsdf(closureData, n25_lobe, &n25_out);
             var n36_out: VDF = VDF(vec3f(0.0), vec3f(1.0));
-            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n70_transmission_scatter_anisotropy,
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, pu.u_n71_transmission_scatter_anisotropy,
                                    &n36_out);
             var n37_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_layer_vdf(closureData, n25_out, n36_out, &n37_out);
             var n38_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, &n38_out);
-            var n40_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, &n40_out);
-            var n42_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out,
-                                   pu.u_n70_subsurface_anisotropy, n1_out, &n42_out);
-            var n44_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, &n44_out);
+            var n39_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_add_bsdf(closureData, n19_out, n38_out, &n39_out);
+            var n41_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_translucent_bsdf(closureData, n41_active_weight, n40_out, n1_out, &n41_out);
+            var n43_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_subsurface_bsdf(closureData, n43_active_weight, n40_out, n42_out,
+                                   pu.u_n71_subsurface_anisotropy, n1_out, &n43_out);
             var n45_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, pu.u_n70_diffuse_roughness,
-                                           n1_out, false, &n45_out);
+            mx_mix_bsdf(closureData, n41_out, n43_out, n44_out, &n45_out);
             var n46_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n44_out, n45_out, pu.u_n70_subsurface, &n46_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, n46_active_weight, n9_out, pu.u_n71_diffuse_roughness,
+                                           n1_out, false, &n46_out);
             var n47_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n38_out, n46_out, pu.u_n70_transmission, &n47_out);
+            mx_mix_bsdf(closureData, n45_out, n46_out, pu.u_n71_subsurface, &n47_out);
             var n48_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
             mx_layer_bsdf(closureData, n19_out, n47_out, &n48_out);
             var n49_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_mix_bsdf(closureData, n18_out, n48_out, pu.u_n70_metalness, &n49_out);
+            mx_mix_bsdf(closureData, n39_out, n48_out, pu.u_n71_transmission, &n49_out);
             var n50_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, n6_out, n49_out, &n50_out);
-            var n52_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, &n52_out);
+            mx_mix_bsdf(closureData, n18_out, n49_out, pu.u_n71_metalness, &n50_out);
+            var n51_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n6_out, n50_out, &n51_out);
             var n53_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
-            mx_layer_bsdf(closureData, n5_out, n52_out, &n53_out);
-            n68_out.color += n53_out.response;
+            mx_multiply_bsdf_color3(closureData, n51_out, n52_out, &n53_out);
+            var n54_out: BSDF = BSDF(vec3f(0.0), vec3f(1.0));
+            mx_layer_bsdf(closureData, n5_out, n53_out, &n54_out);
+            n69_out.color += n54_out.response;
         }
-        n68_out.color *= surfaceOpacity;
-        n68_out.transparency = mix(vec3f(1.0), n68_out.transparency, vec3f(surfaceOpacity));
+        n69_out.color *= surfaceOpacity;
+        n69_out.transparency = mix(vec3f(1.0), n69_out.transparency, vec3f(surfaceOpacity));
     }
-    var n69_out: surfaceshader = n68_out;
-    out1 = vec4f(n69_out.color, 1.0 - dot(n69_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
+    var n70_out: surfaceshader = n69_out;
+    out1 = vec4f(n70_out.color, 1.0 - dot(n70_out.transparency, vec3f(mx_runtime_f32(1.0) / 3.0)));
     return out1;
 }

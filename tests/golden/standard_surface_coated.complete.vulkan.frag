@@ -521,6 +521,7 @@ float MX_ALBEDO_SHEEN_RENORMALISED[256] = float[256](
     0.307557, 0.274147, 0.241081, 0.208134, 0.175027, 0.141425);
 // The shaders' floor on r: 1/r is an exponent.
 const float MX_SHEEN_MIN_ROUGHNESS = 0.005;
+const float MX_MEDIUM_IOR = 1.5;
 // the model as published, at roughness = row / 15, mu = (column / 15)^2; 96^2 cosine-distributed directions each
 float MX_ALBEDO_OREN_NAYAR[256] = float[256](
     1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000, 1.000000,
@@ -594,47 +595,47 @@ layout(std140, set = 1, binding = 0) uniform PixelUniforms
     vec3 u_viewPosition;  // offset 80
     int u_numActiveLightSources;  // offset 92
     LightData u_lightData[MAX_LIGHT_SOURCES];  // offset 96
-    float u_n70_diffuse_roughness;  // offset 336
-    float u_n70_metalness;  // offset 340
-    float u_n70_specular;  // offset 344
-    vec3 u_n70_specular_color;  // offset 352
-    float u_n70_specular_roughness;  // offset 364
-    float u_n70_specular_IOR;  // offset 368
-    float u_n70_specular_anisotropy;  // offset 372
-    float u_n70_specular_rotation;  // offset 376
-    float u_n70_transmission;  // offset 380
-    vec3 u_n70_transmission_color;  // offset 384
-    float u_n70_transmission_depth;  // offset 396
-    vec3 u_n70_transmission_scatter;  // offset 400
-    float u_n70_transmission_scatter_anisotropy;  // offset 412
-    float u_n70_transmission_dispersion;  // offset 416
-    float u_n70_transmission_extra_roughness;  // offset 420
-    float u_n70_subsurface;  // offset 424
-    vec3 u_n70_subsurface_color;  // offset 432
-    vec3 u_n70_subsurface_radius;  // offset 448
-    float u_n70_subsurface_scale;  // offset 460
-    float u_n70_subsurface_anisotropy;  // offset 464
-    float u_n70_sheen;  // offset 468
-    vec3 u_n70_sheen_color;  // offset 480
-    float u_n70_sheen_roughness;  // offset 492
-    float u_n70_coat;  // offset 496
-    vec3 u_n70_coat_color;  // offset 512
-    float u_n70_coat_roughness;  // offset 524
-    float u_n70_coat_anisotropy;  // offset 528
-    float u_n70_coat_rotation;  // offset 532
-    float u_n70_coat_IOR;  // offset 536
-    float u_n70_coat_affect_color;  // offset 540
-    float u_n70_coat_affect_roughness;  // offset 544
-    float u_n70_thin_film_thickness;  // offset 548
-    float u_n70_thin_film_IOR;  // offset 552
-    float u_n70_emission;  // offset 556
-    vec3 u_n70_emission_color;  // offset 560
-    vec3 u_n70_opacity;  // offset 576
-    bool u_n70_thin_walled;  // offset 588
-    float u_n70_base;  // offset 592
-    vec3 u_n70_base_color;  // offset 608
-    surfaceshader u_n69_backsurfaceshader;  // offset 624
-    displacementshader u_n69_displacementshader;  // offset 656
+    float u_n71_diffuse_roughness;  // offset 336
+    float u_n71_metalness;  // offset 340
+    float u_n71_specular;  // offset 344
+    vec3 u_n71_specular_color;  // offset 352
+    float u_n71_specular_roughness;  // offset 364
+    float u_n71_specular_IOR;  // offset 368
+    float u_n71_specular_anisotropy;  // offset 372
+    float u_n71_specular_rotation;  // offset 376
+    float u_n71_transmission;  // offset 380
+    vec3 u_n71_transmission_color;  // offset 384
+    float u_n71_transmission_depth;  // offset 396
+    vec3 u_n71_transmission_scatter;  // offset 400
+    float u_n71_transmission_scatter_anisotropy;  // offset 412
+    float u_n71_transmission_dispersion;  // offset 416
+    float u_n71_transmission_extra_roughness;  // offset 420
+    float u_n71_subsurface;  // offset 424
+    vec3 u_n71_subsurface_color;  // offset 432
+    vec3 u_n71_subsurface_radius;  // offset 448
+    float u_n71_subsurface_scale;  // offset 460
+    float u_n71_subsurface_anisotropy;  // offset 464
+    float u_n71_sheen;  // offset 468
+    vec3 u_n71_sheen_color;  // offset 480
+    float u_n71_sheen_roughness;  // offset 492
+    float u_n71_coat;  // offset 496
+    vec3 u_n71_coat_color;  // offset 512
+    float u_n71_coat_roughness;  // offset 524
+    float u_n71_coat_anisotropy;  // offset 528
+    float u_n71_coat_rotation;  // offset 532
+    float u_n71_coat_IOR;  // offset 536
+    float u_n71_coat_affect_color;  // offset 540
+    float u_n71_coat_affect_roughness;  // offset 544
+    float u_n71_thin_film_thickness;  // offset 548
+    float u_n71_thin_film_IOR;  // offset 552
+    float u_n71_emission;  // offset 556
+    vec3 u_n71_emission_color;  // offset 560
+    vec3 u_n71_opacity;  // offset 576
+    bool u_n71_thin_walled;  // offset 588
+    float u_n71_base;  // offset 592
+    vec3 u_n71_base_color;  // offset 608
+    surfaceshader u_n70_backsurfaceshader;  // offset 624
+    displacementshader u_n70_displacementshader;  // offset 656
 };
 
 layout(set = 1, binding = 1) uniform texture2D u_envRadiance;
@@ -1745,13 +1746,20 @@ void mx_conductor_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF bs
     bsdf.response = reflected * lobe.weight;
 }
 
+float mx_medium_path(ClosureData closureData)
+{
+    float NdotV = clamp(dot(closureData.N, closureData.V), 0.0, 1.0);
+    float sinThetaT2 = (1.0 - NdotV * NdotV) / (MX_MEDIUM_IOR * MX_MEDIUM_IOR);
+    return 2.0 * sqrt(1.0 - sinThetaT2);
+}
+
 // <absorption_vdf>: a purely absorbing medium.
 void mx_absorption_vdf(ClosureData closureData, vec3 absorption, inout VDF result)
 {
     if (closureData.closureType == CLOSURE_TYPE_TRANSMISSION)
     {
         result.response = vec3(0.0);
-        result.throughput = exp(-absorption);
+        result.throughput = exp(-absorption * mx_medium_path(closureData));
     }
 }
 
@@ -1784,6 +1792,13 @@ void mx_mix_bsdf(ClosureData closureData, BSDF fg, BSDF bg, float mixValue, out 
 {
     result.response = mix(bg.response, fg.response, mixValue);
     result.throughput = mix(bg.throughput, fg.throughput, mixValue);
+}
+
+// Responses add; so do the lobes' albedos (1 - throughput), hence t1 + t2 - 1, kept >= 0.
+void mx_add_bsdf(ClosureData closureData, BSDF in1, BSDF in2, out BSDF result)
+{
+    result.response = in1.response + in2.response;
+    result.throughput = max(in1.throughput + in2.throughput - 1.0, 0.0);
 }
 
 void mx_translucent_bsdf(ClosureData closureData, float weight, vec3 color, vec3 N, inout BSDF bsdf)
@@ -2060,94 +2075,94 @@ void sampleLightSource(LightData light, vec3 position, out lightshader result)
 void main()
 {
     vec2 n0_out;
-    mx_roughness_anisotropy(u_n70_coat_roughness, u_n70_coat_anisotropy, n0_out);
+    mx_roughness_anisotropy(u_n71_coat_roughness, u_n71_coat_anisotropy, n0_out);
     vec3 n1_out = normalize(vd_normalWorld);
     vec3 n2_out = normalize(vd_tangentWorld);
-    float n3_out = u_n70_coat_rotation * 180.0;
+    float n3_out = u_n71_coat_rotation * 180.0;
     vec3 n4_out;
     mx_rotate3d_vector3(n2_out, n3_out, n1_out, n4_out);
-    float n7_out = u_n70_coat * u_n70_coat_affect_color;
+    float n7_out = u_n71_coat * u_n71_coat_affect_color;
     float n8_out = n7_out + 1.0;
-    vec3 n9_out = pow(u_n70_base_color, vec3(n8_out));
-    vec3 n10_out = n9_out * u_n70_base;
+    vec3 n9_out = pow(u_n71_base_color, vec3(n8_out));
+    vec3 n10_out = n9_out * u_n71_base;
     vec3 n11_ior;
     vec3 n11_extinction;
-    mx_artistic_ior(n10_out, u_n70_specular_color, n11_ior, n11_extinction);
-    float n12_out = u_n70_coat * u_n70_coat_affect_roughness;
-    float n13_out = n12_out * u_n70_coat_roughness;
-    float n14_out = mix(u_n70_specular_roughness, 1.0, n13_out);
+    mx_artistic_ior(n10_out, u_n71_specular_color, n11_ior, n11_extinction);
+    float n12_out = u_n71_coat * u_n71_coat_affect_roughness;
+    float n13_out = n12_out * u_n71_coat_roughness;
+    float n14_out = mix(u_n71_specular_roughness, 1.0, n13_out);
     vec2 n15_out;
-    mx_roughness_anisotropy(n14_out, u_n70_specular_anisotropy, n15_out);
-    float n16_out = u_n70_specular_rotation * 180.0;
+    mx_roughness_anisotropy(n14_out, u_n71_specular_anisotropy, n15_out);
+    float n16_out = u_n71_specular_rotation * 180.0;
     vec3 n17_out;
     mx_rotate3d_vector3(n2_out, n16_out, n1_out, n17_out);
-    float n20_out = (u_n70_transmission_depth > 0.0) ? 1.0 : 0.0;
-    vec3 n21_out = mix(u_n70_transmission_color, vec3(1.0, 1.0, 1.0), n20_out);
-    float n22_out = n14_out + u_n70_transmission_extra_roughness;
+    float n20_out = (u_n71_transmission_depth > 0.0) ? 1.0 : 0.0;
+    vec3 n21_out = mix(u_n71_transmission_color, vec3(1.0, 1.0, 1.0), n20_out);
+    float n22_out = n14_out + u_n71_transmission_extra_roughness;
     float n23_out = clamp(n22_out, 0.0, 1.0);
     vec2 n24_out;
-    mx_roughness_anisotropy(n23_out, u_n70_specular_anisotropy, n24_out);
-    vec3 n26_out = u_n70_transmission_color;
+    mx_roughness_anisotropy(n23_out, u_n71_specular_anisotropy, n24_out);
+    vec3 n26_out = u_n71_transmission_color;
     vec3 n27_out = max(n26_out, 1.0e-6);
     vec3 n28_out = log(n27_out);
-    float n29_out = max(u_n70_transmission_depth, 1.0e-6);
+    float n29_out = max(u_n71_transmission_depth, 1.0e-6);
     vec3 n30_out = n28_out / n29_out;
-    vec3 n31_out = u_n70_transmission_scatter;
+    vec3 n31_out = u_n71_transmission_scatter;
     vec3 n32_out = n31_out / n29_out;
     vec3 n33_out = n30_out + n32_out;
     vec3 n34_out = min(n33_out, 0.0);
     vec3 n35_out = n34_out * (-1.0);
-    vec3 n39_out = pow(u_n70_subsurface_color, vec3(n8_out));
-    vec3 n41_out = u_n70_subsurface_radius * u_n70_subsurface_scale;
-    float n43_out = float(u_n70_thin_walled);
-    vec3 n51_out = mix(vec3(1.0, 1.0, 1.0), u_n70_coat_color, u_n70_coat);
-    float n54_out = u_n70_coat_IOR - 1.0;
-    float n55_out = u_n70_coat_IOR + 1.0;
-    float n56_out = n54_out / n55_out;
-    float n57_out = n56_out * n56_out;
-    float n58_out = 1.0 - n57_out;
-    vec3 n59_out = u_n70_coat_color * n58_out;
-    vec3 n60_out = mix(vec3(1.0, 1.0, 1.0), n59_out, u_n70_coat);
-    float n61_out = 1.0 - u_n70_coat;
-    vec3 n62_out = vec3(n61_out);
-    vec3 n63_out = u_n70_emission_color * u_n70_emission;
-    vec3 n66_out = u_n70_opacity;
-    float n67_out = dot(n66_out, vec3(0.333333, 0.333333, 0.333334));
-    surfaceshader n68_out = surfaceshader(vec3(0.0), vec3(0.0));
+    vec3 n40_out = pow(u_n71_subsurface_color, vec3(n8_out));
+    vec3 n42_out = u_n71_subsurface_radius * u_n71_subsurface_scale;
+    float n44_out = float(u_n71_thin_walled);
+    vec3 n52_out = mix(vec3(1.0, 1.0, 1.0), u_n71_coat_color, u_n71_coat);
+    float n55_out = u_n71_coat_IOR - 1.0;
+    float n56_out = u_n71_coat_IOR + 1.0;
+    float n57_out = n55_out / n56_out;
+    float n58_out = n57_out * n57_out;
+    float n59_out = 1.0 - n58_out;
+    vec3 n60_out = u_n71_coat_color * n59_out;
+    vec3 n61_out = mix(vec3(1.0, 1.0, 1.0), n60_out, u_n71_coat);
+    float n62_out = 1.0 - u_n71_coat;
+    vec3 n63_out = vec3(n62_out);
+    vec3 n64_out = u_n71_emission_color * u_n71_emission;
+    vec3 n67_out = u_n71_opacity;
+    float n68_out = dot(n67_out, vec3(0.333333, 0.333333, 0.333334));
+    surfaceshader n69_out = surfaceshader(vec3(0.0), vec3(0.0));
     {
         vec3 N = normalize(vd_normalWorld);
         vec3 V = normalize(u_viewPosition - vd_positionWorld);
         vec3 P = vd_positionWorld;
         vec3 L = vec3(0.0);
         float occlusion = 1.0;
-        float surfaceOpacity = n67_out;
+        float surfaceOpacity = n68_out;
         // lobes under a mix: weight 0 where the mix leaves them out
-        bool n48_reached = u_n70_metalness != 1.0;
-        bool n46_reached = n48_reached && u_n70_transmission != 1.0;
-        float n45_active_weight = (n46_reached && u_n70_subsurface != 1.0) ? u_n70_base : 0.0;
-        bool n44_reached = n46_reached && u_n70_subsurface != 0.0;
-        float n42_active_weight = (n44_reached && n43_out != 1.0) ? 1.0 : 0.0;
-        float n40_active_weight = (n44_reached && n43_out != 0.0) ? 1.0 : 0.0;
-        bool n38_reached = n48_reached && u_n70_transmission != 0.0;
-        bool n37_reached = n38_reached && n20_out != 0.0;
-        float n25_active_weight = ((n38_reached && n20_out != 1.0) || n37_reached) ? 1.0 : 0.0;
-        float n19_active_weight = n48_reached ? u_n70_specular : 0.0;
-        float n18_active_weight = (u_n70_metalness != 0.0) ? 1.0 : 0.0;
+        bool n49_reached = u_n71_metalness != 1.0;
+        bool n48_reached = n49_reached && u_n71_transmission != 1.0;
+        float n46_active_weight = (n48_reached && u_n71_subsurface != 1.0) ? u_n71_base : 0.0;
+        bool n45_reached = n48_reached && u_n71_subsurface != 0.0;
+        float n43_active_weight = (n45_reached && n44_out != 1.0) ? 1.0 : 0.0;
+        float n41_active_weight = (n45_reached && n44_out != 0.0) ? 1.0 : 0.0;
+        bool n39_reached = n49_reached && u_n71_transmission != 0.0;
+        bool n37_reached = n39_reached && n20_out != 0.0;
+        float n25_active_weight = ((n39_reached && n20_out != 1.0) || n37_reached) ? 1.0 : 0.0;
+        float n19_active_weight = (n48_reached || n39_reached) ? u_n71_specular : 0.0;
+        float n18_active_weight = (u_n71_metalness != 0.0) ? 1.0 : 0.0;
         // lobes prepared once per shading point, before any light
         ClosureData pointData = ClosureData(CLOSURE_TYPE_DEFAULT, L, V, N, P, occlusion);
         SpecularLobe n5_lobe;
-        mx_dielectric_bsdf_prepare(pointData, u_n70_coat, vec3(1.0, 1.0, 1.0), u_n70_coat_IOR, n0_out, false,
+        mx_dielectric_bsdf_prepare(pointData, u_n71_coat, vec3(1.0, 1.0, 1.0), u_n71_coat_IOR, n0_out, false,
                                    0.0, 1.5, n1_out, n4_out, 0, 0, n5_lobe);
         SpecularLobe n18_lobe;
         mx_conductor_bsdf_prepare(pointData, n18_active_weight, n11_ior, n11_extinction, n15_out, false,
-                                  u_n70_thin_film_thickness, u_n70_thin_film_IOR, n1_out, n17_out, 0,
+                                  u_n71_thin_film_thickness, u_n71_thin_film_IOR, n1_out, n17_out, 0,
                                   n18_lobe);
         SpecularLobe n19_lobe;
-        mx_dielectric_bsdf_prepare(pointData, n19_active_weight, u_n70_specular_color, u_n70_specular_IOR,
-                                   n15_out, false, u_n70_thin_film_thickness, u_n70_thin_film_IOR, n1_out,
+        mx_dielectric_bsdf_prepare(pointData, n19_active_weight, u_n71_specular_color, u_n71_specular_IOR,
+                                   n15_out, false, u_n71_thin_film_thickness, u_n71_thin_film_IOR, n1_out,
                                    n17_out, 0, 0, n19_lobe);
         SpecularLobe n25_lobe;
-        mx_dielectric_bsdf_prepare(pointData, n25_active_weight, n21_out, u_n70_specular_IOR, n24_out, false,
+        mx_dielectric_bsdf_prepare(pointData, n25_active_weight, n21_out, u_n71_specular_IOR, n24_out, false,
                                    0.0, 1.5, n1_out, n17_out, 0, 1, n25_lobe);
         for (int activeLightIndex = 0; activeLightIndex < numActiveLightSources(); activeLightIndex++)
         {
@@ -2158,7 +2173,7 @@ void main()
             BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, n5_lobe, n5_out);
             BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, u_n70_sheen, u_n70_sheen_color, u_n70_sheen_roughness, n1_out, 0,
+            mx_sheen_bsdf(closureData, u_n71_sheen, u_n71_sheen_color, u_n71_sheen_roughness, n1_out, 0,
                           n6_out);
             BSDF n18_out = BSDF(vec3(0.0), vec3(1.0));
             mx_conductor_bsdf(closureData, n18_lobe, n18_out);
@@ -2167,36 +2182,38 @@ void main()
             BSDF n25_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, n25_lobe, n25_out);
             VDF n36_out = VDF(vec3(0.0), vec3(1.0));
-            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n70_transmission_scatter_anisotropy, n36_out);
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n71_transmission_scatter_anisotropy, n36_out);
             BSDF n37_out = BSDF(vec3(0.0), vec3(1.0));
             mx_layer_vdf(closureData, n25_out, n36_out, n37_out);
             BSDF n38_out = BSDF(vec3(0.0), vec3(1.0));
             mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, n38_out);
-            BSDF n40_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, n40_out);
-            BSDF n42_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out, u_n70_subsurface_anisotropy,
-                               n1_out, n42_out);
-            BSDF n44_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, n44_out);
+            BSDF n39_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_add_bsdf(closureData, n19_out, n38_out, n39_out);
+            BSDF n41_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, n41_active_weight, n40_out, n1_out, n41_out);
+            BSDF n43_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, n43_active_weight, n40_out, n42_out, u_n71_subsurface_anisotropy,
+                               n1_out, n43_out);
             BSDF n45_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, u_n70_diffuse_roughness,
-                                       n1_out, false, n45_out);
+            mx_mix_bsdf(closureData, n41_out, n43_out, n44_out, n45_out);
             BSDF n46_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n44_out, n45_out, u_n70_subsurface, n46_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, n46_active_weight, n9_out, u_n71_diffuse_roughness,
+                                       n1_out, false, n46_out);
             BSDF n47_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n38_out, n46_out, u_n70_transmission, n47_out);
+            mx_mix_bsdf(closureData, n45_out, n46_out, u_n71_subsurface, n47_out);
             BSDF n48_out = BSDF(vec3(0.0), vec3(1.0));
             mx_layer_bsdf(closureData, n19_out, n47_out, n48_out);
             BSDF n49_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n18_out, n48_out, u_n70_metalness, n49_out);
+            mx_mix_bsdf(closureData, n39_out, n48_out, u_n71_transmission, n49_out);
             BSDF n50_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, n6_out, n49_out, n50_out);
-            BSDF n52_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, n52_out);
+            mx_mix_bsdf(closureData, n18_out, n49_out, u_n71_metalness, n50_out);
+            BSDF n51_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n6_out, n50_out, n51_out);
             BSDF n53_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, n5_out, n52_out, n53_out);
-            n68_out.color += lightShader.intensity * n53_out.response;
+            mx_multiply_bsdf_color3(closureData, n51_out, n52_out, n53_out);
+            BSDF n54_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n5_out, n53_out, n54_out);
+            n69_out.color += lightShader.intensity * n54_out.response;
         }
         // environment
         {
@@ -2204,7 +2221,7 @@ void main()
             BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, n5_lobe, n5_out);
             BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, u_n70_sheen, u_n70_sheen_color, u_n70_sheen_roughness, n1_out, 0,
+            mx_sheen_bsdf(closureData, u_n71_sheen, u_n71_sheen_color, u_n71_sheen_roughness, n1_out, 0,
                           n6_out);
             BSDF n18_out = BSDF(vec3(0.0), vec3(1.0));
             mx_conductor_bsdf(closureData, n18_lobe, n18_out);
@@ -2213,45 +2230,47 @@ void main()
             BSDF n25_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, n25_lobe, n25_out);
             VDF n36_out = VDF(vec3(0.0), vec3(1.0));
-            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n70_transmission_scatter_anisotropy, n36_out);
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n71_transmission_scatter_anisotropy, n36_out);
             BSDF n37_out = BSDF(vec3(0.0), vec3(1.0));
             mx_layer_vdf(closureData, n25_out, n36_out, n37_out);
             BSDF n38_out = BSDF(vec3(0.0), vec3(1.0));
             mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, n38_out);
-            BSDF n40_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, n40_out);
-            BSDF n42_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out, u_n70_subsurface_anisotropy,
-                               n1_out, n42_out);
-            BSDF n44_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, n44_out);
+            BSDF n39_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_add_bsdf(closureData, n19_out, n38_out, n39_out);
+            BSDF n41_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, n41_active_weight, n40_out, n1_out, n41_out);
+            BSDF n43_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, n43_active_weight, n40_out, n42_out, u_n71_subsurface_anisotropy,
+                               n1_out, n43_out);
             BSDF n45_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, u_n70_diffuse_roughness,
-                                       n1_out, false, n45_out);
+            mx_mix_bsdf(closureData, n41_out, n43_out, n44_out, n45_out);
             BSDF n46_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n44_out, n45_out, u_n70_subsurface, n46_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, n46_active_weight, n9_out, u_n71_diffuse_roughness,
+                                       n1_out, false, n46_out);
             BSDF n47_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n38_out, n46_out, u_n70_transmission, n47_out);
+            mx_mix_bsdf(closureData, n45_out, n46_out, u_n71_subsurface, n47_out);
             BSDF n48_out = BSDF(vec3(0.0), vec3(1.0));
             mx_layer_bsdf(closureData, n19_out, n47_out, n48_out);
             BSDF n49_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n18_out, n48_out, u_n70_metalness, n49_out);
+            mx_mix_bsdf(closureData, n39_out, n48_out, u_n71_transmission, n49_out);
             BSDF n50_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, n6_out, n49_out, n50_out);
-            BSDF n52_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, n52_out);
+            mx_mix_bsdf(closureData, n18_out, n49_out, u_n71_metalness, n50_out);
+            BSDF n51_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n6_out, n50_out, n51_out);
             BSDF n53_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, n5_out, n52_out, n53_out);
-            n68_out.color += occlusion * n53_out.response;
+            mx_multiply_bsdf_color3(closureData, n51_out, n52_out, n53_out);
+            BSDF n54_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n5_out, n53_out, n54_out);
+            n69_out.color += occlusion * n54_out.response;
         }
         // emission
         {
             ClosureData closureData = ClosureData(CLOSURE_TYPE_EMISSION, L, V, N, P, occlusion);
-            vec3 n64_out = vec3(0.0);
-            mx_uniform_edf(closureData, n63_out, n64_out);
             vec3 n65_out = vec3(0.0);
-            mx_generalized_schlick_edf(closureData, n60_out, n62_out, 5.0, n64_out, n65_out);
-            n68_out.color += n65_out;
+            mx_uniform_edf(closureData, n64_out, n65_out);
+            vec3 n66_out = vec3(0.0);
+            mx_generalized_schlick_edf(closureData, n61_out, n63_out, 5.0, n65_out, n66_out);
+            n69_out.color += n66_out;
         }
         // transmission, seen along the view direction
         {
@@ -2259,7 +2278,7 @@ void main()
             BSDF n5_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, n5_lobe, n5_out);
             BSDF n6_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_sheen_bsdf(closureData, u_n70_sheen, u_n70_sheen_color, u_n70_sheen_roughness, n1_out, 0,
+            mx_sheen_bsdf(closureData, u_n71_sheen, u_n71_sheen_color, u_n71_sheen_roughness, n1_out, 0,
                           n6_out);
             BSDF n18_out = BSDF(vec3(0.0), vec3(1.0));
             mx_conductor_bsdf(closureData, n18_lobe, n18_out);
@@ -2268,40 +2287,42 @@ void main()
             BSDF n25_out = BSDF(vec3(0.0), vec3(1.0));
             mx_dielectric_bsdf(closureData, n25_lobe, n25_out);
             VDF n36_out = VDF(vec3(0.0), vec3(1.0));
-            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n70_transmission_scatter_anisotropy, n36_out);
+            mx_anisotropic_vdf(closureData, n35_out, n32_out, u_n71_transmission_scatter_anisotropy, n36_out);
             BSDF n37_out = BSDF(vec3(0.0), vec3(1.0));
             mx_layer_vdf(closureData, n25_out, n36_out, n37_out);
             BSDF n38_out = BSDF(vec3(0.0), vec3(1.0));
             mx_mix_bsdf(closureData, n37_out, n25_out, n20_out, n38_out);
-            BSDF n40_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_translucent_bsdf(closureData, n40_active_weight, n39_out, n1_out, n40_out);
-            BSDF n42_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_subsurface_bsdf(closureData, n42_active_weight, n39_out, n41_out, u_n70_subsurface_anisotropy,
-                               n1_out, n42_out);
-            BSDF n44_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n40_out, n42_out, n43_out, n44_out);
+            BSDF n39_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_add_bsdf(closureData, n19_out, n38_out, n39_out);
+            BSDF n41_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_translucent_bsdf(closureData, n41_active_weight, n40_out, n1_out, n41_out);
+            BSDF n43_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_subsurface_bsdf(closureData, n43_active_weight, n40_out, n42_out, u_n71_subsurface_anisotropy,
+                               n1_out, n43_out);
             BSDF n45_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_oren_nayar_diffuse_bsdf(closureData, n45_active_weight, n9_out, u_n70_diffuse_roughness,
-                                       n1_out, false, n45_out);
+            mx_mix_bsdf(closureData, n41_out, n43_out, n44_out, n45_out);
             BSDF n46_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n44_out, n45_out, u_n70_subsurface, n46_out);
+            mx_oren_nayar_diffuse_bsdf(closureData, n46_active_weight, n9_out, u_n71_diffuse_roughness,
+                                       n1_out, false, n46_out);
             BSDF n47_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n38_out, n46_out, u_n70_transmission, n47_out);
+            mx_mix_bsdf(closureData, n45_out, n46_out, u_n71_subsurface, n47_out);
             BSDF n48_out = BSDF(vec3(0.0), vec3(1.0));
             mx_layer_bsdf(closureData, n19_out, n47_out, n48_out);
             BSDF n49_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_mix_bsdf(closureData, n18_out, n48_out, u_n70_metalness, n49_out);
+            mx_mix_bsdf(closureData, n39_out, n48_out, u_n71_transmission, n49_out);
             BSDF n50_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, n6_out, n49_out, n50_out);
-            BSDF n52_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_multiply_bsdf_color3(closureData, n50_out, n51_out, n52_out);
+            mx_mix_bsdf(closureData, n18_out, n49_out, u_n71_metalness, n50_out);
+            BSDF n51_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n6_out, n50_out, n51_out);
             BSDF n53_out = BSDF(vec3(0.0), vec3(1.0));
-            mx_layer_bsdf(closureData, n5_out, n52_out, n53_out);
-            n68_out.color += n53_out.response;
+            mx_multiply_bsdf_color3(closureData, n51_out, n52_out, n53_out);
+            BSDF n54_out = BSDF(vec3(0.0), vec3(1.0));
+            mx_layer_bsdf(closureData, n5_out, n53_out, n54_out);
+            n69_out.color += n54_out.response;
         }
-        n68_out.color *= surfaceOpacity;
-        n68_out.transparency = mix(vec3(1.0), n68_out.transparency, surfaceOpacity);
+        n69_out.color *= surfaceOpacity;
+        n69_out.transparency = mix(vec3(1.0), n69_out.transparency, surfaceOpacity);
     }
-    surfaceshader n69_out = n68_out;
-    out1 = vec4(n69_out.color, 1.0 - dot(n69_out.transparency, vec3(1.0 / 3.0)));
+    surfaceshader n70_out = n69_out;
+    out1 = vec4(n70_out.color, 1.0 - dot(n70_out.transparency, vec3(1.0 / 3.0)));
 }

@@ -115,3 +115,21 @@ def test_fresnel_dielectric_known_values():
     assert gts.fresnel_dielectric(np.array(1.0), 1.5) == pytest.approx(0.04)
     assert gts.fresnel_dielectric(np.array(0.0), 1.5) == pytest.approx(1.0)
     assert gts.fresnel_dielectric(np.array(0.5), 1.0 / 1.5) == 1.0  # beyond the critical angle
+
+
+def test_our_absorbing_glass_sphere_against_the_sphere_computed_directly():
+    """OpenPBR glass holding an amber medium (transmission_color at depth 1) drawn by our GL
+    thumbnail against every internal path of the same sphere: our media take the transmittance
+    along the refracted chord, not over a unit distance (which was 20 dB from it, too yellow)."""
+    require_renderer()
+    sys.path.insert(0, str(ROOT / "bench"))
+    import ground_truth
+    from shadergen.api import Generator
+    from shadergen.render import Renderer
+    from shadergen.render.environment import Environment
+
+    side, amber = 64, (0.9, 0.55, 0.15)
+    document = ground_truth.GLASS_CHECK.format(color=", ".join(map(str, amber)), depth="1")
+    ours = Renderer(search_paths=[]).render(Generator().prepare(document).emit(), size=side, env_samples=64).rgba[..., :3]
+    exact = gts.glass_sphere_image(Environment.procedural().radiance, side, 1.5, -np.log(np.asarray(amber)))
+    assert gts.psnr_viewed(ours, exact, gts.sphere_mask(side, 2.0)) > 33.0
