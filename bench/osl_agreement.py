@@ -66,8 +66,18 @@ def plane_scene() -> None:
     inputs.scene_uniforms = uniforms
 
 
-def testshade(source: str, folder: str, corpus: str) -> np.ndarray:
+# Like for like (the default): file images read the same way on both sides, one bilinear (or
+# closest) lookup of the base level. Each texture() of our OSL gets a zero filter width (OIIO's
+# "width" option; a later option overrides an earlier one), the GL renderer binds file images
+# without their mipmaps (Renderer's file_mipmaps). The product filters as each library does (OIIO's
+# footprint over the file, GL's trilinear mip chain): --mipmapped measures that instead.
+BASE_LEVEL = ('"alpha", alpha', '"width", 0.0, "alpha", alpha')
+
+
+def testshade(source: str, folder: str, corpus: str, like_for_like: bool = True) -> np.ndarray:
     """Our OSL evaluated by testshade: the colour output and its alpha, rows of increasing v."""
+    if like_for_like:
+        source = source.replace(*BASE_LEVEL)
     failed = compile_shaders({"shader": ("pixel", source)}, folder)
     if failed:
         raise RuntimeError(failed["shader"])
@@ -113,12 +123,12 @@ def cause(rec: dict) -> str:
     return next((text for test, text in CAUSES if test(glsl, closest)), "unexplained")
 
 
-def differences(gen, corpus: str, name_filter: str | None = None) -> list[tuple]:
+def differences(gen, corpus: str, name_filter: str | None = None, like_for_like: bool = True) -> list[tuple]:
     """(element, largest absolute difference, largest relative one, share of pixels within the
-    tolerance, cause) per value element."""
+    tolerance, cause) per value element; `like_for_like`: file images read as BASE_LEVEL says."""
     from shadergen.render.renderer import Renderer
     plane_scene()
-    renderer = Renderer(texture_roots=(corpus,), search_paths=(corpus,))
+    renderer = Renderer(texture_roots=(corpus,), search_paths=(corpus,), file_mipmaps=not like_for_like)
     results = []
     docs = sorted(glob.glob(os.path.join(corpus, "resources/Materials/TestSuite/stdlib/**/*.mtlx"), recursive=True))
     with tempfile.TemporaryDirectory(prefix="osl-agreement-") as folder:
@@ -134,7 +144,7 @@ def differences(gen, corpus: str, name_filter: str | None = None) -> list[tuple]
                 label = f"{os.path.relpath(doc, corpus)}:{rec['element']}"
                 try:
                     gl = renderer.render(rec, size=SIZE, mesh="plane", env_method="fis").rgba[::-1]
-                    shaded = testshade(theirs["stages"]["pixel"], folder, corpus)
+                    shaded = testshade(theirs["stages"]["pixel"], folder, corpus, like_for_like)
                 except Exception as exc:  # a failure to draw or shade is a row of its own
                     results.append((label, float("nan"), float("nan"), 0.0, f"failed: {type(exc).__name__}"))
                     print(f"  {label}: {type(exc).__name__}: {str(exc)[:200]}")

@@ -149,6 +149,36 @@ def test_an_image_reads_as_gl_reads_it(oslc, tmp_path):
     assert values == [["0", "0", "1"], ["1"], ["1", "0", "0"], ["1"]], done.stdout
 
 
+def test_a_linear_image_read_is_bilinear(oslc, tmp_path):
+    """testshade shading a linear <image> at its texel centres reads each texel as it is: OSL's
+    interp is "linear" (it was "bilinear", not an OSL name, so OIIO's default smartcubic spread
+    the black column into its neighbours)."""
+    import subprocess
+
+    import numpy as np
+    oiio = pytest.importorskip("OpenImageIO")
+    if check.tool("testshade") is None:
+        missing("testshade", "scripts/osl.sh builds it")
+    pixels = np.ones((1, 16, 3), "f4")
+    pixels[0, 10] = 0.0
+    image = str(tmp_path / "column.exr")
+    assert oiio.ImageBuf(pixels).write(image)
+    doc = f"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <image name="img" type="color3"><input name="file" type="filename" value="{image}"/>
+    <input name="filtertype" type="string" value="linear"/></image>
+  <output name="out" type="color3" nodename="img"/>
+</materialx>""".encode()
+    [rec] = default_generator().records(doc, target="osl", all=True, values="source")
+    failed = check.compile_shaders({"shader": ("pixel", rec["stages"]["pixel"])}, str(tmp_path))
+    assert not failed, failed
+    done = subprocess.run([check.tool("testshade"), "--res", "16", "1", "--center", "--print", "-o", "out1", "null",
+                           str(tmp_path / "shader0")], capture_output=True, text=True, timeout=120, check=True)
+    values = [float(line.split(":")[1].split()[0]) for line in done.stdout.splitlines()
+              if line.strip().startswith("out1")]
+    assert values == pytest.approx([0.0 if x == 10 else 1.0 for x in range(16)], abs=1e-6), done.stdout
+
+
 def test_a_matrix_product_is_swapped_once():
     """OSL holds the transpose of GLSL's matrix: GLSL's `B * A` is OSL's `A * B`, also where the
     GLSL printer renders the product again to see whether it fits its line (it was swapped back)."""
