@@ -99,12 +99,14 @@ def main() -> None:
     p.add_argument("--repeats", type=int, default=5)
     p.add_argument("--agreement", action="store_true", help="the testshade-vs-GL table of TestSuite/stdlib")
     p.add_argument("--filter", help="with --agreement: only documents whose path contains this")
+    p.add_argument("--mipmapped", action="store_true", help="with --agreement: file images filtered as the product "
+                   "does (OIIO's footprint, GL's mip chain), not like for like (bench/osl_agreement.py)")
     a = p.parse_args()
     corpus = os.path.abspath(a.corpus)
     gen = default_generator()
     if a.agreement:
         from bench.osl_agreement import differences, report
-        print("osl: " + report(differences(gen, corpus, a.filter)))
+        print("osl: " + report(differences(gen, corpus, a.filter, not a.mipmapped)))
         return
     include = reference_include()
     figures = []

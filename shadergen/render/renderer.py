@@ -8,6 +8,7 @@ renders, so a repeat material costs one draw. Use it from the thread that first 
 import functools
 import os
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -38,8 +39,12 @@ class Renderer(SceneRenderer):
     """Renders GLSL and ESSL shader records with OpenGL (moderngl on headless EGL); see SceneRenderer
     for the arguments."""
 
-    def __init__(self, *args, **kwargs):
+    def __init__(self, *args, file_mipmaps: bool = True, **kwargs):
+        """`file_mipmaps` False binds file images without their mipmaps (the base level, bilinear or
+        closest): a like-for-like read for a bench that compares with a single bilinear lookup
+        (bench/osl_agreement.py); renders, records and thumbnails keep the default."""
         super().__init__(*args, **kwargs)
+        self.file_mipmaps = file_mipmaps
         self._framebuffers: dict[int, object] = {}
         self._luts: dict[tuple, object] = {}  # a LUT's description -> its texture
 
@@ -147,7 +152,7 @@ class Renderer(SceneRenderer):
             if warning:
                 warnings.append(warning)
             units[request.name] = len(units)
-            bind(texture, units[request.name], request.sampling)
+            bind(texture, units[request.name], replace(request.sampling, mipmaps=self.file_mipmaps))
         for name in program.samplers:
             if name not in units:
                 units[name] = len(units)

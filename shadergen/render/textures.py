@@ -41,6 +41,7 @@ class Sampling:
     wrap_u: int = GL_REPEAT
     wrap_v: int = GL_REPEAT
     closest: bool = False
+    mipmaps: bool = True  # False: the base level only (Renderer's file_mipmaps)
     border: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 1.0)
 
 
@@ -298,8 +299,8 @@ def bind(texture, unit: int, sampling: Sampling) -> None:
     import moderngl
 
     if sampling.closest:
-        texture.filter = (moderngl.NEAREST_MIPMAP_NEAREST, moderngl.NEAREST)
+        texture.filter = (moderngl.NEAREST_MIPMAP_NEAREST if sampling.mipmaps else moderngl.NEAREST, moderngl.NEAREST)
     else:
-        texture.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+        texture.filter = (moderngl.LINEAR_MIPMAP_LINEAR if sampling.mipmaps else moderngl.LINEAR, moderngl.LINEAR)
     texture.use(location=unit)  # after `filter`, which binds on a unit of moderngl's own
     gl_extras().set_wrap(sampling.wrap_u, sampling.wrap_v, sampling.border)  # acts on the active unit

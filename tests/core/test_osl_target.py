@@ -118,35 +118,52 @@ def test_a_component_of_a_swizzle_is_the_component_of_its_vector():
     assert OslPrinter().render(ir.Field(rgb, "zx", type="vec2", swizzle=True), None, 0) == "vector2(c.z, c.x)"
 
 
-def test_an_image_reads_as_gl_reads_it(oslc, tmp_path):
-    """testshade shading our OSL of an <image> of a file with a red top row and a blue bottom row,
-    and no alpha: texture coordinate v = 0.25 reads the bottom row, v = 0.75 the top (MaterialX's v
-    runs up the image), alpha is 1 as GL samples it (the helpers once flipped t twice and read
-    alpha 0)."""
+def shade_image(tmp_path, pixels, filtertype: str, res: tuple[int, int]) -> list[list[str]]:
+    """testshade's printed values (out1, then out1_alpha, per pixel) of our OSL of a color4 <image>
+    with `filtertype` reading `pixels` ((h, w, 3), top row first, no alpha) at `res` pixels."""
     import subprocess
 
-    import numpy as np
     oiio = pytest.importorskip("OpenImageIO")
     if check.tool("testshade") is None:
         missing("testshade", "scripts/osl.sh builds it")
-    pixels = np.array([[[1, 0, 0], [1, 0, 0]], [[0, 0, 1], [0, 0, 1]]], "f4")  # rows top first
-    image = str(tmp_path / "rows.exr")
+    image = str(tmp_path / "image.exr")
     assert oiio.ImageBuf(pixels).write(image)
     doc = f"""<?xml version="1.0"?>
 <materialx version="1.39">
   <image name="img" type="color4"><input name="file" type="filename" value="{image}"/>
-    <input name="filtertype" type="string" value="closest"/></image>
+    <input name="filtertype" type="string" value="{filtertype}"/></image>
   <output name="out" type="color4" nodename="img"/>
 </materialx>""".encode()
     [rec] = default_generator().records(doc, target="osl", all=True, values="source")
     failed = check.compile_shaders({"shader": ("pixel", rec["stages"]["pixel"])}, str(tmp_path))
     assert not failed, failed
-    done = subprocess.run([check.tool("testshade"), "--res", "1", "2", "--center", "--print", "-o", "out1", "null",
-                           "-o", "out1_alpha", "null", str(tmp_path / "shader0")],
+    done = subprocess.run([check.tool("testshade"), "--res", *map(str, res), "--center", "--print", "-o", "out1",
+                           "null", "-o", "out1_alpha", "null", str(tmp_path / "shader0")],
                           capture_output=True, text=True, timeout=120, check=True)
-    values = [line.split(":")[1].split() for line in done.stdout.splitlines() if line.strip().startswith("out1")]
+    return [line.split(":")[1].split() for line in done.stdout.splitlines() if line.strip().startswith("out1")]
+
+
+def test_an_image_reads_as_gl_reads_it(oslc, tmp_path):
+    """testshade shading our OSL of an <image> of a file with a red top row and a blue bottom row,
+    and no alpha: texture coordinate v = 0.25 reads the bottom row, v = 0.75 the top (MaterialX's v
+    runs up the image), alpha is 1 as GL samples it (the helpers once flipped t twice and read
+    alpha 0)."""
+    import numpy as np
+    pixels = np.array([[[1, 0, 0], [1, 0, 0]], [[0, 0, 1], [0, 0, 1]]], "f4")  # rows top first
+    values = shade_image(tmp_path, pixels, "closest", (1, 2))
     # testshade's row y shades v = (y + 0.5) / 2: pixel (0, 0) is v = 0.25, pixel (0, 1) v = 0.75
-    assert values == [["0", "0", "1"], ["1"], ["1", "0", "0"], ["1"]], done.stdout
+    assert values == [["0", "0", "1"], ["1"], ["1", "0", "0"], ["1"]]
+
+
+def test_a_linear_image_read_is_bilinear(oslc, tmp_path):
+    """testshade shading a linear <image> at its texel centres reads each texel as it is: OSL's
+    interp is "linear" (it was "bilinear", not an OSL name, so OIIO's default smartcubic spread
+    the black column into its neighbours)."""
+    import numpy as np
+    pixels = np.ones((1, 16, 3), "f4")
+    pixels[0, 10] = 0.0
+    reds = [float(v[0]) for v in shade_image(tmp_path, pixels, "linear", (16, 1))[::2]]
+    assert reds == pytest.approx([0.0 if x == 10 else 1.0 for x in range(16)], abs=1e-6)
 
 
 def test_a_matrix_product_is_swapped_once():

@@ -214,16 +214,17 @@ def helper_text(name: str, types: tuple, returns: str) -> list[str]:
     params = ", ".join(f"{t} {p}" for t, p in zip(types, "abcd"))
     head = f"{returns} {name}({params})"
     # (the library's coordinates are the image's already: t from the top row, as OSL's; a texture the
-    # library samples itself repeats, as the GL renderer's sampler does, where OSL's default is black)
+    # library samples itself repeats and filters linearly, as the GL renderer's sampler does, where
+    # OSL's defaults are black and "smartcubic")
     if name == "osl_texture":
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, "wrap", "periodic", "alpha", alpha, "fill", 1.0,',
-                '                        "missingcolor", color(0.0), "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, "wrap", "periodic", "interp", "linear", "alpha", alpha,',
+                '                        "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_texture_grad":  # with the derivatives of the coordinate
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "wrap", "periodic", "alpha", alpha,',
-                '                        "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
+                '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "wrap", "periodic", "interp", "linear",',
+                '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_select":
         return [head, "{", "    if (a)", "        return b;", "    return c;", "}"]

@@ -193,7 +193,7 @@ OWN_FUNCTIONS = {"mx_image_fetch": (
     "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
     "        return dflt;",
     '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
-    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "bilinear" : "bicubic";',
+    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
     "    float width = filtertype == 0 ? 0.0 : 1.0;",
     "    float alpha = dflt.w;",
     '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, "width", width,',
