@@ -2,12 +2,12 @@
 """Document upgrades (issue 28, item 6): our upgrade of each old document against the reference's.
 
 For every document older than 1.39 given (files or folders; default the corpus's TestSuite
-documents of versions 1.22-1.38), the reference (the oracle venv's MaterialX, as a black box)
-reads it and writes it back upgraded to 1.39. Then, for every renderable element of either and
-every top-level node both share, our `specialized` record from the old document (our upgrade)
-against our record from the reference's upgraded document: the same pixel source and the same
-listing mean the two upgrades give the same graph, values included (specialized folds every value
-into the code). With --render, each material is also drawn from the old document by the
+documents of versions 1.22-1.38), the reference's generator (../shared/oracle/mx_oracle.py, a black
+box that upgrades the document as it reads it) lists every renderable element's public uniforms in
+`complete`; ours lists the same elements from our upgrade of the same file. The two listings must
+hold the same element paths with the same types and values: an input our upgrade moved, renamed,
+dropped or gave another value shows as a difference (uniforms without a path, and closure-typed
+sockets the reference lists, are not compared). With --render, each material is also drawn from the old document by the
 reference's renderer (../shared/oracle/mx_refrender.py) and by `shadergen render` under the
 environment the reference saved: PSNR of the sRGB-encoded images, and our mean luminance over
 the reference's (a document that renders black is 0x).
@@ -27,7 +27,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 
 from shadergen.api import Generator  # noqa: E402
-from shadergen.document import parse_document, read_document  # noqa: E402
+from shadergen.document import read_document  # noqa: E402
 from shadergen.errors import ShaderGenError  # noqa: E402
 
 SHARED = os.environ.get("SHADERGEN_SHARED", os.path.join(os.path.dirname(ROOT), "shared"))
@@ -35,11 +35,9 @@ CORPUS = os.path.join(SHARED, "corpus")
 ORACLE_PY = os.path.join(os.environ.get("ORACLE_VENV", os.path.expanduser("~/.cache/mx-oracle/venv")), "bin", "python")
 REFRENDER = os.path.join(SHARED, "oracle", "mx_refrender.py")
 SHADERGEN = os.path.join(os.path.dirname(sys.executable), "shadergen")
-WRITE_UPGRADED = ("import sys, MaterialX as mx\n"
-                  "d = mx.createDocument(); mx.readFromXmlFile(d, sys.argv[1]); sys.stdout.write(mx.writeToXmlString(d))")
+ORACLE = os.path.join(SHARED, "oracle", "mx_oracle.py")
+CLOSURES = {"surfaceshader", "displacementshader", "volumeshader", "lightshader", "material", "BSDF", "EDF", "VDF"}
 VERSION = re.compile(rb'<materialx[^>]*\sversion="(\d+)\.(\d+)', re.S)
-NOT_NODES = ("nodedef", "nodegraph", "implementation", "typedef", "geominfo", "backdrop", "look", "collection",
-             "propertyset", "variantset", "materialassign", "output", "input", "token")
 
 
 def old_documents(paths: list[str]) -> list[str]:
@@ -54,30 +52,73 @@ def old_documents(paths: list[str]) -> list[str]:
     return found
 
 
-def reference_upgrade(path: str) -> str:
-    return subprocess.run([ORACLE_PY, "-c", WRITE_UPGRADED, path], capture_output=True, text=True, check=True,
-                          timeout=120).stdout
+def interface(blocks: dict) -> dict:
+    """A listing's public uniforms by element path: (type, value); under None, how many have no path
+    (the reference leaves the path of an input nobody authored empty, where we name it)."""
+    uniforms = [u for stage in blocks.values() for u in stage.get("PublicUniforms", []) if u["type"] not in CLOSURES]
+    listed = {u["path"]: (u["type"], u["value"]) for u in uniforms if u.get("path")}
+    listed[None] = sum(not u.get("path") for u in uniforms)
+    return listed
 
 
-def record(gen: Generator, doc, element: str) -> tuple:
-    """What our generator makes of one element: (pixel source, listing) or (error code, message)."""
+def reference_interfaces(path: str) -> dict:
+    """The reference's listing of each renderable element of the document (its upgrade, as read);
+    None when the oracle fails on the document."""
+    run = subprocess.run([ORACLE_PY, ORACLE, path, "--all", "--no-source", "--interface", "complete"],
+                         capture_output=True, text=True, timeout=300, cwd=CORPUS)
+    records = [json.loads(line) for line in run.stdout.splitlines() if line.strip().startswith("{")]
+    if run.returncode != 0 and not records:
+        return None
+    return {r["element"]: (("error", r["error"]) if r.get("error") else interface(r["blocks"])) for r in records}
+
+
+def our_interfaces(gen: Generator, path: str) -> dict:
+    found = {}
+    for prepared in gen.prepare_all(read_document(path)):
+        if isinstance(prepared, ShaderGenError):
+            continue
+        try:
+            found[prepared.element] = interface(prepared.emit()["blocks"])
+        except ShaderGenError as e:
+            found[prepared.element] = ("error", e.code)
+    return found
+
+
+def same_value(a, b) -> bool:
+    a, b = (number(v) for v in (a, b))
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(same_value(x, y) for x, y in zip(a, b))
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return abs(a - b) <= 1e-5 * max(1.0, abs(a), abs(b))
+    return a == b
+
+
+def number(v):
+    """The oracle writes an integer geomprop's index as text ('0')."""
     try:
-        rec = gen.prepare(doc, element=element, interface="specialized").emit()
-    except ShaderGenError as e:
-        return ("missing",) if e.code == "unknown_element" else ("error", e.code)
-    return (rec["stages"]["pixel"], json.dumps(rec["blocks"]["pixel"], sort_keys=True))
+        return float(v) if isinstance(v, str) else v
+    except ValueError:
+        return v
 
 
-def renderable(gen: Generator, doc) -> list[str]:
-    return [p.element for p in gen.prepare_all(doc) if not isinstance(p, ShaderGenError)]
-
-
-def top_level_nodes(doc) -> list[str]:
-    return [e.name for e in doc.root.children if e.category not in NOT_NODES]
-
-
-def describe(rec: tuple) -> str:
-    return {"error": f"error {rec[-1]}", "missing": "no such element"}.get(rec[0], "code")
+def compare(ours, theirs) -> str:
+    """'same', or what differs between two element listings (or their errors)."""
+    if ours is None or theirs is None:
+        return f"differs: {'ours' if ours is None else 'the reference'} has no such element"
+    if isinstance(ours, tuple) or isinstance(theirs, tuple):
+        return "same (both fail)" if isinstance(ours, tuple) and isinstance(theirs, tuple) else \
+            f"differs: ours {ours[1] if isinstance(ours, tuple) else 'generates'}, " \
+            f"the reference's {theirs[1] if isinstance(theirs, tuple) else 'generates'}"
+    paths_ours, paths_theirs = set(ours) - {None}, set(theirs) - {None}
+    only_ours, only_theirs = sorted(paths_ours - paths_theirs), sorted(paths_theirs - paths_ours)
+    values = sorted(p for p in paths_ours & paths_theirs
+                    if ours[p][0] != theirs[p][0] or not same_value(ours[p][1], theirs[p][1]))
+    unnamed = theirs[None] - ours[None]  # inputs the reference lists without a path, and we with one
+    if not (only_theirs or values) and len(only_ours) <= unnamed:
+        return f"same ({len(paths_theirs)} inputs by path" + (f", {len(only_ours)} more that only we name)" if only_ours else ")")
+    return "differs: " + "; ".join(f"{what} {', '.join(paths[:4])}{' ...' if len(paths) > 4 else ''}"
+                                   for what, paths in (("only ours", only_ours), ("only the reference's", only_theirs),
+                                                       ("values", values)) if paths)
 
 
 def srgb(linear):
@@ -112,34 +153,33 @@ def main() -> int:
     ap.add_argument("--size", type=int, default=128)
     args = ap.parse_args()
     gen = Generator()
-    rows, same, both_fail, total, psnrs = [], 0, 0, 0, []
+    rows, same, total, psnrs = [], 0, 0, []
     for path in old_documents(args.paths):
         version = ".".join(VERSION.search(open(path, "rb").read(4096)).groups()[i].decode() for i in (0, 1))
-        ours = read_document(path)
-        theirs = parse_document(reference_upgrade(path), base_dir=os.path.dirname(path))
-        materials = renderable(gen, ours) + renderable(gen, theirs)
-        shared = set(top_level_nodes(ours)) & set(top_level_nodes(theirs))
-        for element in dict.fromkeys(materials + [n for n in top_level_nodes(ours) if n in shared]):
-            a, b = record(gen, ours, element), record(gen, theirs, element)
+        ours, theirs = our_interfaces(gen, path), reference_interfaces(path)
+        if not ours and not theirs:
+            why = "the reference's generator fails on it" if theirs is None else "no renderable element in either"
+            rows.append((os.path.relpath(path, CORPUS) if path.startswith(CORPUS) else path, version, "-",
+                         f"{why}; ours: none", ""))
+            continue
+        theirs = theirs or {}
+        for element in dict.fromkeys(list(theirs) + list(ours)):
+            verdict = compare(ours.get(element), theirs.get(element))
             total += 1
-            same += a == b
-            both_fail += a == b and a[0] == "error"
-            verdict = (("same" if a[0] != "error" else f"same ({describe(a)})") if a == b
-                       else f"differs: ours {describe(a)}, the reference's {describe(b)}")
+            same += verdict.startswith("same")
             image = ""
-            if args.render and element in materials:
+            if args.render and isinstance(ours.get(element), dict):
                 with tempfile.TemporaryDirectory() as tmp:
                     r = render_psnr(path, element, args.size, tmp)
                 image = "render failed" if r is None else f"sRGB PSNR {r[0]:.1f} dB, mean luminance {r[1]:.3f}x"
                 psnrs += [r[0]] if r is not None else []
             rows.append((os.path.relpath(path, CORPUS) if path.startswith(CORPUS) else path, version, element,
                          verdict, image))
-    print(f"| document | version | element | ours against the reference's upgrade |{' image |' if args.render else ''}")
+    print(f"| document | version | element | our listing against the reference's |{' image |' if args.render else ''}")
     print(f"|---|---|---|---|{'---|' if args.render else ''}")
     for doc, version, element, verdict, image in rows:
         print(f"| {doc} | {version} | {element} | {verdict} |{f' {image} |' if args.render else ''}")
-    summary = (f"upgrade: {same}/{total} elements the same as from the reference's upgrade "
-               f"({both_fail} of them failing alike)")
+    summary = f"upgrade: {same}/{total} elements list the same inputs and values as the reference's upgrade"
     if psnrs:
         summary += f" | renders: min sRGB PSNR {min(psnrs):.1f} dB over {len(psnrs)}"
     print(summary)

@@ -14,7 +14,8 @@ which the 1.39 step turns into extract/combine nodes):
 - before 1.39: normalmap's space, swizzle, atan2's inputs named `iny`/`inx`, subsurface_bsdf's
   radius a color3, thin_film_bsdf layers as inputs of the lobe below.
 The rules are the standard's (the specification's release notes per version); each step is
-checked against the reference's own upgrade of the same document by bench/upgrade.py.
+checked against the listing the reference's generator makes of the same old document by
+bench/upgrade.py.
 `upgrade` records what it changed as warnings.
 """
 from .element import Element

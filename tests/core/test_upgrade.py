@@ -1,8 +1,8 @@
 """Document upgrades, one test per version step: an old document generates exactly what the 1.39
 document the standard makes of it generates (the `specialized` interface folds every value into
 the code, so a value in the wrong input or a missing swap changes the source). The 1.39 forms
-below are the standard's (the reference's own upgrade writes the same; bench/upgrade.py compares
-the two over the corpus)."""
+below are the standard's (bench/upgrade.py checks our upgrades' listings against the reference
+generator's over the corpus)."""
 import pytest
 
 from shadergen.document import parse_document
