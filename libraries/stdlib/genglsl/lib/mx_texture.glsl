@@ -8,8 +8,9 @@
 // Mip levels are chosen from the derivatives of the unwrapped coordinate, so folding or clamping
 // never creates a seam of coarse mips where the wrapped coordinate jumps. Every mode matches the
 // hardware sampler state MaterialX binds for it (CLAMP_TO_BORDER with the default as border colour,
-// CLAMP_TO_EDGE, REPEAT, MIRRORED_REPEAT); desktop GLSL asks textureQueryLod for the level of detail,
-// ESSL 3.00 (which lacks it) computes the isotropic one from the derivatives.
+// CLAMP_TO_EDGE, REPEAT, MIRRORED_REPEAT); desktop GLSL asks textureQueryLod for the level of detail
+// it accesses, ESSL 3.00 (which lacks it, and any query of the levels) computes the isotropic one
+// from the derivatives and so assumes a full mip chain, as the renderer binds.
 
 // Image-space coordinate of a texture coordinate: scale and offset, then flip v.
 vec2 mx_image_uv(vec2 texcoord, vec2 uv_scale, vec2 uv_offset)
@@ -65,7 +66,9 @@ vec4 mx_image_fetch(sampler2D tex, vec4 dflt, vec2 uv, int uaddr, int vaddr, int
     vec2 dyt = dy * size;
     float lod = 0.5 * log2(max(max(dot(dxt, dxt), dot(dyt, dyt)), 1e-20));
 #else
-    float lod = textureQueryLod(tex, uv).y;  // the level of detail the hardware itself would use
+    // The level the hardware itself reads (x: clamped to the texture's accessible levels, 0 when the
+    // sampler has no mipmaps), so each inset below is that of a level the lookup really reads.
+    float lod = textureQueryLod(tex, uv).x;
 #endif
     lod = clamp(lod, 0.0, maxLevel);
     float l0 = floor(lod);
