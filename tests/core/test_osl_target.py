@@ -155,6 +155,24 @@ def test_an_image_reads_as_gl_reads_it(oslc, tmp_path):
     assert values == [["0", "0", "1"], ["1"], ["1", "0", "0"], ["1"]]
 
 
+@pytest.mark.parametrize("interface", ["complete", "reduced"])
+def test_an_image_read_is_osls_alone(oslc, interface):
+    """OSL writes mx_image_fetch itself (texture()), so what only the library's body of it calls is
+    not in the shader: the cubic filter's texel reads (textureSize, texelFetch: OSL has neither)
+    failed the shader, the edge folding was dead code in it."""
+    doc = b"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <image name="img" type="color3"><input name="file" type="filename" value="grid.png"/>
+    <input name="filtertype" type="string" value="cubic"/></image>
+  <output name="out" type="color3" nodename="img"/>
+</materialx>"""
+    [rec] = default_generator().records(doc, target="osl", all=True, interface=interface)
+    assert "error" not in rec, rec
+    text = rec["stages"]["pixel"]
+    assert "mx_image_fetch(" in text and "mx_image_cubic" not in text and "mx_address" not in text
+    assert check.errors({"img": ("pixel", text)}) == {}
+
+
 def test_a_linear_image_read_is_bilinear(oslc, tmp_path):
     """testshade shading a linear <image> at its texel centres reads each texel as it is: OSL's
     interp is "linear" (it was "bilinear", not an OSL name, so OIIO's default smartcubic spread

@@ -39,6 +39,26 @@ METADATA = (("name", "label", "string"), ("folder", "page", "string"), ("min", "
             ("softmin", "slidermin", None), ("softmax", "slidermax", None), ("doc", "help", "string"))
 
 
+# Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
+# image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
+# modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
+# reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
+OWN_FUNCTIONS = {"mx_image_fetch": (
+    "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
+    "{",
+    "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
+    "        return dflt;",
+    '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
+    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
+    "    float width = filtertype == 0 ? 0.0 : 1.0;",
+    "    float alpha = dflt.w;",
+    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, "width", width,',
+    '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
+    '                        "missingalpha", dflt.w);',
+    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
+    "}")}
+
+
 class OslTarget:
     name = "osl"
     library = "genglsl"  # the node libraries' implementations, printed from their IR
@@ -46,6 +66,7 @@ class OslTarget:
     closures = OslClosureConvention()
     # an OSL function sees its arguments alone: a shader parameter (a texture) is no global of it
     functions_see_uniforms = False
+    own_functions = frozenset(OWN_FUNCTIONS)  # written as above, not printed from the library (code/stage.py)
 
     def __init__(self):
         self.printer = OslPrinter(self.spell)
@@ -181,26 +202,6 @@ def with_arrays(function, arrays: dict):
     body = function.body.body if type(function.body) is ir.Block else [function.body]
     declared = [ir.Declare(arrays[n].type, n, arrays[n].value, False) for n in read]
     return ir.replace(function, body=ir.Block(declared + list(body), True))
-
-
-# Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
-# image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
-# modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
-# reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
-OWN_FUNCTIONS = {"mx_image_fetch": (
-    "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
-    "{",
-    "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
-    "        return dflt;",
-    '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
-    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
-    "    float width = filtertype == 0 ? 0.0 : 1.0;",
-    "    float alpha = dflt.w;",
-    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, "width", width,',
-    '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
-    '                        "missingalpha", dflt.w);',
-    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
-    "}")}
 
 
 def code_main(main: ir.Block, outputs: dict[str, bool]) -> ir.Block:
