@@ -3,6 +3,7 @@ what oslinfo reads from the compiled shader (names, types, defaults, ui metadata
 import pytest
 
 from shadergen.api import default_generator
+from shadergen.errors import ShaderGenError
 from shadergen.targets.osl import check
 from shadergen.targets.osl.target import PARAMETER_TYPES
 from tests.required_tools import missing
@@ -171,6 +172,28 @@ def test_an_image_read_is_osls_alone(oslc, interface):
     text = rec["stages"]["pixel"]
     assert "mx_image_fetch(" in text and "mx_image_cubic" not in text and "mx_address" not in text
     assert check.errors({"img": ("pixel", text)}) == {}
+
+
+def test_texture_width_is_an_option_of_the_osl_target(oslc):
+    """texture_width=0 writes a zero filter width into every texture() call (one lookup of the base
+    level: bench/osl_agreement.py's like-for-like reads), keys the record apart, and compiles; the
+    default writes none; any other target, or a width that is no finite number >= 0, is an error."""
+    doc = b"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <image name="img" type="color3"><input name="file" type="filename" value="grid.png"/></image>
+  <output name="out" type="color3" nodename="img"/>
+</materialx>"""
+    generator = default_generator()
+    [plain] = generator.records(doc, target="osl")
+    [base] = generator.records(doc, target="osl", texture_width=0.0)
+    assert "float width = filtertype == 0 ? 0.0 : 1.0;" in plain["stages"]["pixel"]
+    assert "float width = filtertype == 0 ? 0.0 : 0.0;" in base["stages"]["pixel"]
+    assert base["hash"] != plain["hash"]
+    assert check.errors({"base": ("pixel", base["stages"]["pixel"])}) == {}
+    for target, width in (("glsl", 0.0), ("osl", -1.0), ("osl", float("inf")), ("osl", "0")):
+        with pytest.raises(ShaderGenError) as caught:
+            generator.prepare(doc, target=target, texture_width=width)
+        assert caught.value.code == "unsupported_texture_width"
 
 
 def test_a_linear_image_read_is_bilinear(oslc, tmp_path):

@@ -43,20 +43,28 @@ METADATA = (("name", "label", "string"), ("folder", "page", "string"), ("min", "
 # image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
 # modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
 # reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
-OWN_FUNCTIONS = {"mx_image_fetch": (
-    "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
-    "{",
-    "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
-    "        return dflt;",
-    '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
-    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
-    "    float width = filtertype == 0 ? 0.0 : 1.0;",
-    "    float alpha = dflt.w;",
-    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, "width", width,',
-    '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
-    '                        "missingalpha", dflt.w);',
-    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
-    "}")}
+def image_fetch(texture_width: float | None) -> tuple[str, ...]:
+    """mx_image_fetch in OSL; `texture_width` the filter width of a filtered read (None: OIIO's
+    default 1; a closest read is one texel of the base level, width 0, as GL's texelFetch)."""
+    width = "1.0" if texture_width is None else repr(float(texture_width))
+    return (
+        "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
+        "{",
+        "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
+        "        return dflt;",
+        '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
+        '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
+        f"    float width = filtertype == 0 ? 0.0 : {width};",
+        "    float alpha = dflt.w;",
+        '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, '
+        '"width", width,',
+        '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
+        '                        "missingalpha", dflt.w);',
+        "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
+        "}")
+
+
+OWN_FUNCTIONS = {"mx_image_fetch": image_fetch}
 
 
 class OslTarget:
@@ -118,10 +126,11 @@ class OslTarget:
             w.extend(self.printer.item(item))
         if items:
             w.line()
-        w.extend(helpers([f for f in code.functions if getattr(f, "name", None) not in OWN_FUNCTIONS] + [code.main]))
+        w.extend(helpers([f for f in code.functions if getattr(f, "name", None) not in OWN_FUNCTIONS] + [code.main],
+                         ctx.texture_width))
         for function in code.functions:
             if type(function) is ir.Function and function.name in OWN_FUNCTIONS:
-                w.extend(OWN_FUNCTIONS[function.name])
+                w.extend(OWN_FUNCTIONS[function.name](ctx.texture_width))
             else:
                 w.extend(self.printer.item(with_arrays(function, arrays)))
             w.line()
