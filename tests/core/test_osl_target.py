@@ -6,6 +6,7 @@ from shadergen.api import default_generator
 from shadergen.errors import ShaderGenError
 from shadergen.targets.osl import check
 from shadergen.targets.osl.target import PARAMETER_TYPES
+from tests.documents import image_document
 from tests.required_tools import missing
 
 DOCUMENT = """<?xml version="1.0"?>
@@ -129,12 +130,7 @@ def shade_image(tmp_path, pixels, filtertype: str, res: tuple[int, int]) -> list
         missing("testshade", "scripts/osl.sh builds it")
     image = str(tmp_path / "image.exr")
     assert oiio.ImageBuf(pixels).write(image)
-    doc = f"""<?xml version="1.0"?>
-<materialx version="1.39">
-  <image name="img" type="color4"><input name="file" type="filename" value="{image}"/>
-    <input name="filtertype" type="string" value="{filtertype}"/></image>
-  <output name="out" type="color4" nodename="img"/>
-</materialx>""".encode()
+    doc = image_document(image, filtertype, "color4").encode()
     [rec] = default_generator().records(doc, target="osl", all=True, values="source")
     failed = check.compile_shaders({"shader": ("pixel", rec["stages"]["pixel"])}, str(tmp_path))
     assert not failed, failed
@@ -161,12 +157,7 @@ def test_an_image_read_is_osls_alone(oslc, interface):
     """OSL writes mx_image_fetch itself (texture()), so what only the library's body of it calls is
     not in the shader: the cubic filter's texel reads (textureSize, texelFetch: OSL has neither)
     failed the shader, the edge folding was dead code in it."""
-    doc = b"""<?xml version="1.0"?>
-<materialx version="1.39">
-  <image name="img" type="color3"><input name="file" type="filename" value="grid.png"/>
-    <input name="filtertype" type="string" value="cubic"/></image>
-  <output name="out" type="color3" nodename="img"/>
-</materialx>"""
+    doc = image_document("grid.png", "cubic").encode()
     [rec] = default_generator().records(doc, target="osl", all=True, interface=interface)
     assert "error" not in rec, rec
     text = rec["stages"]["pixel"]
@@ -178,11 +169,7 @@ def test_texture_width_is_an_option_of_the_osl_target(oslc):
     """texture_width=0 writes a zero filter width into every texture() call (one lookup of the base
     level: bench/osl_agreement.py's like-for-like reads), keys the record apart, and compiles; the
     default writes none; any other target, or a width that is no finite number >= 0, is an error."""
-    doc = b"""<?xml version="1.0"?>
-<materialx version="1.39">
-  <image name="img" type="color3"><input name="file" type="filename" value="grid.png"/></image>
-  <output name="out" type="color3" nodename="img"/>
-</materialx>"""
+    doc = image_document("grid.png").encode()
     generator = default_generator()
     [plain] = generator.records(doc, target="osl")
     [base] = generator.records(doc, target="osl", texture_width=0.0)

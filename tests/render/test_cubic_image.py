@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from shadergen.api import Generator
+from tests.documents import image_document
 
 
 @pytest.mark.parametrize("filtertype", ["cubic", "linear"])
@@ -17,13 +18,7 @@ def test_a_cubic_read_is_the_b_spline_of_its_texels(renderer, tmp_path, filterty
     pixels = np.ones((1, 16, 3), "f4")
     pixels[0, 10] = 0.0
     assert oiio.ImageBuf(pixels).write(str(tmp_path / "row.exr"))
-    document = f"""<?xml version="1.0"?>
-<materialx version="1.39">
-  <image name="img" type="color3"><input name="file" type="filename" value="row.exr"/>
-    <input name="filtertype" type="string" value="{filtertype}"/></image>
-  <output name="out" type="color3" nodename="img"/>
-</materialx>"""
-    record = Generator().prepare(document).emit()
+    record = Generator().prepare(image_document("row.exr", filtertype)).emit()
     row = renderer.render(record, size=64, mesh="plane", document_dir=str(tmp_path)).rgba[32]
     reds = row[row[:, 3] > 0.5, 0]  # the plane's pixels (the background has alpha 0)
     if filtertype == "cubic":
