@@ -98,9 +98,6 @@ def testshade(source: str, folder: str, corpus: str) -> np.ndarray:
 # was verified on the elements it names (docs/osl_agreement.md)
 DERIVATIVES = ("derivatives: GL's finite differences over a 2 x 2 pixel quad against OSL's exact (automatic) "
                "ones of the same expression")
-CLOSEST_TIES = ("texel-edge ties: closest image reads whose sample points lie exactly on texel edges (at 64 pixel "
-                "centres every sample of a 640-texel image, or of one whose side is a multiple of 128), where GL's "
-                "floor picks the texel after the edge and OIIO's the one before; off the edges they agree exactly")
 FILTERED = ("image filtering: like for like, a fraction of a texel next to a 1-texel line (hex tiling's rotated "
             "tiles); with --mipmapped, OIIO's texture() filter footprint over the file against GL's trilinear mip "
             "chain")
@@ -109,7 +106,6 @@ CAUSES = (
     (lambda glsl, filters: "mx_hextilednormalmap" in glsl,
      FILTERED + ", amplified by the surface-gradient blend where a texel decodes to a normal near the tangent "
      "plane (grid.png is no normal map)"),
-    (lambda glsl, filters: "sampler2D" in glsl and filters == {0}, CLOSEST_TIES),  # every read closest
     (lambda glsl, filters: "sampler2D" in glsl, FILTERED),
     (lambda glsl, filters: "asin(" in glsl,
      "Mesa llvmpipe's asin: asin(0.5) = 0.5233885 in GL, 0.5236166 in OSL, 0.5235988 exactly"),

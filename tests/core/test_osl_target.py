@@ -183,6 +183,14 @@ def test_texture_width_is_an_option_of_the_osl_target(oslc):
         assert caught.value.code == "unsupported_texture_width"
 
 
+def test_a_closest_read_on_a_texel_edge_takes_the_texel_after_it(oslc, tmp_path):
+    """u = 0.25 and 0.75 lie exactly on texel edges of a 4-texel row: GL's floor(u * 4) reads
+    texels 1 and 3, and so does our OSL (OIIO's "closest" read texels 0 and 2, the ones before)."""
+    import numpy as np
+    pixels = np.array([[[0, 0, 0], [1, 1, 1], [2, 2, 2], [3, 3, 3]]], "f4")
+    assert [v[0] for v in shade_image(tmp_path, pixels, "closest", (2, 1))[::2]] == ["1", "3"]
+
+
 def test_a_linear_image_read_is_bilinear(oslc, tmp_path):
     """testshade shading a linear <image> at its texel centres reads each texel as it is: OSL's
     interp is "linear" (it was "bilinear", not an OSL name, so OIIO's default smartcubic spread

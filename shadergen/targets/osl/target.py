@@ -45,18 +45,24 @@ METADATA = (("name", "label", "string"), ("folder", "page", "string"), ("min", "
 # reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
 def image_fetch(texture_width: float | None) -> tuple[str, ...]:
     """mx_image_fetch in OSL; `texture_width` the filter width of a filtered read (None: OIIO's
-    default 1; a closest read is one texel of the base level, width 0, as GL's texelFetch)."""
+    default 1; a closest read is one texel of the base level, width 0, as GL's texelFetch). A closest
+    read asks for the centre of GL's texel, floor(uv * size): on an exact texel edge OIIO's
+    "closest" takes the texel before it, GL's (and the GL library's) the texel after."""
     width = "1.0" if texture_width is None else repr(float(texture_width))
     return (
         "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
         "{",
         "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
         "        return dflt;",
+        "    vector2 st = uv;",
+        "    int size[2];",
+        '    if (filtertype == 0 && gettextureinfo(tex, "resolution", size))',
+        "        st = vector2((floor(uv.x * size[0]) + 0.5) / size[0], (floor(uv.y * size[1]) + 0.5) / size[1]);",
         '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
         '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
         f"    float width = filtertype == 0 ? 0.0 : {width};",
         "    float alpha = dflt.w;",
-        '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, '
+        '    color rgb = texture(tex, st.x, st.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, '
         '"width", width,',
         '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
         '                        "missingalpha", dflt.w);',
