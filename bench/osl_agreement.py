@@ -102,12 +102,12 @@ FILTERED = ("image filtering: like for like, a fraction of a texel next to a 1-t
             "tiles); with --mipmapped, OIIO's texture() filter footprint over the file against GL's trilinear mip "
             "chain")
 CAUSES = (
-    (lambda glsl, filters: "mx_heighttonormal" in glsl, DERIVATIVES),
-    (lambda glsl, filters: "mx_hextilednormalmap" in glsl,
+    (lambda glsl: "mx_heighttonormal" in glsl, DERIVATIVES),
+    (lambda glsl: "mx_hextilednormalmap" in glsl,
      FILTERED + ", amplified by the surface-gradient blend where a texel decodes to a normal near the tangent "
      "plane (grid.png is no normal map)"),
-    (lambda glsl, filters: "sampler2D" in glsl, FILTERED),
-    (lambda glsl, filters: "asin(" in glsl,
+    (lambda glsl: "sampler2D" in glsl, FILTERED),
+    (lambda glsl: "asin(" in glsl,
      "Mesa llvmpipe's asin: asin(0.5) = 0.5233885 in GL, 0.5236166 in OSL, 0.5235988 exactly"),
 )
 
@@ -115,8 +115,7 @@ CAUSES = (
 def cause(rec: dict) -> str:
     """The cause of `rec`'s disagreement (CAUSES), or "unexplained"."""
     glsl = rec["stages"]["pixel"]
-    filters = [v.get("value") for v in rec["blocks"]["pixel"]["PublicUniforms"] if v["name"].endswith("_filtertype")]
-    return next((text for test, text in CAUSES if test(glsl, set(filters))), "unexplained")
+    return next((text for test, text in CAUSES if test(glsl)), "unexplained")
 
 
 def differences(gen, corpus: str, name_filter: str | None = None, like_for_like: bool = True) -> list[tuple]:
