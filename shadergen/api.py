@@ -11,6 +11,7 @@ import functools
 import gc
 import hashlib
 import json
+import math
 import os
 import time
 
@@ -244,7 +245,8 @@ class Generator:
                     interface: str = "complete", keep=(), values: str = "listing", environment: str | None = None,
                     lights: bool = True, names: str = "structural", cms: str | None = None,
                     ocio_config: str | None = None, base_dir: str | None = None, allow_includes: bool = True,
-                    document_format: str = "mtlx", include_roots=()) -> list["Prepared | ShaderGenError"]:
+                    document_format: str = "mtlx", include_roots=(),
+                    texture_width: float | None = None) -> list["Prepared | ShaderGenError"]:
         """Prepare every renderable element (or the named one). Element failures are returned in
         place, so one bad material does not hide the others. `keep`: document inputs (`node/input`)
         that stay live uniforms in the `specialized` interface. `values`: "listing" (uniforms initialised
@@ -258,8 +260,16 @@ class Generator:
         "document" (by the document's element names, as a client binding by name needs).
         `cms`: the colour management system, builtin (the default) or ocio, with `ocio_config` a
         config's path or `ocio://NAME` (default $SHADERGEN_OCIO_CONFIG, else OCIO's CG config);
-        a config alone means ocio (cms/__init__.py)."""
+        a config alone means ocio (cms/__init__.py). `texture_width` (target osl): the filter width
+        every texture() call asks of OIIO ("width"; None: OIIO's default, the lookup's own footprint
+        over the mipmaps; 0: one lookup of the base level, as the GL renderer reads an image bound
+        without mipmaps, bench/osl_agreement.py's like-for-like reads)."""
         target_for(target)  # unknown targets fail before any work
+        if texture_width is not None and (target != "osl" or type(texture_width) not in (int, float)
+                                          or not 0 <= texture_width < math.inf):
+            raise ShaderGenError("unsupported_texture_width", "texture_width is a finite width >= 0 of the osl "
+                                 f"target's texture() calls (got {texture_width!r} for target '{target}')",
+                                 "texture_width")
         system = system_for(cms, ocio_config)
         if values not in VALUES:
             raise ShaderGenError("unsupported_values", f"unknown values '{values}'; supported: " + ", ".join(VALUES),
@@ -283,7 +293,7 @@ class Generator:
             elems = renderable_elements(doc, scope)
             if not all:
                 elems = elems[:1]
-        options = Options(interface, frozenset(keep), values, environment, bool(lights))
+        options = Options(interface, frozenset(keep), values, environment, bool(lights), texture_width)
         out = []
         for e in elems:
             try:

@@ -91,6 +91,7 @@ class EmitContext:
         self.features: frozenset[str] | None = None  # library features the nodes need (None: all)
         self.macros: frozenset[tuple[str, bool]] = frozenset()  # compiler macros decided at generation
         self.lights = True  # whether the shader is drawn with a light rig (Graph.lights)
+        self.texture_width = None  # OSL's texture() filter width (Graph.texture_width)
         self.luts: dict[str, dict] = {}  # private texture uniform -> its texels (a colour transform's LUT)
 
     @property
@@ -370,6 +371,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.features = frozenset(graph_features(graph) | ({LIGHTS_FEATURE} if graph.lights else set()))
     ctx.macros = environment_macros(graph.environment)
     ctx.lights = graph.lights
+    ctx.texture_width = graph.texture_width
     ctx.define_functions(graph)
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)

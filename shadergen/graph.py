@@ -155,7 +155,7 @@ class Graph:
 
     def __init__(self, nodes: list[Node], outputs: dict[str, Output], root: Node | None = None,
                  warnings: list[str] | None = None, interface_mode: str = "complete", values_in_source: bool = False,
-                 environment: str | None = None, lights: bool = True):
+                 environment: str | None = None, lights: bool = True, texture_width: float | None = None):
         self.nodes = nodes
         self.outputs = outputs
         self.root = root  # the node a shader was generated from, when it is a node
@@ -167,6 +167,7 @@ class Graph:
         self.values_in_source = values_in_source  # uniform initializers hold the document's values, not the nodedef's
         self.environment = environment  # the environment lighting it is generated for (features.ENVIRONMENTS), or either
         self.lights = lights  # lit by a light rig too; False: by the environment alone (no light loop)
+        self.texture_width = texture_width  # OSL's texture() filter width, None: OIIO's default (api.prepare_all)
 
 
 # nodedef input attributes a port's metadata keeps as they are

@@ -90,7 +90,8 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
          "environment": graph.environment, "lights": graph.lights,
          "root": index.get(id(graph.root)) if graph.root is not None else None,
          "nodes": nodes, "outputs": outputs, "uniforms": uniforms, "names": named if document_names else names}
-        | ({"cms": cms} if cms is not None else {}))
+        | ({"cms": cms} if cms is not None else {})
+        | ({"texture_width": graph.texture_width} if graph.texture_width is not None else {}))
     # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
     # in their names, with no public uniform to carry a path) still have records of their own
     values = _canonical([element, [p.value for p in graph.interface], named])

@@ -10,8 +10,12 @@ record's `"passes"`:
   (passes/fields.py).
 
 (passes/stage.py runs them, reach again after fields and forward until nothing changes.) The
-result, a StageCode, is what every target's stage assembler prints: one mechanism for all.
+result, a StageCode, is what every target's stage assembler prints: one mechanism for all. A
+library function a target writes its own way (its `own_functions`: OSL's image read) enters the
+passes without its body, so what only the library's body calls is not reached.
 """
+from functools import lru_cache
+
 from ..shader import PIXEL, VERTEX
 from . import build, ir
 from .library import PRELUDE  # the closure, shader and light structs every shader may name
@@ -70,6 +74,9 @@ def run(ctx, counts: dict) -> StageCode:
     # the structs a stage variable has (a uniform's, the light array's) are part of its layout
     layouts = [t.split("[")[0] for t in stage_variables.values() if code.struct(t.split("[")[0]) is not None]
     items = code.module(PRELUDE).items + ctx.pixel.items
+    own = getattr(ctx.target, "own_functions", ())
+    if own:
+        items = [without_body(i) if isinstance(i, ir.Function) and i.name in own else i for i in items]
     reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts)
     counts.update(passes)
     items = reached.items
@@ -78,6 +85,12 @@ def run(ctx, counts: dict) -> StageCode:
     constants = [i for i in items if not isinstance(i, ir.Struct) and not has_function(i)]
     functions += generated
     return StageCode(structs, constants, functions, main, None, frozenset(reached.names))
+
+
+@lru_cache(maxsize=256)
+def without_body(function: ir.Function) -> ir.Function:
+    """`function` with an empty body (one copy per library item, so the passes' memos still hit)."""
+    return ir.replace(function, body=ir.Block([], True))
 
 
 def has_function(item) -> bool:

@@ -18,12 +18,13 @@ from .thin_film import push_thin_films
 from .thin_surface import share_one_sided_bsdf
 
 
-class Options(namedtuple("Options", "interface keep values environment lights",
-                         defaults=("complete", frozenset(), "listing", None, True))):
+class Options(namedtuple("Options", "interface keep values environment lights texture_width",
+                         defaults=("complete", frozenset(), "listing", None, True, None))):
     """interface: complete | reduced | specialized. keep: document inputs that stay live in
     `specialized`. values: listing (uniforms initialised to nodedef values) or source (to the
     document's). environment: fis | prefilter | hybrid writes only that way of environment
-    lighting. lights: False for a drawing without a light rig (a thumbnail): no light loop."""
+    lighting. lights: False for a drawing without a light rig (a thumbnail): no light loop.
+    texture_width: OSL's texture() filter width (None: OIIO's own footprint; api.prepare_all)."""
     __slots__ = ()
 
     @property
@@ -34,7 +35,8 @@ class Options(namedtuple("Options", "interface keep values environment lights",
 def prepare(builder: GraphBuilder, outputs: dict[str, Output], root: Node | None,
             options: Options = Options()) -> Graph:
     graph = Graph([], outputs, root, builder.warnings, interface_mode=options.interface,
-                  values_in_source=options.values_in_source, environment=options.environment, lights=options.lights)
+                  values_in_source=options.values_in_source, environment=options.environment, lights=options.lights,
+                  texture_width=options.texture_width)
 
     def run(name: str, edit) -> None:
         graph.passes[name] = edit()

@@ -3,8 +3,10 @@ what oslinfo reads from the compiled shader (names, types, defaults, ui metadata
 import pytest
 
 from shadergen.api import default_generator
+from shadergen.errors import ShaderGenError
 from shadergen.targets.osl import check
 from shadergen.targets.osl.target import PARAMETER_TYPES
+from tests.documents import image_document
 from tests.required_tools import missing
 
 DOCUMENT = """<?xml version="1.0"?>
@@ -128,12 +130,7 @@ def shade_image(tmp_path, pixels, filtertype: str, res: tuple[int, int]) -> list
         missing("testshade", "scripts/osl.sh builds it")
     image = str(tmp_path / "image.exr")
     assert oiio.ImageBuf(pixels).write(image)
-    doc = f"""<?xml version="1.0"?>
-<materialx version="1.39">
-  <image name="img" type="color4"><input name="file" type="filename" value="{image}"/>
-    <input name="filtertype" type="string" value="{filtertype}"/></image>
-  <output name="out" type="color4" nodename="img"/>
-</materialx>""".encode()
+    doc = image_document(image, filtertype, "color4").encode()
     [rec] = default_generator().records(doc, target="osl", all=True, values="source")
     failed = check.compile_shaders({"shader": ("pixel", rec["stages"]["pixel"])}, str(tmp_path))
     assert not failed, failed
@@ -153,6 +150,45 @@ def test_an_image_reads_as_gl_reads_it(oslc, tmp_path):
     values = shade_image(tmp_path, pixels, "closest", (1, 2))
     # testshade's row y shades v = (y + 0.5) / 2: pixel (0, 0) is v = 0.25, pixel (0, 1) v = 0.75
     assert values == [["0", "0", "1"], ["1"], ["1", "0", "0"], ["1"]]
+
+
+@pytest.mark.parametrize("interface", ["complete", "reduced"])
+def test_an_image_read_is_osls_alone(oslc, interface):
+    """OSL writes mx_image_fetch itself (texture()), so what only the library's body of it calls is
+    not in the shader: the cubic filter's texel reads (textureSize, texelFetch: OSL has neither)
+    failed the shader, the edge folding was dead code in it."""
+    doc = image_document("grid.png", "cubic").encode()
+    [rec] = default_generator().records(doc, target="osl", all=True, interface=interface)
+    assert "error" not in rec, rec
+    text = rec["stages"]["pixel"]
+    assert "mx_image_fetch(" in text and "mx_image_cubic" not in text and "mx_address" not in text
+    assert check.errors({"img": ("pixel", text)}) == {}
+
+
+def test_texture_width_is_an_option_of_the_osl_target(oslc):
+    """texture_width=0 writes a zero filter width into every texture() call (one lookup of the base
+    level: bench/osl_agreement.py's like-for-like reads), keys the record apart, and compiles; the
+    default writes none; any other target, or a width that is no finite number >= 0, is an error."""
+    doc = image_document("grid.png").encode()
+    generator = default_generator()
+    [plain] = generator.records(doc, target="osl")
+    [base] = generator.records(doc, target="osl", texture_width=0.0)
+    assert "float width = filtertype == 0 ? 0.0 : 1.0;" in plain["stages"]["pixel"]
+    assert "float width = filtertype == 0 ? 0.0 : 0.0;" in base["stages"]["pixel"]
+    assert base["hash"] != plain["hash"]
+    assert check.errors({"base": ("pixel", base["stages"]["pixel"])}) == {}
+    for target, width in (("glsl", 0.0), ("osl", -1.0), ("osl", float("inf")), ("osl", "0")):
+        with pytest.raises(ShaderGenError) as caught:
+            generator.prepare(doc, target=target, texture_width=width)
+        assert caught.value.code == "unsupported_texture_width"
+
+
+def test_a_closest_read_on_a_texel_edge_takes_the_texel_after_it(oslc, tmp_path):
+    """u = 0.25 and 0.75 lie exactly on texel edges of a 4-texel row: GL's floor(u * 4) reads
+    texels 1 and 3, and so does our OSL (OIIO's "closest" read texels 0 and 2, the ones before)."""
+    import numpy as np
+    pixels = np.array([[[0, 0, 0], [1, 1, 1], [2, 2, 2], [3, 3, 3]]], "f4")
+    assert [v[0] for v in shade_image(tmp_path, pixels, "closest", (2, 1))[::2]] == ["1", "3"]
 
 
 def test_a_linear_image_read_is_bilinear(oslc, tmp_path):

@@ -1,4 +1,5 @@
 #include "lib/mx_texture.glsl"
+#pragma shadergen feature CUBIC_FILTER unless filtertype != cubic
 
 // <image> vector2: texcoord * uv_scale + uv_offset, v flipped, address modes and filter applied in the shader.
 void mx_image_vector2(sampler2D file, int layer, vec2 dflt, vec2 texcoord, int uaddressmode, int vaddressmode, int filtertype, int framerange, int frameoffset, int frameendaction, vec2 uv_scale, vec2 uv_offset, out vec2 result)

@@ -104,11 +104,12 @@ def osl_type(ir_type: str) -> str:
     return ir_type  # a struct's own name
 
 
-def helpers(items) -> list[str]:
+def helpers(items, texture_width: float | None = None) -> list[str]:
     """What printing `items` needs that OSL lacks, in a fixed order, for the assembler to write
     once: the integer vector structs they use, then the helper functions they call (operators of
     those structs, component-wise overloads of built-ins, a ternary of structs, a component of a
-    value that is not a variable, uint arithmetic)."""
+    value that is not a variable, uint arithmetic). `texture_width`: the filter width of their
+    texture() calls (None: OIIO's default)."""
     wanted, structs = set(), set()
     for item in items:
         for node in ir.walk(item):
@@ -147,7 +148,7 @@ def helpers(items) -> list[str]:
     declarations = [line for name in sorted(structs) for line in [
         f"struct {name}", "{", *(f"{INDENT}int {c};" for c in STRUCT_FIELDS[:int(name[-1])]), "};", ""]]
     return declarations + [line for helper in sorted(wanted, key=lambda h: (h[0], h[2] != "float", h))
-                           for line in [*helper_text(*helper), ""]]
+                           for line in [*helper_text(*helper, texture_width), ""]]
 
 
 UINT_FLOAT = ("osl_uint_float", ("int",), "float")
@@ -210,7 +211,12 @@ def part(osl: str, value: str, i: int) -> str:
     return value
 
 
-def helper_text(name: str, types: tuple, returns: str) -> list[str]:
+def width_option(texture_width: float | None) -> str:
+    """texture()'s "width" option for `texture_width` (api.prepare_all), none for OIIO's default."""
+    return "" if texture_width is None else f'"width", {float(texture_width)!r}, '
+
+
+def helper_text(name: str, types: tuple, returns: str, texture_width: float | None = None) -> list[str]:
     params = ", ".join(f"{t} {p}" for t, p in zip(types, "abcd"))
     head = f"{returns} {name}({params})"
     # (the library's coordinates are the image's already: t from the top row, as OSL's; a texture the
@@ -218,13 +224,15 @@ def helper_text(name: str, types: tuple, returns: str) -> list[str]:
     # OSL's defaults are black and "smartcubic")
     if name == "osl_texture":
         return [head, "{", "    float alpha = 1.0;",
-                '    color rgb = texture(a, b.x, b.y, "wrap", "periodic", "interp", "linear", "alpha", alpha,',
+                '    color rgb = texture(a, b.x, b.y, "wrap", "periodic", "interp", "linear", '
+                f'{width_option(texture_width)}"alpha", alpha,',
                 '                        "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_texture_grad":  # with the derivatives of the coordinate
         return [head, "{", "    float alpha = 1.0;",
                 '    color rgb = texture(a, b.x, b.y, c.x, c.y, d.x, d.y, "wrap", "periodic", "interp", "linear",',
-                '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(0.0), "missingalpha", 0.0);',
+                f'                        {width_option(texture_width)}"alpha", alpha, "fill", 1.0, "missingcolor", '
+                'color(0.0), "missingalpha", 0.0);',
                 "    return vector4(rgb[0], rgb[1], rgb[2], alpha);", "}"]
     if name == "osl_select":
         return [head, "{", "    if (a)", "        return b;", "    return c;", "}"]

@@ -39,6 +39,40 @@ METADATA = (("name", "label", "string"), ("folder", "page", "string"), ("min", "
             ("softmin", "slidermin", None), ("softmax", "slidermax", None), ("doc", "help", "string"))
 
 
+# Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
+# image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
+# modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
+# reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
+def image_fetch(texture_width: float | None) -> tuple[str, ...]:
+    """mx_image_fetch in OSL; `texture_width` the filter width of a filtered read (None: OIIO's
+    default 1; a closest read is one texel of the base level, width 0, as GL's texelFetch). A closest
+    read asks for the centre of GL's texel, floor(uv * size): on an exact texel edge OIIO's
+    "closest" takes the texel before it, GL's (and the GL library's) the texel after."""
+    width = "1.0" if texture_width is None else repr(float(texture_width))
+    return (
+        "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
+        "{",
+        "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
+        "        return dflt;",
+        "    vector2 st = uv;",
+        "    int size[2];",
+        '    if (filtertype == 0 && gettextureinfo(tex, "resolution", size))',
+        "        st = vector2((floor(uv.x * size[0]) + 0.5) / size[0], (floor(uv.y * size[1]) + 0.5) / size[1]);",
+        '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
+        '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
+        f"    float width = filtertype == 0 ? 0.0 : {width};",
+        "    float alpha = dflt.w;",
+        '    color rgb = texture(tex, st.x, st.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, '
+        '"width", width,',
+        '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
+        '                        "missingalpha", dflt.w);',
+        "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
+        "}")
+
+
+OWN_FUNCTIONS = {"mx_image_fetch": image_fetch}
+
+
 class OslTarget:
     name = "osl"
     library = "genglsl"  # the node libraries' implementations, printed from their IR
@@ -46,6 +80,7 @@ class OslTarget:
     closures = OslClosureConvention()
     # an OSL function sees its arguments alone: a shader parameter (a texture) is no global of it
     functions_see_uniforms = False
+    own_functions = frozenset(OWN_FUNCTIONS)  # written as above, not printed from the library (code/stage.py)
 
     def __init__(self):
         self.printer = OslPrinter(self.spell)
@@ -97,10 +132,11 @@ class OslTarget:
             w.extend(self.printer.item(item))
         if items:
             w.line()
-        w.extend(helpers([f for f in code.functions if getattr(f, "name", None) not in OWN_FUNCTIONS] + [code.main]))
+        w.extend(helpers([f for f in code.functions if getattr(f, "name", None) not in OWN_FUNCTIONS] + [code.main],
+                         ctx.texture_width))
         for function in code.functions:
             if type(function) is ir.Function and function.name in OWN_FUNCTIONS:
-                w.extend(OWN_FUNCTIONS[function.name])
+                w.extend(OWN_FUNCTIONS[function.name](ctx.texture_width))
             else:
                 w.extend(self.printer.item(with_arrays(function, arrays)))
             w.line()
@@ -181,26 +217,6 @@ def with_arrays(function, arrays: dict):
     body = function.body.body if type(function.body) is ir.Block else [function.body]
     declared = [ir.Declare(arrays[n].type, n, arrays[n].value, False) for n in read]
     return ir.replace(function, body=ir.Block(declared + list(body), True))
-
-
-# Library functions OSL writes its own way: an image is read by OSL's texture() at the library's
-# image-space coordinate (t from the top row, as OSL's), which wraps and filters itself (address
-# modes: constant, clamp, periodic, mirror; filters: closest, linear, cubic), where the GL library
-# reads texels to wrap and filter them; a file without alpha has alpha 1 ("fill"), as GL samples it
-OWN_FUNCTIONS = {"mx_image_fetch": (
-    "vector4 mx_image_fetch(string tex, vector4 dflt, vector2 uv, int uaddr, int vaddr, int filtertype)",
-    "{",
-    "    if ((uaddr == 0 && (uv.x < 0.0 || uv.x > 1.0)) || (vaddr == 0 && (uv.y < 0.0 || uv.y > 1.0)))",
-    "        return dflt;",
-    '    string wraps[4] = {"clamp", "clamp", "periodic", "mirror"};',
-    '    string interp = filtertype == 0 ? "closest" : filtertype == 1 ? "linear" : "cubic";',
-    "    float width = filtertype == 0 ? 0.0 : 1.0;",
-    "    float alpha = dflt.w;",
-    '    color rgb = texture(tex, uv.x, uv.y, "swrap", wraps[uaddr], "twrap", wraps[vaddr], "interp", interp, "width", width,',
-    '                        "alpha", alpha, "fill", 1.0, "missingcolor", color(dflt.x, dflt.y, dflt.z),',
-    '                        "missingalpha", dflt.w);',
-    "    return vector4(rgb[0], rgb[1], rgb[2], alpha);",
-    "}")}
 
 
 def code_main(main: ir.Block, outputs: dict[str, bool]) -> ir.Block:
