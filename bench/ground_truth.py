@@ -7,7 +7,7 @@ The ground truth of a material is our OSL for it (`generate --target osl`, speci
 document's values folded in) as the sphere's surface, lit by the procedural sky as infinitely
 distant light, rendered to convergence: samples per pixel doubled from --start-samples until two
 independent halves agree to --converged-db (PSNR over the sphere, sRGB, peak 1), or --max-samples.
-It is cached by the OSL record's hash, the scene and the map (--cache, default
+It is cached by the OSL as the scene runs it (scene_form), the scene and the map (--cache, default
 ~/.cache/shadergen/ground_truth/).
 
 Against it, at --size: our GL thumbnail (`complete` and `specialized`) with `fis`, `prefilter` and
@@ -73,22 +73,21 @@ AMBER = (0.9, 0.55, 0.15)
 # truth: PSNR, the mean per channel and the signed error per N.V band over the sphere).
 CAUSES = {
     "standard_surface_brick_procedural": (
-        "testrender limitation, in part: its sphere's (u, v) are not ours; with our OSL reading (u - 0.5, 1 - v) "
-        "the error falls from 30.1 to 32.1 dB (64x64, 64 spp). Not aliasing: ours at 256x256 averaged 2x2 gains 0.7 dB "
-        "(29.4 -> 30.1). The rest is per-brick brightness, the same in ours and the reference (29.5 dB): not found"),
+        "aliasing, in the main: the truth is each pixel's area (2x2 renders of 64 spp), ours one point per pixel; "
+        "ours at 512x512 averaged 4x4 (fis 64) is 35.9 dB from the truth where ours at 128x128 is 32.2 dB (fis 256). "
+        "What remains is ours 7 % brighter on average (means 0.143/0.074/0.049 against 0.133/0.069/0.045): not found. "
+        "The scene's (u, v) were testrender's own before (29.8 dB); the thumbnail sphere's now (scene_form)"),
     "standard_surface_thin_film": (
         "testrender limitation: it ignores thin films (see furnace_truth); ours with thin_film_thickness 0 is 38.6 dB "
         "from the truth, ours with the 550 nm film 18.2 dB (the reference's too): the truth is the film-less glass"),
     "standard_surface_velvet": (
-        "environment method: our sheen's environment term is the irradiance at N times the lobe's albedo "
-        "(mx_sheen_bsdf.glsl), not the lobe's directions; per N.V band ours is within 0.005 of the truth, but the "
-        "sky-facing rim is +0.06/+0.17 (R/B) brighter and the ground-facing one darker; the reference likewise (25.8 dB)"),
+        "fixed here: our sheen's environment term was the irradiance at N times the lobe's albedo, not the lobe's "
+        "directions (25.8 dB, the reference's too: the sky-facing rim too bright, the ground-facing one too dark); now "
+        "the lobe sampled (mx_sheen_environment). The prefiltered way's one lookup keeps the irradiance"),
     "standard_surface_wood_tiled": (
-        "testrender limitation: its sphere's (u, v) are not ours; with our OSL reading (u - 0.5, 1 - v) the error "
-        "falls from 35.9 to 41.4 dB (64x64, 64 spp)"),
+        "the scene's (u, v) were testrender's own before (35.4 dB); the thumbnail sphere's now (scene_form)"),
     "standard_surface_brass_tiled": (
-        "testrender limitation: its sphere's (u, v) are not ours; with our OSL reading (u - 0.5, 1 - v) the error "
-        "falls from 36.9 to 40.3 dB (64x64, 64 spp)"),
+        "the scene's (u, v) were testrender's own before (38.0 dB); the thumbnail sphere's now (scene_form)"),
     "standard_surface_glass": (
         "fixed here: the transmission applied the interface's Fresnel twice; before (067970f) ours was 35.7 dB from "
         "that graph's truth and 32.2 dB from this one (fis 256)"),
@@ -135,11 +134,16 @@ def cached_truth(key: str, compute, cache: str) -> dict:
 
 
 def scene_form(source: str) -> str:
-    """Our OSL as testrender can run it: testrender 1.13 aborts on a transform from "object" space
-    (SimpleRaytracer::get_matrix reads the object matrix its spheres do not have; gdb backtrace from
-    standard_surface_marble_solid's `transform("object", P)`). The scene's sphere is the unit sphere
-    at the origin, so object space is common (world) space there."""
-    return source.replace('transform("object", ', 'transform("common", ')
+    """Our OSL as testrender can run it in the thumbnail scene. testrender 1.13 aborts on a
+    transform from "object" space (SimpleRaytracer::get_matrix reads the object matrix its spheres
+    do not have; gdb backtrace from standard_surface_marble_solid's `transform("object", P)`); the
+    scene's sphere is the unit sphere at the origin, so object space is common (world) space there.
+    Its sphere's (u, v) are not the thumbnail sphere's: the texture coordinates (the OSL target's
+    spelling of a texcoord, OslTarget.geometry) are the thumbnail sphere's at P instead
+    (gts.THUMBNAIL_U, THUMBNAIL_V)."""
+    u, v = gts.THUMBNAIL_U, gts.THUMBNAIL_V
+    return (source.replace('transform("object", ', 'transform("common", ')
+            .replace("vector2(u, v)", f"vector2({u}, {v})").replace("vector(u, v, 0.0)", f"vector({u}, {v}, 0.0)"))
 
 
 def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
@@ -149,16 +153,18 @@ def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
     record = generate_file(document, target="osl", interface="specialized")[0]
     if "error" in record:
         return {"error": f"OSL target: {record['error']['message']}", "element": record.get("element")}
-    source = record["stages"]["pixel"]
+    source = scene_form(record["stages"]["pixel"])
     name = f"material_{gts.digest(source)}"
-    if (message := world.add_surface(scene_form(source), name)) is not None:
+    if (message := world.add_surface(source, name)) is not None:
         return {"error": f"oslc: {message.splitlines()[0]}", "element": record.get("element")}
     output = world.closure_output(name)
     if output is None:
         return {"error": "the OSL shader has no closure output", "element": record.get("element")}
     # the scene as it renders, less the temporary folder it lies in
     xml_probe = gts.scene_xml(world.material_group(name, output), *world.environment()).replace(world.folder, "")
-    key = gts.digest(record["hash"], source, xml_probe, env_key, str(args.size), str(args.converged_db),
+    # what testrender reads and how it is run: the shader as the scene runs it, not the record's hash,
+    # which moves with every library and generator file (fingerprint.py) while the OSL stays the same
+    key = gts.digest(source, xml_probe, env_key, str(args.size), str(args.converged_db),
                      str(args.max_samples), open(gts.__file__, "rb").read())
 
     def render(side, samples):

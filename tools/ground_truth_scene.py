@@ -8,10 +8,12 @@ thousandth of the radius); the environment is infinitely distant light through a
 shader reading the same lat-long map with our map convention (environment.py: the world direction
 d reads the map direction ENV_MATRIX @ d), importance-sampled by testrender; no other light.
 
-One limitation of testrender 1.13 (it has spheres and quads, no meshes): its sphere's (u, v) are
-not ours (its u = 0.5 at +Z where ours is 0; its v = 0 at the north pole where ours is 1), so a
-material that reads texture coordinates sees them moved; world- and object-space positions and
-normals are the same.
+testrender 1.13 has spheres and quads, no meshes, and its sphere's (u, v) are not ours (its u =
+0.5 at +Z where ours is 0; its v = 0 at the north pole where ours is 1). The texture coordinates a
+material reads are the thumbnail sphere's instead (THUMBNAIL_U, THUMBNAIL_V): its parametrisation
+(render/geometry.py, uv_sphere) computed from the shading point, as a mesh's primvar would carry
+it; OSL differentiates the expression, so texture filtering sees the same footprint. World- and
+object-space positions and normals are the same.
 
 testrender's sampler is deterministic per pixel (a hash of the pixel's x, y), so two independent
 halves of a render are two pixels: the image is rendered at twice the side and each 2 x 2 block's
@@ -81,6 +83,12 @@ surface mirror()
 }
 """,
 }
+# The thumbnail sphere's texture coordinates at the shading point P of the unit sphere at the
+# origin (render/geometry.py, uv_sphere): u the longitude from +Z towards +X over 2 pi, v the
+# latitude from the south pole (0) to the north pole (1). What our OSL reads as its texcoord in
+# this scene in place of OSL's globals u and v (bench/ground_truth.py, scene_form).
+THUMBNAIL_U = "mod(atan2(P[0], P[2]) / M_2PI, 1.0)"
+THUMBNAIL_V = "(asin(clamp(P[1] / length(P), -1.0, 1.0)) / M_PI + 0.5)"
 ENV_DIAGONAL = tuple(float(ENV_MATRIX[i, i]) for i in range(3))
 assert np.allclose(ENV_MATRIX[:3, :3], np.diag(ENV_DIAGONAL)), "the background shader assumes a diagonal u_envMatrix"
 

@@ -296,6 +296,15 @@ float mx_envmap_lod(vec3 mapDir, float pdf, int sampleCount)
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
 
+// The environment along map direction `Lm` as one of `count` samples of density `pdf` sees it
+// (filtered importance sampling): read at the level whose texels cover the solid angle 1 / (count
+// pdf) the sample stands for, in the chain the shader reads (the radiance map's mips, or with
+// MX_ENV_PREFILTER the prefiltered chain's GGX lobes).
+vec3 mx_environment_sample(vec3 Lm, float pdf, int count)
+{
+    return mx_envmap_lookup(u_envRadiance, Lm, mx_envmap_lod(Lm, pdf, count));
+}
+
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
 // Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
@@ -329,11 +338,7 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
         vec3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
         vec3 Li = vec3(0.0);
         if (fetch)
-        {
-            vec3 Lm = toMap * Lt;
-            Li = mx_envmap_lookup(u_envRadiance, Lm,
-                                  mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
-        }
+            Li = mx_environment_sample(toMap * Lt, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
         vec3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
         vec3 throughput = fd.refraction ? vec3(1.0) - F : F * weight;

@@ -306,6 +306,15 @@ struct PixelStage
         return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
     }
 
+    // The environment along map direction `Lm` as one of `count` samples of density `pdf` sees it
+    // (filtered importance sampling): read at the level whose texels cover the solid angle 1 / (count
+    // pdf) the sample stands for, in the chain the shader reads (the radiance map's mips, or with
+    // MX_ENV_PREFILTER the prefiltered chain's GGX lobes).
+    float3 mx_environment_sample(float3 Lm, float pdf, int count)
+    {
+        return mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm, mx_envmap_lod(Lm, pdf, count));
+    }
+
     // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
     // fd.refraction, after passing through a solid sphere of index fd.ior.x.
     // Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
@@ -339,11 +348,7 @@ struct PixelStage
             float3 Lt = fd.refraction ? mx_refraction_solid_sphere(-Vt, H, fd.ior.x) : reflect(-Vt, H);
             float3 Li = float3(0.0);
             if (fetch)
-            {
-                float3 Lm = toMap * Lt;
-                Li = mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm,
-                                      mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
-            }
+                Li = mx_environment_sample(toMap * Lt, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
             float3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
             float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
             float3 throughput = fd.refraction ? float3(1.0) - F : F * weight;

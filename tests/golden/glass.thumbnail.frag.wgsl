@@ -275,6 +275,14 @@ fn mx_envmap_lod(mapDir: vec3f, pdf: f32, sampleCount: i32) -> f32 {
     return max(coarsest - 0.5 * log2(f32(sampleCount) * pdf * stretch), 0.0);
 }
 
+// The environment along map direction `Lm` as one of `count` samples of density `pdf` sees it
+// (filtered importance sampling): read at the level whose texels cover the solid angle 1 / (count
+// pdf) the sample stands for, in the chain the shader reads (the radiance map's mips, or with
+// MX_ENV_PREFILTER the prefiltered chain's GGX lobes).
+fn mx_environment_sample(Lm: vec3f, pdf: f32, count: i32) -> vec3f {
+    return mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm, mx_envmap_lod(Lm, pdf, count));
+}
+
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
 // Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
@@ -305,9 +313,7 @@ fn mx_environment_samples(N: vec3f, V: vec3f, X: vec3f, alpha: vec2f, fd: Fresne
         let Lt: vec3f = select(reflect(-Vt, H), mx_refraction_solid_sphere(-Vt, H, fd.ior.x), fd.refraction);
         var Li: vec3f = vec3f(0.0);
         if (fetch) {
-            let Lm: vec3f = toMap * Lt;
-            Li = mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm,
-                                  mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
+            Li = mx_environment_sample(toMap * Lt, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
         }
         let F: vec3f = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         let weight: f32 = select(mx_ggx_sample_weight(Vt, Lt, alpha), 1.0, fd.refraction);

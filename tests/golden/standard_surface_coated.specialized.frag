@@ -698,17 +698,6 @@ vec3 mx_prefiltered_direction(vec3 V, vec3 N, FresnelData fd)
     return reflect(-V, N);
 }
 
-#ifdef MX_ENV_HYBRID
-// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
-// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
-mat3 mx_rotation_from_pole(vec3 D)
-{
-    if (D.z < -0.999)
-        return mx_frame_from_normal(D);
-    float k = 1.0 / (1.0 + D.z);
-    return mat3(vec3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
-                vec3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y), D);
-}
 // Mip level of the chain for a sample of density `pdf` out of `count`: filtered importance sampling
 // (Colbert & Krivanek 2007) with the chain's GGX lobes as the filter. A sample stands for the solid
 // angle 1 / (count pdf) around it, and the level of alpha covers 4 pi alpha^2 (1 / the peak of its
@@ -722,6 +711,18 @@ float mx_prefiltered_sample_lod(float pdf, int count, float elongation)
 {
     return mx_prefiltered_footprint_lod(min(elongation *
                                             sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+}
+
+#ifdef MX_ENV_HYBRID
+// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
+// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
+mat3 mx_rotation_from_pole(vec3 D)
+{
+    if (D.z < -0.999)
+        return mx_frame_from_normal(D);
+    float k = 1.0 / (1.0 + D.z);
+    return mat3(vec3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
+                vec3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y), D);
 }
 // The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples
 // samples where the lobe differs from the split sum's. The lookup is the mean radiance over the
@@ -842,6 +843,19 @@ float mx_envmap_lod(vec3 mapDir, float pdf, int sampleCount)
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
 
+// The environment along map direction `Lm` as one of `count` samples of density `pdf` sees it
+// (filtered importance sampling): read at the level whose texels cover the solid angle 1 / (count
+// pdf) the sample stands for, in the chain the shader reads (the radiance map's mips, or with
+// MX_ENV_PREFILTER the prefiltered chain's GGX lobes).
+vec3 mx_environment_sample(vec3 Lm, float pdf, int count)
+{
+#ifdef MX_ENV_PREFILTER
+    return mx_envmap_lookup(u_envRadiance, Lm, mx_prefiltered_sample_lod(pdf, count, 1.0));
+#else
+    return mx_envmap_lookup(u_envRadiance, Lm, mx_envmap_lod(Lm, pdf, count));
+#endif
+}
+
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
 // Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
@@ -878,11 +892,7 @@ vec3 mx_environment_samples(vec3 N, vec3 V, vec3 X, vec2 alpha, FresnelData fd, 
         vec3 Lt = reflect(-Vt, H);  // no closure of this shader refracts
         vec3 Li = vec3(0.0);
         if (fetch)
-        {
-            vec3 Lm = toMap * Lt;
-            Li = mx_envmap_lookup(u_envRadiance, Lm,
-                                  mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
-        }
+            Li = mx_environment_sample(toMap * Lt, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
         vec3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
         vec3 throughput = fd.refraction ? vec3(1.0) - F : F * weight;

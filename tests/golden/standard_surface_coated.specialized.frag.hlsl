@@ -758,17 +758,6 @@ float3 mx_prefiltered_direction(float3 V, float3 N, FresnelData fd)
     return reflect(-V, N);
 }
 
-#ifdef MX_ENV_HYBRID
-// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
-// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
-float3x3 mx_rotation_from_pole(float3 D)
-{
-    if (D.z < -0.999)
-        return mx_frame_from_normal(D);
-    float k = 1.0 / (1.0 + D.z);
-    return float3x3(float3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
-                    float3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y), D);
-}
 // Mip level of the chain for a sample of density `pdf` out of `count`: filtered importance sampling
 // (Colbert & Krivanek 2007) with the chain's GGX lobes as the filter. A sample stands for the solid
 // angle 1 / (count pdf) around it, and the level of alpha covers 4 pi alpha^2 (1 / the peak of its
@@ -782,6 +771,18 @@ float mx_prefiltered_sample_lod(float pdf, int count, float elongation)
 {
     return mx_prefiltered_footprint_lod(min(elongation *
                                             sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+}
+
+#ifdef MX_ENV_HYBRID
+// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
+// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
+float3x3 mx_rotation_from_pole(float3 D)
+{
+    if (D.z < -0.999)
+        return mx_frame_from_normal(D);
+    float k = 1.0 / (1.0 + D.z);
+    return float3x3(float3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
+                    float3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y), D);
 }
 // The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples
 // samples where the lobe differs from the split sum's. The lookup is the mean radiance over the
@@ -903,6 +904,20 @@ float mx_envmap_lod(float3 mapDir, float pdf, int sampleCount)
     return max(coarsest - 0.5 * log2(float(sampleCount) * pdf * stretch), 0.0);
 }
 
+// The environment along map direction `Lm` as one of `count` samples of density `pdf` sees it
+// (filtered importance sampling): read at the level whose texels cover the solid angle 1 / (count
+// pdf) the sample stands for, in the chain the shader reads (the radiance map's mips, or with
+// MX_ENV_PREFILTER the prefiltered chain's GGX lobes).
+float3 mx_environment_sample(float3 Lm, float pdf, int count)
+{
+#ifdef MX_ENV_PREFILTER
+    return mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm,
+                            mx_prefiltered_sample_lod(pdf, count, 1.0));
+#else
+    return mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm, mx_envmap_lod(Lm, pdf, count));
+#endif
+}
+
 // Light leaving a point with normal N towards V (tangent X) after one GGX bounce, or, with
 // fd.refraction, after passing through a solid sphere of index fd.ior.x.
 // Reflection: each visible normal H carries F(V.H) G2 / G1 (Heitz 2014); the multiple scattering
@@ -939,11 +954,7 @@ float3 mx_environment_samples(float3 N, float3 V, float3 X, float2 alpha, Fresne
         float3 Lt = reflect(-Vt, H);  // no closure of this shader refracts
         float3 Li = (float3)0.0;
         if (fetch)
-        {
-            float3 Lm = mul(Lt, toMap);
-            Li = mx_envmap_lookup(u_envRadiance, u_envRadiance_sampler, Lm,
-                                  mx_envmap_lod(Lm, mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount));
-        }
+            Li = mx_environment_sample(mul(Lt, toMap), mx_ggx_reflection_pdf(H, Vt, alpha), sampleCount);
         float3 F = mx_fresnel_eval_film(clamp(dot(Vt, H), MX_EPS, 1.0), fd, withFilm);
         float weight = fd.refraction ? 1.0 : mx_ggx_sample_weight(Vt, Lt, alpha);
         float3 throughput = fd.refraction ? (float3)1.0 - F : F * weight;

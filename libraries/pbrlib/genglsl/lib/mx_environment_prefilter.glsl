@@ -98,19 +98,6 @@ vec3 mx_prefiltered_direction(vec3 V, vec3 N, FresnelData fd)
     return reflect(-V, N);
 }
 
-#ifdef MX_ENV_HYBRID
-// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
-// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
-mat3 mx_rotation_from_pole(vec3 D)
-{
-    if (D.z < -0.999)
-        return mx_frame_from_normal(D);
-    float k = 1.0 / (1.0 + D.z);
-    return mat3(vec3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
-                vec3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y),
-                D);
-}
-
 // Mip level of the chain for a sample of density `pdf` out of `count`: filtered importance sampling
 // (Colbert & Krivanek 2007) with the chain's GGX lobes as the filter. A sample stands for the solid
 // angle 1 / (count pdf) around it, and the level of alpha covers 4 pi alpha^2 (1 / the peak of its
@@ -123,6 +110,19 @@ mat3 mx_rotation_from_pole(vec3 D)
 float mx_prefiltered_sample_lod(float pdf, int count, float elongation)
 {
     return mx_prefiltered_footprint_lod(min(elongation * sqrt(1.0 / (4.0 * MX_PI * float(count) * max(pdf, MX_EPS))), 1.0));
+}
+
+#ifdef MX_ENV_HYBRID
+// The rotation (in tangent space) taking the pole (0, 0, 1) to unit direction D along the great
+// circle between them (Rodrigues), or, for D near the south pole, any frame around D.
+mat3 mx_rotation_from_pole(vec3 D)
+{
+    if (D.z < -0.999)
+        return mx_frame_from_normal(D);
+    float k = 1.0 / (1.0 + D.z);
+    return mat3(vec3(D.z + D.y * D.y * k, -D.x * D.y * k, -D.x),
+                vec3(-D.x * D.y * k, D.z + D.x * D.x * k, -D.y),
+                D);
 }
 
 // The light of the single lookup (mx_environment_prefiltered), corrected by u_envRadianceSamples

@@ -113,3 +113,11 @@ float mx_cosine_pdf(float cosTheta)
 {
     return max(cosTheta, 0.0) * MX_INV_PI;
 }
+
+// A direction about the pole (0, 0, 1) with density mx_cosine_pdf, from a point of the unit square.
+vec3 mx_cosine_sample(vec2 u)
+{
+    float sinTheta = sqrt(u.x);
+    float phi = 2.0 * MX_PI * u.y;
+    return vec3(sinTheta * cos(phi), sinTheta * sin(phi), sqrt(max(1.0 - u.x, 0.0)));
+}

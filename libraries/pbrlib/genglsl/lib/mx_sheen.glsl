@@ -69,3 +69,13 @@ float mx_sheen_ltc(vec3 L, vec3 V, vec3 N, float NdotV, float roughness)
     float len2 = dot(wo, wo);
     return mx_cosine_pdf(wo.z) * mx_sqr(inv.x / len2);
 }
+
+// A direction L (in the LTC's frame, mx_sheen_ltc_frame) drawn from the LTC lobe: a cosine-
+// distributed direction through the matrix, the inverse of mx_sheen_ltc_inverse's; the lobe's
+// density there is mx_sheen_ltc.
+vec3 mx_sheen_ltc_sample(vec2 u, float NdotV, float roughness)
+{
+    vec2 inv = mx_sheen_ltc_inverse(NdotV, roughness);
+    vec3 wo = mx_cosine_sample(u);
+    return normalize(vec3((wo.x - inv.y * wo.z) / inv.x, wo.y / inv.x, wo.z));
+}
