@@ -203,7 +203,9 @@ def main() -> None:
     parser.add_argument("--shared", type=Path, default=ROOT.parent / "shared",
                         help="the folder of the corpus and the oracle (default: beside the checkout)")
     args = parser.parse_args()
-    images = args.shared / "corpus" / "resources" / "Images"
+    # the materials name their textures by real path: the service reads a name as written and wants
+    # it inside its (real) texture roots, so one written through a link (a linked shared folder) is refused
+    images = (args.shared / "corpus" / "resources" / "Images").resolve()
     # every run compiles for itself: Mesa's disk cache would hand a later run the programs of an earlier one
     os.environ["MESA_SHADER_CACHE_DISABLE"] = "true"
     tmp = Path(tempfile.mkdtemp(prefix="shadergen-library-"))

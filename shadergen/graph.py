@@ -321,8 +321,9 @@ class GraphBuilder:
             self.bind(inp, authored)
         for inp in list(node.inputs.values()):
             geomprop = inp.meta.get("defaultgeomprop")
-            if geomprop and inp.connection is None and inp.socket is None:
-                # as MaterialX does: an unconnected geometric input reads the geometry, value or not
+            if geomprop and inp.connection is None and inp.socket is None and not inp.meta.get("interface"):
+                # as MaterialX does: an unconnected geometric input reads the geometry, value or not;
+                # one bound to an interface input with a value (a nodegraph drawn as its nodedef) reads that
                 inp.connection = self.geomprop_output(geomprop, elem)
             elif inp.authored and inp.type != "filename":
                 self.convert_units(inp)

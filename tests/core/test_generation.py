@@ -167,6 +167,25 @@ def test_an_input_an_implementation_adds_is_listed_at_its_node(gen):
     assert {"i/uv_scale", "i/uv_offset"} <= set(paths.values())
 
 
+def test_a_geometric_input_bound_to_an_interface_value_reads_that_value(gen):
+    """A nodegraph drawn as its nodedef: an input that would read the geometry (image's texcoord,
+    defaultgeomprop UV0) bound to a nodedef input with a value reads the value, a uniform listed at
+    the nodedef's input, as MaterialX publishes it; unbound, it reads the geometry."""
+    def graph(bound):
+        texcoord = '<input name="texcoord" type="vector2" interfacename="at"/>' if bound else ''
+        return doc('<nodedef name="ND_probe" node="probe"><input name="at" type="vector2" value="0.25, 0.75"/>'
+                   '<output name="out" type="color3"/></nodedef><nodegraph name="NG_probe" nodedef="ND_probe">'
+                   f'<image name="i" type="color3">{texcoord}</image><output name="out" type="color3" nodename="i"/>'
+                   '</nodegraph>')
+
+    bound, unbound = (gen.prepare(graph(b), element="NG_probe/out").emit() for b in (True, False))
+    def appdata(rec):
+        return [v["name"] for v in rec["blocks"]["vertex"]["AppData"]]
+
+    assert public(bound)["ND_probe/at"]["value"] == [0.25, 0.75]
+    assert appdata(bound) == ["i_position"]
+    assert "ND_probe/at" not in public(unbound) and "i_texcoord_0" in appdata(unbound)
+
 def test_enum_strings_become_integer_uniforms(gen):
     rec = first(gen, '<image name="i" type="color3"><input name="uaddressmode" type="string" value="mirror"/></image>'
                      '<output name="o" type="color3" nodename="i"/>')
