@@ -1,6 +1,6 @@
 """Issue 27, item 2, in a real browser (editor_testing.py): the preview binds the textures a
 document names, from the service's texture roots or from what is dropped on the page (images,
-an .exr the service decodes, a .zip with folders, a .usdz), with the sampling its image node gives; a file it cannot have is
+an .exr decoded in the page, a .zip with folders, a .usdz), with the sampling its image node gives; a file it cannot have is
 drawn in the node's default colour with the reason listed, as a thumbnail draws it."""
 import io
 import zipfile
@@ -112,7 +112,7 @@ def test_a_file_outside_the_roots_draws_its_default_until_a_dropped_image_resolv
     screenshot(editor, "editor-dropped-texture.png", tmp_path)
 
 
-def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as_a_texture(editor, tmp_path):
+def test_a_dropped_exr_the_document_names_is_decoded_in_the_page_and_bound_as_a_texture(editor, tmp_path):
     before = counters(editor)
     set_document(editor, material("maps/green.exr", default="0, 0, 1"))
     shown(editor, before)
@@ -123,6 +123,7 @@ def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as
     problems = console_problems(editor)
     assert len(problems) == 1 and "/v1/textures" in problems[0]["message"] and "404" in problems[0]["message"]
     requests, draws = js(editor, "window.shaderxEditor.traffic.generate"), js(editor, "window.shaderxEditor.preview.stats.draws")
+    decodes = js(editor, "window.shaderxEditor.traffic.decode")
     drop_files(editor, [("green.exr", exr(tmp_path, 8, 8, tuple(c / 255 for c in GREEN)))])
     wait_for_draw(editor, draws)
     wait_until(lambda: "loaded" in "".join(textures_listed(editor).values()), 60, "the dropped .exr listed")
@@ -131,6 +132,7 @@ def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as
     # a texture, not an environment: the menu did not change, and the document was not sent again
     assert [o.text for o in editor.find_elements("css selector", "#environment option")] == ["sky"]
     assert js(editor, "window.shaderxEditor.traffic.generate") == requests
+    assert js(editor, "window.shaderxEditor.traffic.decode") == decodes
     assert console_problems(editor) == []
 
 
