@@ -11,7 +11,7 @@ import pytest
 from editor_testing import browser, canvas_pixels, console_problems, drop_files, editor, exr, js, poll_js, psnr, \
     screenshot, set_document, thumbnail_pixels, wait_for_draw  # noqa: F401 (fixtures)
 from hostile_packages import LAYER, png, textured_layer, usdz
-from service_testing import wait_until
+from service_testing import Server, wait_until
 
 RED, GREEN, BLUE = (230, 20, 20), (20, 200, 30), (20, 30, 230)
 
@@ -134,6 +134,27 @@ def test_a_dropped_exr_the_document_names_is_decoded_in_the_page_and_bound_as_a_
     assert js(editor, "window.shaderxEditor.traffic.generate") == requests
     assert js(editor, "window.shaderxEditor.traffic.decode") == decodes
     assert console_problems(editor) == []
+
+
+def test_an_exr_in_the_texture_roots_is_served_and_decoded_in_the_page(browser, tmp_path):
+    """A service whose texture root holds an .exr OpenImageIO wrote: the page fetches it from
+    GET /v1/textures and decodes it itself (no request to the service's decoder)."""
+    roots = tmp_path / "roots"
+    (roots / "maps").mkdir(parents=True)
+    (roots / "maps" / "green.exr").write_bytes(exr(tmp_path, 8, 8, tuple(c / 255 for c in GREEN)))
+    served = Server(tmp_path, workers=1, env={"SHADERGEN_TEXTURE_ROOTS": str(roots)})
+    try:
+        browser.get(served.url + "/")
+        wait_until(lambda: poll_js(browser, "window.shaderxEditor && window.shaderxEditor.ready"), 120, "the editor")
+        decodes, before = js(browser, "window.shaderxEditor.traffic.decode"), counters(browser)
+        set_document(browser, material("maps/green.exr", default="0, 0, 1"))
+        shown(browser, before)
+        assert list(textures_listed(browser).values()) == ["loaded: maps/green.exr (service)"]
+        assert_is(centre_colour(browser, tmp_path), GREEN)
+        assert js(browser, "window.shaderxEditor.traffic.decode") == decodes
+        assert console_problems(browser) == []
+    finally:
+        served.close()
 
 
 def test_a_dropped_zip_opens_its_document_and_its_folders_resolve_the_references(editor, tmp_path):
