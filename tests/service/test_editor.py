@@ -75,6 +75,7 @@ def test_a_thin_film_preview_matches_its_thumbnail_on_swiftshader(editor, server
     print(f"\nthin film preview against the service's thumbnail: PSNR {agreement:.1f} dB")
     assert agreement > 35, f"preview against thumbnail: {agreement:.1f} dB"
     assert console_problems(editor) == []
+    screenshot(editor, "editor-thin-film.png", tmp_path)
 
 
 def test_an_invalid_document_shows_its_error_in_place(editor, tmp_path):

@@ -153,6 +153,7 @@ def test_an_exr_in_the_texture_roots_is_served_and_decoded_in_the_page(browser, 
         assert_is(centre_colour(browser, tmp_path), GREEN)
         assert js(browser, "window.shaderxEditor.traffic.decode") == decodes
         assert console_problems(browser) == []
+        screenshot(browser, "editor-exr-texture.png", tmp_path)
     finally:
         served.close()
 
