@@ -1,6 +1,6 @@
 """Issue 27, item 3, in a real browser (editor_testing.py): the preview's scene chosen on the
 page, with no request: the mesh (sphere, plane, cube, a dropped .obj), the environment (the
-thumbnails' sky or a dropped .hdr, or a dropped .exr decoded by the service, its irradiance
+thumbnails' sky or a dropped .hdr or .exr, both decoded in the page, its irradiance
 computed in the page), its intensity and rotation, and the turntable."""
 import struct
 
@@ -102,9 +102,9 @@ def test_the_environment_intensity_rotation_and_turntable(editor, tmp_path):
 
 def test_a_dropped_exr_environment_lights_the_object_as_the_same_hdr_does(editor, tmp_path):
     """red.exr holds exactly what red.hdr decodes to (RGBE keeps 8 bits: 0.1 reads 0.09375), so
-    the two environments draw one picture; the .exr went through the service's decoder, the
-    document was not generated again."""
-    sent = js(editor, "window.shaderxEditor.traffic.generate")
+    the two environments draw one picture; the .exr was decoded in the page (no request to the
+    service's decoder), the document was not generated again."""
+    sent, decodes = js(editor, "window.shaderxEditor.traffic.generate"), js(editor, "window.shaderxEditor.traffic.decode")
     sky = canvas_pixels(editor, tmp_path)
     red = changed(editor, tmp_path, sky, lambda: drop_files(editor, [("red.exr", exr(tmp_path, 64, 32, (1.0, 0.09375, 0.09375)))]))
     assert Select(editor.find_element("id", "environment")).first_selected_option.text == "red.exr"
@@ -115,4 +115,5 @@ def test_a_dropped_exr_environment_lights_the_object_as_the_same_hdr_does(editor
     from_hdr = changed(editor, tmp_path, red, lambda: drop_files(editor, [("red.hdr", hdr(64, 32, (1.0, 0.1, 0.1)))]))
     assert psnr(from_hdr, red) > 50
     assert js(editor, "window.shaderxEditor.traffic.generate") == sent
+    assert js(editor, "window.shaderxEditor.traffic.decode") == decodes
     assert console_problems(editor) == []

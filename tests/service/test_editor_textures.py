@@ -1,6 +1,6 @@
 """Issue 27, item 2, in a real browser (editor_testing.py): the preview binds the textures a
 document names, from the service's texture roots or from what is dropped on the page (images,
-an .exr the service decodes, a .zip with folders, a .usdz), with the sampling its image node gives; a file it cannot have is
+an .exr decoded in the page, a .zip with folders, a .usdz), with the sampling its image node gives; a file it cannot have is
 drawn in the node's default colour with the reason listed, as a thumbnail draws it."""
 import io
 import zipfile
@@ -11,7 +11,7 @@ import pytest
 from editor_testing import browser, canvas_pixels, console_problems, drop_files, editor, exr, js, poll_js, psnr, \
     screenshot, set_document, thumbnail_pixels, wait_for_draw  # noqa: F401 (fixtures)
 from hostile_packages import LAYER, png, textured_layer, usdz
-from service_testing import wait_until
+from service_testing import Server, wait_until
 
 RED, GREEN, BLUE = (230, 20, 20), (20, 200, 30), (20, 30, 230)
 
@@ -112,7 +112,7 @@ def test_a_file_outside_the_roots_draws_its_default_until_a_dropped_image_resolv
     screenshot(editor, "editor-dropped-texture.png", tmp_path)
 
 
-def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as_a_texture(editor, tmp_path):
+def test_a_dropped_exr_the_document_names_is_decoded_in_the_page_and_bound_as_a_texture(editor, tmp_path):
     before = counters(editor)
     set_document(editor, material("maps/green.exr", default="0, 0, 1"))
     shown(editor, before)
@@ -123,6 +123,7 @@ def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as
     problems = console_problems(editor)
     assert len(problems) == 1 and "/v1/textures" in problems[0]["message"] and "404" in problems[0]["message"]
     requests, draws = js(editor, "window.shaderxEditor.traffic.generate"), js(editor, "window.shaderxEditor.preview.stats.draws")
+    decodes = js(editor, "window.shaderxEditor.traffic.decode")
     drop_files(editor, [("green.exr", exr(tmp_path, 8, 8, tuple(c / 255 for c in GREEN)))])
     wait_for_draw(editor, draws)
     wait_until(lambda: "loaded" in "".join(textures_listed(editor).values()), 60, "the dropped .exr listed")
@@ -131,7 +132,30 @@ def test_a_dropped_exr_the_document_names_is_decoded_by_the_service_and_bound_as
     # a texture, not an environment: the menu did not change, and the document was not sent again
     assert [o.text for o in editor.find_elements("css selector", "#environment option")] == ["sky"]
     assert js(editor, "window.shaderxEditor.traffic.generate") == requests
+    assert js(editor, "window.shaderxEditor.traffic.decode") == decodes
     assert console_problems(editor) == []
+
+
+def test_an_exr_in_the_texture_roots_is_served_and_decoded_in_the_page(browser, tmp_path):
+    """A service whose texture root holds an .exr OpenImageIO wrote: the page fetches it from
+    GET /v1/textures and decodes it itself (no request to the service's decoder)."""
+    roots = tmp_path / "roots"
+    (roots / "maps").mkdir(parents=True)
+    (roots / "maps" / "green.exr").write_bytes(exr(tmp_path, 8, 8, tuple(c / 255 for c in GREEN)))
+    served = Server(tmp_path, workers=1, env={"SHADERGEN_TEXTURE_ROOTS": str(roots)})
+    try:
+        browser.get(served.url + "/")
+        wait_until(lambda: poll_js(browser, "window.shaderxEditor && window.shaderxEditor.ready"), 120, "the editor")
+        decodes, before = js(browser, "window.shaderxEditor.traffic.decode"), counters(browser)
+        set_document(browser, material("maps/green.exr", default="0, 0, 1"))
+        shown(browser, before)
+        assert list(textures_listed(browser).values()) == ["loaded: maps/green.exr (service)"]
+        assert_is(centre_colour(browser, tmp_path), GREEN)
+        assert js(browser, "window.shaderxEditor.traffic.decode") == decodes
+        assert console_problems(browser) == []
+        screenshot(browser, "editor-exr-texture.png", tmp_path)
+    finally:
+        served.close()
 
 
 def test_a_dropped_zip_opens_its_document_and_its_folders_resolve_the_references(editor, tmp_path):

@@ -1,7 +1,7 @@
 // The service's HTTP API as the editor uses it. Every answer is either a record or the
 // contract's error object; network failures become error objects too, so callers show one kind.
 
-export const traffic = { generate: 0 };  // requests sent, for the page's tests and status line
+export const traffic = { generate: 0, decode: 0 };  // requests sent, for the page's tests and status line
 
 export async function generate(document, { element = null, target = "essl", interface: mode = "complete", source = true } = {}) {
   traffic.generate += 1;
@@ -40,9 +40,10 @@ export async function textureFile(name) {
   return { blob: await response.blob() };
 }
 
-// An image file the browser cannot decode (EXR, TIFF, TGA) decoded by the service, nothing stored:
-// { width, height, channels, data: Float32Array } or the error object.
+// An image file the page does not decode (TIFF, TGA, the OpenEXR files exr.js leaves) decoded by
+// the service, nothing stored: { width, height, channels, data: Float32Array } or the error object.
 export async function decodedImage(blob, name) {
+  traffic.decode += 1;
   const init = { method: "POST", headers: { "content-type": "application/octet-stream" }, body: blob };
   const response = await request(`v1/images/decode?name=${encodeURIComponent(name)}`, init);
   if (!response.ok) return answer(response);
