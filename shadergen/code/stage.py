@@ -79,10 +79,9 @@ def run(ctx, counts: dict) -> StageCode:
         items = [without_body(i) if isinstance(i, ir.Function) and i.name in own else i for i in items]
     reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts)
     counts.update(passes)
-    items = reached.items
-    structs = [i for i in items if isinstance(i, ir.Struct)]
-    functions = [i for i in items if has_function(i)]
-    constants = [i for i in items if not isinstance(i, ir.Struct) and not has_function(i)]
+    structs, constants, functions = [], [], []
+    for i in reached.items:  # one look at each item (a section's is a walk of its body)
+        (structs if isinstance(i, ir.Struct) else functions if has_function(i) else constants).append(i)
     functions += generated
     return StageCode(structs, constants, functions, main, None, frozenset(reached.names))
 

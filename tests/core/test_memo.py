@@ -11,6 +11,7 @@ from shadergen.api import Generator
 from shadergen.code import build, ir
 from shadergen.code import stage as code_stage
 from shadergen.library import DEFAULT_LIBRARY_ROOT, Library
+from shadergen.targets.glsl import printer as glsl_printer
 from shadergen.targets.glsl import target as glsl_target
 
 from .conftest import doc
@@ -63,7 +64,7 @@ def test_a_library_edit_is_never_served_from_the_old_librarys_memo(tmp_path, mon
 
 
 class Forgetful(dict):
-    """A vertex stage memo that keeps nothing: every stage built, typed and printed afresh."""
+    """A memo that keeps nothing: what it would hold (a vertex stage, a value's text) made afresh each time."""
 
     def __setitem__(self, key, value):
         pass
@@ -100,3 +101,14 @@ def test_uniform_declarations_from_the_cache_are_the_ones_printed_afresh(target,
     # values Python compares equal are one key: they print alike
     declare = functools.partial(glsl_target.uniform_declaration, glsl_target.GlslTarget, "vec2", "u", "vector2")
     assert declare((1, 0)) == declare((1.0, 0.0)) == "uniform vec2 u = vec2(1.0, 0.0);"
+
+
+@pytest.mark.parametrize("target", ["glsl", "essl", "vulkan"])
+def test_values_printed_from_the_memo_are_the_ones_printed_afresh(target, monkeypatch):
+    warm = Generator(Library.load())
+    for document in DOCUMENTS:  # every document's values printed and kept first
+        records(warm, document, interface="complete", target=target)
+    assert glsl_printer.VALUE_LINES  # main's values went through the memo
+    served = [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+    monkeypatch.setattr(glsl_printer, "VALUE_LINES", Forgetful())
+    assert served == [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]

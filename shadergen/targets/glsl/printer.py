@@ -21,6 +21,10 @@ SELECT, UNARY, PRIMARY = 1, 13, 15
 BITWISE, SHIFTS, ARITHMETIC = frozenset("&|^"), frozenset({"<<", ">>"}), frozenset("+-*/%")
 
 DIALECTS = ("glsl", "essl")
+# a value's constructor node -> its text on one line, in every printer that prints with `line`
+# (numbers are spelled alike in GLSL and ESSL); at most MAX_VALUE_LINES, then printed each time
+VALUE_LINES: dict = {}
+MAX_VALUE_LINES = 8192
 # the methods whose rules `GlslPrinter.line` inlines
 ONE_LINE_RULES = ("render", "operand", "call")
 
@@ -151,6 +155,8 @@ class GlslPrinter:
                 right = "(" + right + ")"
             return left + " " + e.op + " " + right
         if cls is ir.Construct:
+            if e.exact:
+                return self.value_line(e)
             return e.type + "(" + ", ".join([self.line(a) for a in e.args]) + ")"
         if cls is ir.Field:
             base = self.line(e.base)
@@ -175,6 +181,17 @@ class GlslPrinter:
                 return _float(float(e.operand.value))
             return e.type + "(" + self.line(e.operand) + ")"
         raise unsupported(f"a {cls.__name__} expression", e)
+
+    def value_line(self, e: ir.Construct) -> str:
+        """A value's constructor (code/values.py: numbers only) on one line. Equal values are one
+        node, shared by every use and never changed (passes build new nodes), so the text is kept
+        per node: most of a main's literals are in them, printed again in every request."""
+        text = VALUE_LINES.get(e)
+        if text is None:
+            text = e.type + "(" + ", ".join([self.line(a) for a in e.args]) + ")"
+            if len(VALUE_LINES) < MAX_VALUE_LINES:
+                VALUE_LINES[e] = text  # (the key holds the node: its id is not reused)
+        return text
 
     def render(self, e, column, indent) -> str:
         """`e` as text starting at `column` (None: on one line), wrapping long argument lists."""

@@ -42,14 +42,18 @@ class GlslTarget:
             return BUILTINS.get(name.name, name.name)  # the library reads GLSL's own (gl_FrontFacing)
         return name.name
 
-    def item(self, item, ctx) -> tuple[str, ...]:
-        """An item's lines: a library item's as printed once per library (targets/printed.py), a
-        copy a pass made once per process (the code passes hand back the same rewritten item for
-        the same edit)."""
+    def printed_library(self, ctx) -> PrintedLibrary:
+        """The library's items as this target prints them (targets/printed.py), read once per library."""
+        return ctx.scope.library.fact(("printed", self.name),
+                                      lambda: PrintedLibrary(ctx.code, self.name, self.printer.item))
+
+    def item(self, item, library: PrintedLibrary) -> tuple[str, ...]:
+        """An item's lines: a library item's as printed once per library (`library`), a copy a
+        pass made once per process (the code passes hand back the same rewritten item for the
+        same edit)."""
         if item.where is None:  # generated for this shader
             return tuple(self.printer.item(item))
-        lines = ctx.scope.library.fact(("printed", self.name),
-                                       lambda: PrintedLibrary(ctx.code, self.name, self.printer.item)).lines(item)
+        lines = library.lines(item)
         return lines if lines is not None else printed(type(self), item)
 
     def layout(self, ctx) -> dict | None:
@@ -59,10 +63,11 @@ class GlslTarget:
     # -- stage assembly --------------------------------------------------------------------------
     def assemble_pixel(self, ctx) -> str:
         code = ctx.pixel.code
+        library = self.printed_library(ctx)
         w = self._start()
         items = code.structs + code.constants
         for item in items:
-            w.extend(self.item(item, ctx))
+            w.extend(self.item(item, library))
         if items:
             w.line()
         self._uniforms(ctx.pixel, w)
@@ -71,7 +76,7 @@ class GlslTarget:
             w.line(f"{self.io('out', location)} vec4 {v.name};")
         w.line()
         for function in code.functions:
-            w.extend(self.item(function, ctx))
+            w.extend(self.item(function, library))
             w.line()
         self._main(code.main, w)
         return w.text()
