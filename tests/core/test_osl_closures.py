@@ -1,6 +1,6 @@
 """OSL's closures (targets/osl/closures.py): every shading model and every closure node of the PBR
 library, the specification's 2018 names and RenderMan's Lama nodes become closures of OSL 1.13's
-stdosl.h that oslc compiles, in each interface; the output is a `closure color` (oslinfo: a
+stdosl.h (and the hair closure later releases declare) that oslc compiles, in each interface; the output is a `closure color` (oslinfo: a
 pointer); what stdosl.h has no closure for is an error record that names the node."""
 import pytest
 
@@ -11,7 +11,7 @@ from tests.required_tools import missing
 SURFACES = ("standard_surface", "open_pbr_surface", "gltf_pbr", "UsdPreviewSurface", "disney_principled",
             "thinsurface", "mixsurface")
 BSDFS = ("oren_nayar_diffuse_bsdf", "burley_diffuse_bsdf", "translucent_bsdf", "dielectric_bsdf", "conductor_bsdf",
-         "generalized_schlick_bsdf", "subsurface_bsdf", "sheen_bsdf", "diffusebrdf", "diffusebtdf", "conductorbrdf",
+         "generalized_schlick_bsdf", "subsurface_bsdf", "sheen_bsdf", "chiang_hair_bsdf", "diffusebrdf", "diffusebtdf", "conductorbrdf",
          "dielectricbrdf", "dielectricbtdf", "subsurfacebrdf", "sheenbrdf", "LamaConductor", "LamaDielectric",
          "LamaDiffuse", "LamaGeneralizedSchlick", "LamaSheen", "LamaSSS", "LamaTranslucent")
 EDFS = ("uniform_edf", "conical_edf", "uniformedf", "conicaledf", "LamaEmission")
@@ -82,8 +82,23 @@ def test_the_output_is_a_closure_as_oslinfo_reads_it(oslc):
 
 
 def test_a_closure_osl_lacks_is_an_error_record_naming_the_node():
-    doc = document('<chiang_hair_bsdf name="hair" type="BSDF"/><surface name="s" type="surfaceshader">'
-                   '<input name="bsdf" type="BSDF" nodename="hair"/></surface>' + MATERIAL.format(shader="s"))
+    doc = document('<measured_edf name="glow" type="EDF"/><surface name="s" type="surfaceshader">'
+                   '<input name="edf" type="EDF" nodename="glow"/></surface>' + MATERIAL.format(shader="s"))
     [rec] = default_generator().records(doc, target="osl")
     assert rec["error"]["code"] == "unsupported_node"
-    assert "chiang_hair_bsdf" in rec["error"]["message"] and rec["error"]["where"].endswith("hair")
+    assert "measured_edf" in rec["error"]["message"] and rec["error"]["where"].endswith("glow")
+
+
+def test_hair_is_the_declared_closure_with_each_roughness_pair_split(oslc):
+    """OSL 1.13's stdosl.h has no hair closure: the shader declares the one later releases have
+    (longitudinal roughnesses of R, TT, TRT, then their azimuthal ones), once, and oslc takes it."""
+    doc = document('<chiang_hair_bsdf name="hair" type="BSDF"><input name="roughness_R" type="vector2" value="0.3, 0.7"/>'
+                   '<input name="roughness_TT" type="vector2" value="0.2, 0.6"/></chiang_hair_bsdf>'
+                   '<surface name="s" type="surfaceshader"><input name="bsdf" type="BSDF" nodename="hair"/></surface>'
+                   + MATERIAL.format(shader="s"))
+    [rec] = default_generator().records(doc, target="osl", interface="specialized")
+    source = rec["stages"]["pixel"]
+    assert source.count("closure color chiang_hair_bsdf(") == 1 and "[[ int builtin = 1 ]]" in source
+    call = " ".join(source.split("= chiang_hair_bsdf(")[1].split(";")[0].split())
+    assert "1.55, 0.3, 0.2, 0.2, 0.7, 0.6, 0.2, 0.5," in call, call
+    assert check.errors({"hair": ("pixel", source)}) == {}

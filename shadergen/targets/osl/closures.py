@@ -22,8 +22,9 @@ that stdosl.h has no closure for are `uniform_edf` weighted by their radiance to
 (`-I`): `conical_edf` by its falloff between the cone angles, `generalized_schlick_edf` by its
 Fresnel curve. `generalized_schlick_bsdf`'s `color82`, `oren_nayar_diffuse_bsdf`'s
 `energy_compensation`, `sheen_bsdf`'s `mode` and the `retroreflective` flags have no argument in
-stdosl.h and are left to the renderer. `chiang_hair_bsdf` and `measured_edf` have no closure in
-OSL 1.13: they are refused.
+stdosl.h and are left to the renderer. `chiang_hair_bsdf` is the hair closure later OSL releases
+declare (the shader declares it where OSL 1.13's stdosl.h lacks it); each roughness vector2 is its
+(longitudinal, azimuthal) pair. `measured_edf` has no closure: it is refused.
 """
 from ...code import ir
 from ...errors import ShaderGenError
@@ -168,6 +169,13 @@ class OslClosureConvention(ClosureConvention):
 
     def closure_oren_nayar_diffuse_bsdf(self, ctx, node, v):
         return scaled(v("weight"), call("oren_nayar_diffuse_bsdf", [v("normal"), v("color"), v("roughness")]))
+
+    def closure_chiang_hair_bsdf(self, ctx, node, v):
+        lobes = [v(f"roughness_{lobe}") for lobe in ("R", "TT", "TRT")]
+        return call("chiang_hair_bsdf", [v("normal"), v("curve_direction"), v("tint_R"), v("tint_TT"), v("tint_TRT"),
+                                         v("ior"), *(component(r, "x") for r in lobes),
+                                         *(component(r, "y") for r in lobes), v("cuticle_angle"),
+                                         v("absorption_coefficient")])
 
     def closure_burley_diffuse_bsdf(self, ctx, node, v):
         return scaled(v("weight"), call("burley_diffuse_bsdf", [v("normal"), v("color"), v("roughness")]))

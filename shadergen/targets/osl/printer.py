@@ -152,6 +152,14 @@ def helpers(items, texture_width: float | None = None) -> list[str]:
 
 
 UINT_FLOAT = ("osl_uint_float", ("int",), "float")
+# MaterialX's hair closure as later OSL releases declare it in stdosl.h (OSL 1.13's has none): a
+# renderer that registers it integrates it; declaring it again where stdosl.h has it is allowed
+HAIR = ("chiang_hair_bsdf", (
+    ("normal", "N"), ("vector", "curve_direction"), ("color", "tint_R"), ("color", "tint_TT"), ("color", "tint_TRT"),
+    ("float", "ior"), ("float", "longitudual_roughness_R"), ("float", "longitudual_roughness_TT"),
+    ("float", "longitudual_roughness_TRT"), ("float", "azimuthal_roughness_R"), ("float", "azimuthal_roughness_TT"),
+    ("float", "azimuthal_roughness_TRT"), ("float", "cuticle_angle"), ("color", "absorption_coefficient")),
+    "closure color")
 USHR = ("osl_ushr", ("int", "int"), "int")
 
 
@@ -188,6 +196,8 @@ def builtin_helper(call: ir.Call):
     types = tuple(osl_type(a.type) for a in call.args)
     if name in OWN_HELPERS:
         return OWN_HELPERS[name], types, osl_type(call.type)
+    if name == HAIR[0]:
+        return HAIR
     if name == "texture":
         return "osl_texture", ("string", "vector2"), "vector4"
     if name == "textureGrad":
@@ -217,6 +227,11 @@ def width_option(texture_width: float | None) -> str:
 
 
 def helper_text(name: str, types: tuple, returns: str, texture_width: float | None = None) -> list[str]:
+    if name == HAIR[0]:
+        params = [f"{t} {p}" for t, p in types]
+        return [f"{returns} {name}({', '.join(params[:5])},",
+                *(f"{INDENT * 2}{', '.join(params[i:i + 3])}," for i in range(5, len(params) - 3, 3)),
+                f"{INDENT * 2}{', '.join(params[-3:])}) [[ int builtin = 1 ]];"]
     params = ", ".join(f"{t} {p}" for t, p in zip(types, "abcd"))
     head = f"{returns} {name}({params})"
     # (the library's coordinates are the image's already: t from the top row, as OSL's; a texture the
