@@ -181,8 +181,11 @@ def test_a_shader_for_a_scene_without_lights_has_none_of_the_closures_code_for_l
     source = unlit["stages"]["pixel"]
     assert "u_numActiveLightSources" in lit["stages"]["pixel"] and "lights" not in lit
     assert unlit["lights"] is False and unlit["hash"] != lit["hash"]
+    # the sheen's lamp branch (its albedo towards L) goes; its lobe stays, which the environment
+    # term samples (mx_sheen_environment)
+    assert "albedoL" in lit["stages"]["pixel"] and "mx_sheen_environment" in source
     for light_code in ("u_numActiveLightSources", "u_lightData", "sampleLightSource", "LightData",
-                       "mx_specular_reflection", "mx_sheen_microfiber", "CLOSURE_TYPE_REFLECTION)\n",
+                       "mx_specular_reflection", "albedoL", "CLOSURE_TYPE_REFLECTION)\n",
                        "MX_FEATURE_LIGHTS"):
         assert light_code not in source, light_code
     names = {v["name"] for block in unlit["blocks"]["pixel"].values() for v in block}
