@@ -42,39 +42,42 @@ def check_document(raw: bytes) -> str:
 def check_texture_paths(record: dict, roots: list[str]) -> None:
     """Every filename a shader will read must resolve inside a configured texture root, so a
     document cannot make a render worker read the server's files (`/etc/passwd`, `../../key`)."""
-    real_roots = [Path(os.path.realpath(r)) for r in roots]
     for stage in (record.get("blocks") or {}).values():
         for variables in stage.values():
             for var in variables:
                 value = var.get("value")
                 if var.get("type") != "filename" or not value:
                     continue
-                if not isinstance(value, str) or texture_in_roots(value, real_roots) is None:
+                if not isinstance(value, str) or texture_in_roots(value, roots) is None:
                     raise ServiceError("path_not_allowed",
                                        f"texture {value!r} is outside the configured texture roots",
                                        var.get("path"))
 
 
-def texture_in_roots(value: str, roots: list[Path]) -> Path | None:
-    """The real path a filename names inside one of the (real) roots, or None when it names a
+def texture_in_roots(value: str, roots: list[str]) -> Path | None:
+    """The real path a filename names inside one of the configured roots, or None when it names a
     URL, holds a NUL or leaves them: what thumbnails may read, and what the editor may fetch.
-    The name is made normal as written (`a/x/../b` is `a/b`) and must lie in a root as written
-    before the file system is asked anything: resolved by the file system, `..` after a folder
-    outside the roots goes wherever that folder really is, so what the server keeps outside them
-    (a folder, a link and where it leads, nothing) would decide the answer. Links inside a root
-    are still followed, and what they lead to must be in a root too."""
+    The name is made normal as written (`a/x/../b` is `a/b`) and must lie in a root, as configured
+    or as it really is, before the file system is asked anything: resolved by the file system,
+    `..` after a folder outside the roots goes wherever that folder really is, so what the server
+    keeps outside them (a folder, a link and where it leads, nothing) would decide the answer. A
+    root configured through a link is one folder under both names, so a texture named through the
+    link is in it. Links inside a root are still followed, and what they lead to must be in a
+    real root."""
     if "://" in value or "\x00" in value:
         return None
+    real_roots = [Path(os.path.realpath(r)) for r in roots]
     candidate = Path(value)
     if candidate.is_absolute():
         written = Path(os.path.normpath(candidate))
-        if not any(inside(written, root) for root in roots):
+        as_configured = [Path(os.path.normpath(os.path.abspath(r))) for r in roots]
+        if not any(inside(written, root) for root in real_roots + as_configured):
             return None
         real = Path(os.path.realpath(written))
-        return real if any(inside(real, root) for root in roots) else None
+        return real if any(inside(real, root) for root in real_roots) else None
     # relative names are looked up under a root and must stay under that same root; the first
     # root that holds the file, else the first the name stays in (a missing file is no escape)
-    staying = [real for root in roots if inside(written := Path(os.path.normpath(root / candidate)), root)
+    staying = [real for root in real_roots if inside(written := Path(os.path.normpath(root / candidate)), root)
                and inside(real := Path(os.path.realpath(written)), root)]
     return next((real for real in staying if _is_file(real)), staying[0] if staying else None)
 

@@ -1,7 +1,6 @@
 """Texture files for browsers (the editor's preview): a filename as a document names it, read
 only from the configured texture roots, as thumbnails read it (safety.texture_in_roots), and
 refused before it is read when the file or the image its header declares is over the limits."""
-import os
 from pathlib import Path
 
 from .errors import ServiceError
@@ -24,7 +23,7 @@ class TextureFile:
 def find_texture(name: str, roots: list[str], max_bytes: int) -> TextureFile:
     """The file `name` names in the roots, or the contract error that says why not (`where`:
     the query parameter `path`)."""
-    real = texture_in_roots(name, [Path(os.path.realpath(r)) for r in roots])
+    real = texture_in_roots(name, roots)
     if real is None:
         raise ServiceError("path_not_allowed", f"texture {name!r} is outside the configured texture roots", "path")
     media_type = MEDIA_TYPES.get(real.suffix.lower())

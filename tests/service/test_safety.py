@@ -48,3 +48,19 @@ def test_texture_paths_confined_to_roots(tmp_path):
 def test_no_roots_means_no_textures():
     with pytest.raises(ServiceError):
         check_texture_paths(_record("a.png"), [])
+
+
+def test_a_root_configured_through_a_link_holds_textures_named_either_way(tmp_path):
+    real = tmp_path / "store" / "textures"
+    real.mkdir(parents=True)
+    (real / "brick.png").write_bytes(b"x")
+    (tmp_path / "secret.png").write_bytes(b"x")
+    link = tmp_path / "textures"
+    link.symlink_to(real)
+    roots = [str(link)]
+    for ok in (str(link / "brick.png"), str(real / "brick.png"), "brick.png"):
+        check_texture_paths(_record(ok), roots)
+    for bad in (str(link / ".." / "secret.png"), str(tmp_path / "secret.png"), "../secret.png"):
+        with pytest.raises(ServiceError) as err:
+            check_texture_paths(_record(bad), roots)
+        assert err.value.code == "path_not_allowed"
