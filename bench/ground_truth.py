@@ -75,10 +75,16 @@ AMBER = (0.9, 0.55, 0.15)
 # truth: PSNR, the mean per channel and the signed error per N.V band over the sphere).
 CAUSES = {
     "standard_surface_brick_procedural": (
-        "aliasing, in the main: the truth is each pixel's area (2x2 renders of 64 spp), ours one point per pixel; "
-        "ours at 512x512 averaged 4x4 (fis 64) is 35.9 dB from the truth where ours at 128x128 is 32.2 dB (fis 256). "
-        "What remains is ours 7 % brighter on average (means 0.143/0.074/0.049 against 0.133/0.069/0.045): not found. "
-        "The scene's (u, v) were testrender's own before (29.8 dB); the thumbnail sphere's now (scene_form)"),
+        "texture footprint, in the main: the truth is each pixel's area (2x2 sub-pixels of 64 samples, each texture "
+        "read at its ray's footprint), ours one point per pixel whose MIP-filtered inputs enter a non-linear graph (a "
+        "mask mixes mortar and brick and divides the roughness): the base colour alone (an emission variant) is 29.8 dB "
+        "from the truth at 128 px (mortar red +15-25 %, blue -20-33 %), 42.0 dB at 512 px averaged 4x4. Of the 7 % "
+        "more light, part was the truth's: testrender's dPdv points south, the thumbnail's bitangent north, so the normal "
+        "map tilted the other way along v (the truth 4-8 % darker in the middle and lower bands); now -dPdv "
+        "(gts.THUMBNAIL_BITANGENT): ours at 512 averaged 4x4 35.9 -> 38.7 dB. The rest, ours 3 % brighter at 512/4, "
+        "most at grazing angles and in the mortar, is testrender's single-scattering GGX: with specular_roughness 0.5 "
+        "ours is within 1 % of the truth, with 1.0 (the mortar's: roughness_amount / mask, clamped) 5 % brighter, as "
+        "layer_coat_r1 in docs/furnace_truth.md (testrender 0.959, ours 1.000); without specular within 0.5 %"),
     "standard_surface_thin_film": (
         "testrender limitation: it ignores thin films (see furnace_truth); ours with thin_film_thickness 0 is 38.6 dB "
         "from the truth, ours with the 550 nm film 18.2 dB (the reference's too): the truth is the film-less glass"),
