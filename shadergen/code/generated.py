@@ -21,7 +21,8 @@ class GeneratedChecker(Checker):
                  memo: tuple[dict, dict]):
         super().__init__(path, symbols, externals)
         self.library_functions = library_functions  # the library's own families (name -> key -> Function)
-        self.types, self.overloads = memo  # the library's: type -> IR type; (name, argument types) -> Function
+        # the library's: type -> IR type; (name, argument types) -> (Function, out positions, converts)
+        self.types, self.overloads = memo
 
     def resolve_type(self, t: str, node) -> str:
         found = self.types.get(t)
@@ -30,20 +31,27 @@ class GeneratedChecker(Checker):
         return found
 
     def overload(self, e: ir.Call, family: list[ir.Function]) -> tuple[ir.Function, list[ir.Expr]]:
-        """The library's overload for these argument types, resolved once per library; a family a
-        generated function joined (its name is the library's too) is resolved each time."""
+        """The library's overload for these argument types, resolved once per library (with whether
+        an argument converts and which are out or inout: most calls pass every argument as it is);
+        a family a generated function joined (its name is the library's too) is resolved each time."""
         if self.symbols.functions.get(e.name) is not self.library_functions.get(e.name):
             return super().overload(e, family)
-        key = (e.name, tuple([a.type for a in e.args]))
-        best = self.overloads.get(key)
-        if best is None:
-            best, args = super().overload(e, family)  # no overload, or an ambiguous call, raises
-            self.overloads[key] = best
+        args = e.args
+        key = (e.name, tuple([a.type for a in args]))
+        found = self.overloads.get(key)
+        if found is None:
+            best, converted = super().overload(e, family)  # no overload, or an ambiguous call, raises
+            writes = tuple(i for i, p in enumerate(best.params) if p.qualifier != "in")
+            self.overloads[key] = best, writes, any(c is not a for c, a in zip(converted, args))
+            return best, converted
+        best, writes, converts = found
+        for i in writes:
+            if not self.is_lvalue(args[i]):
+                p = best.params[i]
+                raise self.error(args[i], f"the {p.qualifier} argument '{p.name}' of '{e.name}' is not a variable")
+        if not converts:
             return best, args
-        for p, a in zip(best.params, e.args):
-            if p.qualifier != "in" and not self.is_lvalue(a):
-                raise self.error(a, f"the {p.qualifier} argument '{p.name}' of '{e.name}' is not a variable")
-        return best, [self.convert(a, p.type) for p, a in zip(best.params, e.args)]
+        return best, [self.convert(a, p.type) for p, a in zip(best.params, args)]
 
     def expr(self, e: ir.Expr) -> ir.Expr:
         """What the generator made typed (its values, an inline template instantiated with its
