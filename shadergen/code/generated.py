@@ -59,8 +59,19 @@ class GeneratedChecker(Checker):
         constructor has its type from the start, and is checked for its arguments' unless it is a
         value's (exact)."""
         if e.type is None or (e.__class__ is ir.Construct and not e.exact):
-            return super().expr(e)
+            return Checker.expr(self, e)
         return e
+
+    def statement(self, s) -> None:
+        """A declaration of a variable of its typed value's type (most of main: a node's output),
+        the type one the library has resolved to itself, only enters its scope: what the
+        library's rules would do to it changes nothing. Anything else is checked by them."""
+        init = s.init if s.__class__ is ir.Declare else None
+        if init is not None and init.type == s.type and (init.__class__ is not ir.Construct or init.exact) \
+                and self.types.get(s.type) == s.type:
+            self.scopes[-1][s.name] = (s.type, "local")
+            return
+        super().statement(s)
 
     def expr_Name(self, e):
         if e.kind in GENERATED_KINDS and e.type is not None and not any(e.name in s for s in self.scopes):
