@@ -148,9 +148,11 @@ class EmitContext:
 
     def call(self, function: str, node: Node) -> None:
         outs = [self.declare(o) for o in node.outputs.values()]
-        args = [self.value(i) for i in node.inputs.values()] + outs
-        if id(node) in self.prepared_lobes:  # its inputs were read once, by its preparation
-            args = [self.prepared_lobes[id(node)]] + outs
+        prepared = self.prepared_lobes.get(id(node))
+        if prepared is not None:  # its inputs were read once, by its preparation
+            args = [prepared] + outs
+        else:
+            args = [self.value(i) for i in node.inputs.values()] + outs
         if is_closure_node(node):
             args = self.target.closures.arguments() + args
         self.body.call(function, *args)
@@ -320,7 +322,10 @@ def image_fallback(file: Input | Socket):
 
 
 def is_closure_node(node: Node) -> bool:
-    return any(o.type in CLOSURES for o in node.outputs.values())
+    for o in node.outputs.values():  # (a loop, not any(): asked of every node in every request)
+        if o.type in CLOSURES:
+            return True
+    return False
 
 
 def assign_outputs(ctx: EmitContext, graph: Graph) -> None:

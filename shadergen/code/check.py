@@ -112,8 +112,15 @@ class Checker:
         raise self.error(e if e.where else node, f"a {t} where a {to} is expected")
 
     # -- expressions -------------------------------------------------------------------------------
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        cls.EXPR_RULES = expr_rules(cls)
+
     def expr(self, e: ir.Expr) -> ir.Expr:
-        return getattr(self, "expr_" + type(e).__name__)(e)
+        rule = self.EXPR_RULES.get(e.__class__)
+        if rule is None:
+            return getattr(self, "expr_" + type(e).__name__)(e)  # (not an expression: raises)
+        return rule(self, e)
 
     def expr_Literal(self, e):
         if isinstance(e.value, bool):
@@ -514,6 +521,16 @@ class Checker:
         self.scopes = [{p.name: (p.type, "param") for p in fn.params}]
         self.statements(fn.body.body)
         self.scopes = []
+
+
+def expr_rules(cls) -> dict:
+    """A checker class's `expr_<Class>` method per expression class: `expr` looks its rule up by
+    the node's class instead of by a name built per node (generated code is typed per request)."""
+    return {node: getattr(cls, "expr_" + node.__name__) for node in vars(ir).values()
+            if isinstance(node, type) and issubclass(node, ir.Expr) and hasattr(cls, "expr_" + node.__name__)}
+
+
+Checker.EXPR_RULES = expr_rules(Checker)
 
 
 def implicitly_converts(a: str | None, b: str | None) -> bool:

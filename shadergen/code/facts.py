@@ -128,10 +128,10 @@ def _read(nodes, function: ir.Function | None) -> Facts:
             continue  # a value's vector or matrix (code/values.py): numbers of built-in types, no fact
         for field in cls.CHILDREN:
             value = getattr(n, field)
-            if isinstance(value, Node):
+            if value.__class__ is list:
+                extend(value)  # (a list field holds nodes only: statements, arguments, parameters)
+            elif value is not None:
                 push(value)
-            elif value.__class__ is list or value.__class__ is tuple:
-                extend([v for v in value if isinstance(v, Node)])
         type_name = getattr(n, "type", None)
         if type_name is not None:
             mentioned[type_name] = None

@@ -21,7 +21,8 @@ class GeneratedChecker(Checker):
                  memo: tuple[dict, dict]):
         super().__init__(path, symbols, externals)
         self.library_functions = library_functions  # the library's own families (name -> key -> Function)
-        self.types, self.overloads = memo  # the library's: type -> IR type; (name, argument types) -> Function
+        # the library's: type -> IR type; (name, argument types) -> (Function, out positions, converts)
+        self.types, self.overloads = memo
 
     def resolve_type(self, t: str, node) -> str:
         found = self.types.get(t)
@@ -30,20 +31,27 @@ class GeneratedChecker(Checker):
         return found
 
     def overload(self, e: ir.Call, family: list[ir.Function]) -> tuple[ir.Function, list[ir.Expr]]:
-        """The library's overload for these argument types, resolved once per library; a family a
-        generated function joined (its name is the library's too) is resolved each time."""
+        """The library's overload for these argument types, resolved once per library (with whether
+        an argument converts and which are out or inout: most calls pass every argument as it is);
+        a family a generated function joined (its name is the library's too) is resolved each time."""
         if self.symbols.functions.get(e.name) is not self.library_functions.get(e.name):
             return super().overload(e, family)
-        key = (e.name, tuple([a.type for a in e.args]))
-        best = self.overloads.get(key)
-        if best is None:
-            best, args = super().overload(e, family)  # no overload, or an ambiguous call, raises
-            self.overloads[key] = best
+        args = e.args
+        key = (e.name, tuple([a.type for a in args]))
+        found = self.overloads.get(key)
+        if found is None:
+            best, converted = super().overload(e, family)  # no overload, or an ambiguous call, raises
+            writes = tuple(i for i, p in enumerate(best.params) if p.qualifier != "in")
+            self.overloads[key] = best, writes, any(c is not a for c, a in zip(converted, args))
+            return best, converted
+        best, writes, converts = found
+        for i in writes:
+            if not self.is_lvalue(args[i]):
+                p = best.params[i]
+                raise self.error(args[i], f"the {p.qualifier} argument '{p.name}' of '{e.name}' is not a variable")
+        if not converts:
             return best, args
-        for p, a in zip(best.params, e.args):
-            if p.qualifier != "in" and not self.is_lvalue(a):
-                raise self.error(a, f"the {p.qualifier} argument '{p.name}' of '{e.name}' is not a variable")
-        return best, [self.convert(a, p.type) for p, a in zip(best.params, e.args)]
+        return best, [self.convert(a, p.type) for p, a in zip(best.params, args)]
 
     def expr(self, e: ir.Expr) -> ir.Expr:
         """What the generator made typed (its values, an inline template instantiated with its
@@ -51,8 +59,19 @@ class GeneratedChecker(Checker):
         constructor has its type from the start, and is checked for its arguments' unless it is a
         value's (exact)."""
         if e.type is None or (e.__class__ is ir.Construct and not e.exact):
-            return super().expr(e)
+            return Checker.expr(self, e)
         return e
+
+    def statement(self, s) -> None:
+        """A declaration of a variable of its typed value's type (most of main: a node's output),
+        the type one the library has resolved to itself, only enters its scope: what the
+        library's rules would do to it changes nothing. Anything else is checked by them."""
+        init = s.init if s.__class__ is ir.Declare else None
+        if init is not None and init.type == s.type and (init.__class__ is not ir.Construct or init.exact) \
+                and self.types.get(s.type) == s.type:
+            self.scopes[-1][s.name] = (s.type, "local")
+            return
+        super().statement(s)
 
     def expr_Name(self, e):
         if e.kind in GENERATED_KINDS and e.type is not None and not any(e.name in s for s in self.scopes):

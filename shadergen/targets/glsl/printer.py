@@ -203,7 +203,7 @@ class GlslPrinter:
         if cls is ir.Literal:
             return literal_text(e)
         if column is not None:
-            flat = self.render(e, None, indent)
+            flat = self.line(e) if self.one_line else self.render(e, None, indent)
             if column + len(flat) <= WIDTH:
                 return flat
         if cls is ir.Binary:
