@@ -31,7 +31,7 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-3"
+CACHE_FORMAT = b"shadergen-code-5"
 # an identifier as the libraries' sources spell one (comments and strings included: only ever more)
 _SOURCE_IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
 
@@ -209,7 +209,7 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
             facts(item)
     # WGSL spells a library name that is one of its reserved words `<name>_` (targets/wgsl)
     identifiers = tuple(sorted(identifiers | {f"{n}_" for n in identifiers}))
-    return (key, modules, symbols, templates, dict(sorted(externals.items())), identifiers)
+    return (key, modules, symbols, cachefile.Apart(templates), dict(sorted(externals.items())), identifiers)
 
 
 def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:
