@@ -32,8 +32,9 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
 CACHE_FORMAT = b"shadergen-code-5"
-# an identifier as the libraries' sources spell one (comments and strings included: only ever more)
-_SOURCE_IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
+# an identifier as the libraries' sources spell one (comments and strings included: only ever more);
+# compiled where a library is built (re's cache), not by every process that imports this module
+_SOURCE_IDENTIFIER = r"(?a)\b[A-Za-z_]\w*"
 
 
 def _running_ir() -> bytes:
@@ -197,7 +198,7 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
     for relative in sorted(source_files(root)):
         text = read_source(os.path.join(root, relative))
         modules[relative] = parse_module(relative, text)
-        identifiers.update(_SOURCE_IDENTIFIER.findall(text))
+        identifiers.update(re.findall(_SOURCE_IDENTIFIER, text))
     symbols = library_symbols(check_modules(modules, externals, (PRELUDE,)))
     symbols.items = top_level_items(modules)
     templates = {}
