@@ -88,7 +88,7 @@ class SourceFunctionImpl(NodeImpl):
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
         code = library.code()
         self.files = code.files_for(self.path)  # paths, dependencies first
-        self.declarations = code.module(self.path).features
+        self.declarations = code.module(self.files[-1]).features  # its own, by the path the library keys it by
         calls = code.calls_of(self.function)
         self.uses_derivatives = calls.uses_derivatives
         self.empty_at_zero_weight = calls.empty_at_zero_weight
