@@ -99,7 +99,12 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     return full, full if graph.values_in_source else hashlib.sha256(structure).hexdigest()
 
 
+# JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally;
+# tuples (vector values) are arrays, as lists are. The structure is built afresh for each hash and
+# holds no container twice, so the encoder does not track containers for cycles (a quarter of its
+# time on a warm Examples element: ~1,200 containers a hash); the bytes are the same.
+_ENCODER = json.JSONEncoder(sort_keys=True, separators=(",", ":"), default=str, check_circular=False)
+
+
 def _canonical(data) -> bytes:
-    """JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally;
-    tuples (vector values) are arrays, as lists are."""
-    return json.dumps(data, sort_keys=True, separators=(",", ":"), default=str).encode()
+    return _ENCODER.encode(data).encode()

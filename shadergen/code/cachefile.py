@@ -1,13 +1,14 @@
 """The bytes of the library code's cache (code/library.py), written so that a process reads only
 the library code it uses.
 
-Most of the library's IR is in its functions' bodies and facts and a few large constants' values
-(the albedo and DFG tables), and a request uses a part of them. Each of those fields is pickled
-apart, as bytes inside the file, and unpickled the first time it is read (ir.Item's `pending`);
-the rest (every item's name, signature and type, the modules, the symbol table) is read at once.
-A function's facts are apart from its body: the passes read the facts of every function they
-keep or drop, a request prints only some bodies (targets/printed.py holds the text of the
-others). A reference from a deferred field to a library item (a callee) is written as the item's
+Most of the library's IR is in its functions' parameters, bodies and facts and a few large
+constants' values (the albedo and DFG tables), and a request uses a part of them. Each of those
+fields is pickled apart, as bytes inside the file, and unpickled the first time it is read
+(ir.Item's `pending`); the rest (every item's name, key and type, the modules, the symbol table)
+is read at once. A function's facts are apart from its body: the passes read the facts of every
+function they keep or drop, a request prints only some bodies (targets/printed.py holds the text
+of the others); its parameters are apart from both, read where a call is resolved to it or it is
+printed (most of a cold process's unpickling was the parameters of functions it never called). A reference from a deferred field to a library item (a callee) is written as the item's
 place among the library's items, and one from a body to a statement its facts name (a member
 store) as its place among those; both are read back as the same objects. A forwarding function's
 facts hold its call's arguments: it is read whole, at once.
@@ -19,9 +20,10 @@ import _thread
 from . import ir
 from .check import flat_items
 
-# the fields of an item kept in the file until asked for, in the order they are read (a body's
-# member stores are its facts')
-DEFERRED = {ir.Function: ("facts", "body"), ir.Constant: ("value",)}
+# the fields of an item kept in the file until asked for, each read apart, except a body: its
+# member stores are its facts', read first (NEEDS)
+DEFERRED = {ir.Function: ("params", "facts", "body"), ir.Constant: ("value",)}
+NEEDS = {"body": "facts"}
 
 
 class _Items:
@@ -105,6 +107,36 @@ def _deferred(cls, state: dict, blobs: dict[str, bytes], items: list):
     return item
 
 
+class Apart:
+    """A table whose values are pickled apart in the file, each unpickled when first asked for
+    (the library's inline templates: a request instantiates a few of its hundreds). Its values
+    hold no library item."""
+    __slots__ = ("keys", "values", "blobs")
+
+    def __init__(self, values: dict, blobs: dict[str, bytes] | None = None):
+        self.keys = tuple(values) + tuple(blobs or ())  # in the order written
+        self.values = dict(values)  # read, or made in this process
+        self.blobs = dict(blobs or {})  # key -> its value's pickle, still unread
+
+    def get(self, key):
+        found = self.values.get(key)
+        if found is None and key in self.blobs:
+            with _RESTORING:
+                blob = self.blobs.pop(key, None)
+                if blob is not None:
+                    self.values[key] = pickle.loads(blob)
+            found = self.values.get(key)
+        return found
+
+    def __iter__(self):
+        return iter(self.keys)
+
+    def __reduce__(self):
+        blobs = {key: self.blobs[key] if key in self.blobs else pickle.dumps(self.values[key], pickle.HIGHEST_PROTOCOL)
+                 for key in self.keys}
+        return Apart, ({}, blobs)
+
+
 class _Pending:
     __slots__ = ("blobs", "items")
 
@@ -112,16 +144,14 @@ class _Pending:
         self.blobs, self.items = dict(blobs), items
 
     def restore(self, item, name: str) -> None:
-        """Reads `name` (and the fields before it in DEFERRED's order) into `item`, if still unread."""
+        """Reads `name` (and the field it NEEDS) into `item`, if still unread."""
         with _RESTORING:
             if name not in self.blobs:
                 return  # not deferred, or another thread read it
-            for field in DEFERRED[item.__class__]:
+            for field in (NEEDS.get(name), name):
                 blob = self.blobs.pop(field, None)
                 if blob is not None:
                     stores = item.facts.stores if field == "body" else ()
                     reader = pickle.Unpickler(io.BytesIO(blob))
                     reader.persistent_load = lambda pid: self.items[pid] if pid.__class__ is int else stores[pid[0]].statement
                     setattr(item, field, reader.load())
-                if field == name:
-                    break

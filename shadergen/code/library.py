@@ -7,7 +7,9 @@ checked (code/check.py) together, and every inline implementation's expression (
 an `.inline` file, as nodes/base.py reads them) is parsed into a template. The result is pickled
 in the cache folder beside the data library's JSON Lines cache, under a name made of the
 library's hash, the prelude and the externals, so a process after the first reads one file
-instead of parsing (the figures are in the commit that added this). A damaged file is rebuilt.
+instead of parsing (the figures are in the commit that added this), and reads what calling a
+function means to the passes (Calls) instead of working it out from their facts and bodies. A
+damaged file is rebuilt.
 
 Paths are relative to the library folder (`pbrlib/genglsl/lib/mx_fresnel.glsl`): they are in
 every node's `where`, and the pickle does not depend on where the library lies.
@@ -16,13 +18,14 @@ import hashlib
 import os
 import pickle
 import re
+from collections import namedtuple
 
 from ..errors import ShaderGenError
 from ..fingerprint import library_files
 from ..library import Library, cache_dir, collection_paused, read_checked, read_source, write_checked
 from . import cachefile, ir
 from .check import check_expression, check_modules, flat_items, library_symbols
-from .facts import facts
+from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
 from .instantiate import maker
 from .parse import parse_expression, parse_module
@@ -31,9 +34,10 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-3"
-# an identifier as the libraries' sources spell one (comments and strings included: only ever more)
-_SOURCE_IDENTIFIER = re.compile(r"\b[A-Za-z_]\w*", re.ASCII)
+CACHE_FORMAT = b"shadergen-code-6"
+# an identifier as the libraries' sources spell one (comments and strings included: only ever more);
+# compiled where a library is built (re's cache), not by every process that imports this module
+_SOURCE_IDENTIFIER = r"(?a)\b[A-Za-z_]\w*"
 
 
 def _running_ir() -> bytes:
@@ -46,8 +50,18 @@ def _running_ir() -> bytes:
 
 
 RUNNING_IR = _running_ir()
-STATE_SIZE = 6  # the fields of CodeLibrary.state()
+STATE_SIZE = 7  # the fields of CodeLibrary.state()
 MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
+# What a node implementation calling a library function by name needs to know of its definitions
+# (nodes/base.py SourceFunctionImpl, the passes that read it): whether any takes derivatives, itself
+# or in what it calls; whether every one is a lobe empty at zero weight; whether any answers the
+# transmission context; the state its `_prepare` writes (code/facts.py). Worked out for every name
+# when the cache is built and read with it: a cold process reads four fields per name, not the facts
+# and bodies of every function they come from (116 functions' facts and 17 bodies for carpaint).
+# Most names (277 of 318) answer no to all four (PLAIN, as a name with no definition does): the
+# cache holds the others.
+Calls = namedtuple("Calls", "uses_derivatives empty_at_zero_weight handles_transmission prepared_state")
+PLAIN = Calls(False, False, False, None)
 
 
 class CodeLibrary:
@@ -55,12 +69,12 @@ class CodeLibrary:
     identifier its sources spell (`identifiers`): WGSL reads a uniform through its buffer wherever
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
-    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "typed", "parsed",
-                 "makers", "generated")
+    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls", "typed",
+                 "parsed", "makers", "generated")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
-        self.key, self.modules, self.symbols, self.templates, self.externals, identifiers = state
+        self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls = state
         self.identifiers = frozenset(identifiers)
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
@@ -84,7 +98,8 @@ class CodeLibrary:
     def state(self) -> tuple:
         """What the cache holds (equal for equal libraries, whatever order they were read in)."""
         # the identifiers as a sorted tuple: a set's order depends on how it was filled
-        return (self.key, self.modules, self.symbols, self.templates, self.externals, tuple(sorted(self.identifiers)))
+        return (self.key, self.modules, self.symbols, self.templates, self.externals, tuple(sorted(self.identifiers)),
+                self.calls)
 
     # -- lookups -----------------------------------------------------------------------------------
     def module(self, path: str) -> ir.Module:
@@ -99,6 +114,10 @@ class CodeLibrary:
     def functions(self, name: str) -> list[ir.Function]:
         """Every overload of a library function (none: an empty list)."""
         return list(self.symbols.functions.get(name, {}).values())
+
+    def calls_of(self, name: str) -> Calls:
+        """What calling the library function `name` means to the passes (Calls)."""
+        return self.calls.get(name, PLAIN)
 
     def struct(self, name: str) -> ir.Struct | None:
         return self._item(name, ir.Struct)
@@ -197,7 +216,7 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
     for relative in sorted(source_files(root)):
         text = read_source(os.path.join(root, relative))
         modules[relative] = parse_module(relative, text)
-        identifiers.update(_SOURCE_IDENTIFIER.findall(text))
+        identifiers.update(re.findall(_SOURCE_IDENTIFIER, text))
     symbols = library_symbols(check_modules(modules, externals, (PRELUDE,)))
     symbols.items = top_level_items(modules)
     templates = {}
@@ -209,7 +228,22 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
             facts(item)
     # WGSL spells a library name that is one of its reserved words `<name>_` (targets/wgsl)
     identifiers = tuple(sorted(identifiers | {f"{n}_" for n in identifiers}))
-    return (key, modules, symbols, templates, dict(sorted(externals.items())), identifiers)
+    state = (key, modules, symbols, cachefile.Apart(templates), dict(sorted(externals.items())), identifiers)
+    return state + (calls_by_name(CodeLibrary(root, state + ({},))),)
+
+
+def calls_by_name(code: CodeLibrary) -> dict[str, Calls]:
+    """Calls of the library's function names that are not PLAIN, by name (sorted: the cache's bytes)."""
+    out = {}
+    for name in sorted(code.symbols.functions):
+        definitions = code.functions(name)
+        calls = Calls(any(uses_derivatives(f) for f in definitions),
+                      all(early_exit_at_zero_weight(f) for f in definitions),
+                      any(reads_constant(f, "CLOSURE_TYPE_TRANSMISSION") for f in definitions),
+                      prepared_state(definitions[0], code))
+        if calls != PLAIN:
+            out[name] = calls
+    return out
 
 
 def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:

@@ -10,7 +10,6 @@ nodes that are called once per context; it is None for ordinary data nodes.
 import os
 import re
 
-from ..code import facts
 from ..element import Element
 from ..errors import ShaderGenError
 from ..features import node_features
@@ -80,20 +79,21 @@ class SourceFunctionImpl(NodeImpl):
     """A function in a library source file, in the IR: made once per library
     (nodes.implementation_for), it reads what the code passes and the closure passes need from the
     function's IR, once: the files it needs (its own and their includes, dependencies first), the
-    features it declares, whether it takes derivatives, and for a lobe whether it is empty at
-    zero weight, whether it answers the transmission context and the state its `_prepare` writes."""
+    features it declares, and what calling it means to the passes (code/library.py Calls: whether
+    it takes derivatives, and for a lobe whether it is empty at zero weight, whether it answers the
+    transmission context and the state its `_prepare` writes), read with the library's cache."""
 
     def __init__(self, elem: Element, library: Library):
         self.path = _source_path(elem, elem.get("file"))
         self.function = elem.get("function") or os.path.splitext(os.path.basename(self.path))[0]
         code = library.code()
         self.files = code.files_for(self.path)  # paths, dependencies first
-        self.declarations = code.module(self.path).features
-        definitions = code.functions(self.function)
-        self.uses_derivatives = any(facts.uses_derivatives(f) for f in definitions)
-        self.empty_at_zero_weight = bool(definitions) and all(facts.early_exit_at_zero_weight(f) for f in definitions)
-        self.handles_transmission = any(facts.reads_constant(f, "CLOSURE_TYPE_TRANSMISSION") for f in definitions)
-        self.prepared_state = facts.prepared_state(definitions[0], code) if definitions else None
+        self.declarations = code.module(self.files[-1]).features  # its own, by the path the library keys it by
+        calls = code.calls_of(self.function)
+        self.uses_derivatives = calls.uses_derivatives
+        self.empty_at_zero_weight = calls.empty_at_zero_weight
+        self.handles_transmission = calls.handles_transmission
+        self.prepared_state = calls.prepared_state
 
     def features(self, node) -> set[str]:
         return node_features(node, self.declarations)

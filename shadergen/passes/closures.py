@@ -22,10 +22,11 @@ from .fold import constant
 from .order import topological_order
 
 PASS_THROUGH = {"layer": (("top", "base"), ("base", "top")), "add": (("in1", "in2"), ("in2", "in1"))}
+CLOSURE_TYPES = frozenset(name for name, t in TYPES.items() if t.is_closure)
 
 
 def is_closure_node(node: Node) -> bool:
-    return any(o.type in TYPES and TYPES[o.type].is_closure for o in node.outputs.values())
+    return any(o.type in CLOSURE_TYPES for o in node.outputs.values())
 
 
 def closure_inputs(node: Node) -> list[Input]:
@@ -34,12 +35,13 @@ def closure_inputs(node: Node) -> list[Input]:
 
 def prune_closures(graph: Graph) -> int:
     """Returns how many closure nodes were removed or bypassed."""
-    reading = readers(graph)
+    reading = None  # who reads each output: found at the first edit (most graphs have none)
     count = 0
     for node in graph.nodes:
         if not is_closure_node(node):
             continue
         if removable(node):
+            reading = readers(graph) if reading is None else reading
             for out in node.outputs.values():
                 for inp in reading.pop(id(out), []):
                     set_constant(inp, None)
@@ -48,6 +50,7 @@ def prune_closures(graph: Graph) -> int:
         for removed, kept in PASS_THROUGH.get(node.category, ()):
             inp = node.inputs.get(removed)
             if inp is not None and _is_removed(inp) and can_pass(node.inputs[kept], node):
+                reading = readers(graph) if reading is None else reading
                 pass_through(graph, node, node.inputs[kept], reading)
                 count += 1
                 break

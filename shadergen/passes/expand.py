@@ -129,12 +129,24 @@ def use_size(node: Node, builder: GraphBuilder, sizes: dict[int, int]) -> int:
 
 class Body:
     """A nodegraph's body built once, bound to no use: its nodes (in topological order) read
-    the sockets of a template interface, its node names lack the prefix of a use."""
+    the sockets of a template interface, its node names lack the prefix of a use. `plan`: what
+    copy_body makes each node of, read from the nodes once (a body is copied at every use): per
+    node its fields, its outputs' (name, type) and its inputs' fields, a connection as (the
+    place of the node it reads, that node's output), a socket as its name; and per output of the
+    body (its name, the place of its node, the node's output)."""
 
     def __init__(self, nodes: list[Node], outputs: dict[str, Output], warnings: list[str]):
         self.nodes = nodes
         self.outputs = outputs
         self.warnings = warnings
+        place = {id(n): i for i, n in enumerate(nodes)}
+        self.plan = ([(t.name, t.category, t.type, t.nodedef, t.implementation, t.path,
+                       tuple((o.name, o.type) for o in t.outputs.values()),
+                       tuple((i.name, i.type, i.value, i.path, i.meta, i.authored, i.default,
+                              None if i.connection is None else (place[id(i.connection.node)], i.connection.name),
+                              None if i.socket is None else i.socket.name) for i in t.inputs.values()))
+                      for t in nodes],
+                     tuple((name, place[id(o.node)], o.name) for name, o in outputs.items()))
 
 
 def expand(instance: Instance, outer: GraphBuilder, graph: Graph, positions: dict[int, int]) -> list:
@@ -176,20 +188,22 @@ def build_body(elem: Element, outer: GraphBuilder, node: Node) -> Body:
 def copy_body(template: Body, instance: Instance) -> list[Node]:
     """The template's nodes for one use: named after the node it replaces, reading its sockets."""
     prefix = f"{instance.node.name}_"
-    copies: dict[int, Node] = {}
-    for t in template.nodes:
-        n = copies[id(t)] = Node(prefix + t.name, t.category, t.type, t.nodedef, t.implementation, t.path,
-                                 instance=instance)
-        n.outputs = {name: Output(o.name, o.type, n) for name, o in t.outputs.items()}
-        for name, ti in t.inputs.items():
-            inp = n.inputs[name] = Input(ti.name, ti.type, n, ti.value, ti.path, meta=dict(ti.meta),
-                                         authored=ti.authored, default=ti.default)
-            if ti.connection is not None:
-                inp.connection = copies[id(ti.connection.node)].outputs[ti.connection.name]
-            if ti.socket is not None:
-                inp.bind_socket(instance.sockets[ti.socket.name])
-    instance.outputs = {name: copies[id(o.node)].outputs[o.name] for name, o in template.outputs.items()}
-    return [copies[id(t)] for t in template.nodes]
+    sockets = instance.sockets
+    copies: list[Node] = []
+    nodes, outputs = template.plan
+    for name, category, type_name, nodedef, implementation, path, node_outputs, node_inputs in nodes:
+        n = Node(prefix + name, category, type_name, nodedef, implementation, path, instance)
+        n.outputs = {out: Output(out, out_type, n) for out, out_type in node_outputs}
+        inputs = n.inputs
+        for name, type_name, value, path, meta, authored, default, connection, socket in node_inputs:
+            inp = inputs[name] = Input(name, type_name, n, value, path, dict(meta), authored, default)
+            if connection is not None:
+                inp.connection = copies[connection[0]].outputs[connection[1]]
+            if socket is not None:
+                inp.bind_socket(sockets[socket])
+        copies.append(n)
+    instance.outputs = {name: copies[place].outputs[out] for name, place, out in outputs}
+    return copies
 
 
 def bind_socket(socket: Socket, graph: Graph, positions: dict[int, int]) -> None:

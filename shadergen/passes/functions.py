@@ -6,6 +6,8 @@ connections and the same constants; only what arrives through the body's interfa
 Bodies with closures stay expanded: closures are evaluated per shading context by the surface.
 Nested uses are decided first, so an outer body may call an inner function.
 """
+from collections import Counter
+
 from ..graph import Function, Graph, Input, Instance, Node, Output, Socket
 from ..nodes.base import GraphFunctionImpl
 from ..types import TYPES
@@ -22,7 +24,12 @@ def share_functions(graph: Graph, uniform_flow) -> int:
         bodies = _bodies(graph, depth, uses)
         changed = False
         groups: dict[tuple, list[Instance]] = {}
+        # a signature names its nodegraph: a use of one nodegraph used once at this depth is a group
+        # of one, which stays expanded, so its signature (a walk over its body) is not worked out
+        definitions = Counter(id(inst.graph_elem) for inst, _ in bodies.values())
         for inst, body in bodies.values():
+            if definitions[id(inst.graph_elem)] == 1:
+                continue
             signature = _signature(inst, body)
             if signature is not None:
                 groups.setdefault(signature, []).append(inst)

@@ -35,6 +35,10 @@ def assign_scopes(nodes: list[Node], uniform_flow=lambda node: False) -> int:
     """A node read only through one branch input of a conditional (directly or through nodes of
     that branch) gets that branch as its scope; anything else is global. `uniform_flow(node)` says
     a node must stay global (it takes screen-space derivatives). Returns how many nodes are scoped."""
+    if not any(node.category in BRANCH_INPUTS for node in nodes):  # no branch: every node is global
+        for node in nodes:
+            node.scope = ()
+        return 0
     consumers: dict[int, list[tuple[Node, str]]] = {}
     for node in nodes:
         for inp in node.inputs.values():
@@ -42,7 +46,7 @@ def assign_scopes(nodes: list[Node], uniform_flow=lambda node: False) -> int:
                 consumers.setdefault(id(inp.connection.node), []).append((node, inp.name))
     for node in reversed(nodes):  # consumers before producers
         uses = consumers.get(id(node))
-        if not uses or uniform_flow(node):
+        if not uses:
             node.scope = ()
             continue
         scopes = set()
@@ -51,7 +55,8 @@ def assign_scopes(nodes: list[Node], uniform_flow=lambda node: False) -> int:
                 scopes.add(consumer.scope + ((consumer, input_name),))
             else:
                 scopes.add(consumer.scope)
-        node.scope = scopes.pop() if len(scopes) == 1 else _common_prefix(scopes)
+        scope = scopes.pop() if len(scopes) == 1 else _common_prefix(scopes)
+        node.scope = () if scope and uniform_flow(node) else scope  # (asked only where it decides)
     return sum(1 for n in nodes if n.scope)
 
 

@@ -344,18 +344,30 @@ def test_the_cache_round_trips_and_a_corrupt_file_is_rebuilt(library, tmp_path, 
     assert cached.read_bytes() == data
 
 
-def test_a_reloaded_function_reads_its_facts_and_body_when_first_asked(library, tmp_path, monkeypatch):
+def test_a_reloaded_function_reads_its_params_facts_and_body_when_first_asked(library, tmp_path, monkeypatch):
     monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
     built = CodeLibrary.load(library, EXTERNALS)
     reloaded = CodeLibrary.load(library, EXTERNALS)
     key = next(f.key for f in built.functions("mx_dielectric_bsdf") if f.facts.stores)
     fn = next(f for f in reloaded.functions("mx_dielectric_bsdf") if f.key == key)
-    assert set(fn.pending.blobs) == {"facts", "body"}  # nothing of either read yet
-    assert fn.facts.stores and set(fn.pending.blobs) == {"body"}  # the facts, without the body
+    assert set(fn.pending.blobs) == {"params", "facts", "body"}  # nothing of any read yet
+    assert fn.facts.stores and set(fn.pending.blobs) == {"params", "body"}  # the facts alone
     # the body's member stores are the very statements the facts name (the fields pass removes them by identity)
     statements = {id(n) for n in ir.walk(fn.body)}
-    assert not fn.pending.blobs and all(id(store.statement) in statements for store in fn.facts.stores)
+    assert set(fn.pending.blobs) == {"params"} and all(id(store.statement) in statements for store in fn.facts.stores)
+    assert fn.key == fn.name + "(" + ",".join(p.type for p in fn.params) + ")" and not fn.pending.blobs
     assert printed(fn) == printed(next(f for f in built.functions("mx_dielectric_bsdf") if f.key == key))
+
+
+def test_a_reloaded_librarys_inline_templates_are_read_when_first_asked(library, tmp_path, monkeypatch):
+    monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
+    built = CodeLibrary.load(library, EXTERNALS)
+    reloaded = CodeLibrary.load(library, EXTERNALS)
+    text, *others = list(reloaded.templates)
+    assert list(built.templates) == [text, *others] and not reloaded.templates.values
+    template = reloaded.template(text)
+    assert list(reloaded.templates.values) == [text] and text not in reloaded.templates.blobs
+    assert reloaded.template(text) is template and ir.shape(template) == ir.shape(built.template(text))
 
 
 def test_library_items_are_printed_once_per_library_into_a_file(library, code, tmp_path, monkeypatch):
