@@ -2,8 +2,11 @@
 sampled, and the GL textures kept between renders.
 
 Images are uploaded top row first, untouched (float32, no colour conversion); the generated code
-flips v (MaterialX's fileTextureVerticalFlip) and converts colour spaces. A one-channel image is
-read as grey (swizzle RRR1), as MaterialX's GL texture handler does.
+flips v (MaterialX's fileTextureVerticalFlip) and converts colour spaces. Every image is stored
+as RGBA: a grey one as grey (what MaterialX's GL texture handler's RRR1 swizzle reads), an RGB one
+opaque. One format for every file keeps one machine code per program: llvmpipe compiles a
+fragment shader's code per texture format and swizzle bound, which cost a library thumbnail of a
+known topology ~1.8 s whenever its texture had another channel count than the first one's.
 """
 import base64
 import os
@@ -26,7 +29,6 @@ ADDRESS_MODES = {"constant": GL_CLAMP_TO_BORDER, "clamp": GL_CLAMP_TO_EDGE, "per
 ADDRESS_MODE_ORDER = ("constant", "clamp", "periodic", "mirror")  # the enum's integer values
 FILTER_TYPE_ORDER = ("closest", "linear", "cubic")
 UNRESOLVABLE_TOKENS = ("<UDIM>", "<UVTILE>")
-_SWIZZLE = {1: "RRR1", 2: "RRRG"}  # grey and grey-alpha images read as grey
 # Failures that refuse the render instead of showing the image node's default: a file the server
 # will not read (an image over the limit, a package that is not a valid usdz) is no missing file,
 # nor is a limit the operator set wrongly, and a default colour would hide either behind a
@@ -214,20 +216,27 @@ def upload(ctx, image: np.ndarray, levels: list[np.ndarray] | None = None):
     first use: about 0.1-0.2 s of every thumbnail process on llvmpipe). An RGB image is stored
     as RGBA with alpha 1 (what GL reads from RGB anyway): llvmpipe filters four float channels
     faster than three (Examples carpaint, complete: ~8% less CPU per frame with the environment's
-    radiance so stored)."""
-    image = np.ascontiguousarray(image, "f4")
-    height, width, channels = image.shape
-    if channels > 4:
-        image, channels = np.ascontiguousarray(image[..., :4]), 4
-    if channels == 3:
-        image, channels = opaque(image), 4
-        levels = None if levels is None else [opaque(level) for level in levels]
-    texture = ctx.texture((width, height), channels, image.tobytes(), dtype="f4")
-    if channels in _SWIZZLE:
-        texture.swizzle = _SWIZZLE[channels]
+    radiance so stored), and every image in one format (`rgba`) is one machine code per program."""
+    image = rgba(np.asarray(image, "f4"))
+    height, width = image.shape[:2]
+    levels = None if levels is None else [rgba(level) for level in levels]
+    texture = ctx.texture((width, height), 4, image.tobytes(), dtype="f4")
     texture.use(location=ctx.default_texture_unit)  # moderngl's own unit: no sampler's binding is disturbed
-    gl_extras().define_levels(channels, mip_chain(image)[1:] if levels is None else levels)
+    gl_extras().define_levels(4, mip_chain(image)[1:] if levels is None else levels)
     return texture
+
+
+def rgba(image: np.ndarray) -> np.ndarray:
+    """A float32 (h, w, c) image as (h, w, 4), contiguous: grey as grey, grey-alpha as grey with
+    its alpha, RGB with alpha 1, more channels than four cut to four."""
+    channels = image.shape[2]
+    if channels == 1:
+        image = np.concatenate([np.repeat(image, 3, axis=2), np.ones_like(image)], axis=2)
+    elif channels == 2:
+        image = np.concatenate([np.repeat(image[..., :1], 3, axis=2), image[..., 1:2]], axis=2)
+    elif channels == 3:
+        image = opaque(image)
+    return np.ascontiguousarray(image[..., :4], "f4")
 
 
 def opaque(rgb: np.ndarray) -> np.ndarray:

@@ -20,7 +20,7 @@ from .errors import RenderError
 from .inputs import ENV_SAMPLERS, env_samples_for, lighting_values, light_rig, record_values, texture_requests
 from .record import check_record, source_digest
 from .textures import (GL_CLAMP_TO_EDGE, GL_MIRRORED_REPEAT, GL_REPEAT, MAX_LUTS, Sampling, lut_image, lut_key,
-                       mip_chain, opaque)
+                       mip_chain, rgba)
 from .wgpu_device import wgpu_device
 from .wgpu_program import COLOR_FORMAT, DEPTH_FORMAT, STAGES, WgpuPipeline
 
@@ -174,12 +174,12 @@ class WgpuRenderer(SceneRenderer):
 def upload(device, image: np.ndarray, mipmaps: bool = True) -> WgpuTexture:
     """A float32 (h, w, c) image, top row first, as an rgba32float texture with its mip chain
     (row 0 at v = 0, as GL's upload puts it: the generated code flips v). Grey images read as
-    grey, as the GL renderer's swizzle makes them. A LUT has no mipmaps (a table, not an image)."""
+    grey, as the GL renderer's do (textures.rgba). A LUT has no mipmaps (a table, not an image)."""
     import wgpu
 
-    rgba = _rgba(np.asarray(image, "f4"))
-    height, width = rgba.shape[:2]
-    levels = mip_chain(rgba) if mipmaps else [rgba]
+    image = rgba(np.asarray(image, "f4"))
+    height, width = image.shape[:2]
+    levels = mip_chain(image) if mipmaps else [image]
     texture = device.create_texture(size=(width, height, 1), format="rgba32float", mip_level_count=len(levels),
                                     usage=wgpu.TextureUsage.TEXTURE_BINDING | wgpu.TextureUsage.COPY_DST)
     for level, data in enumerate(levels):
@@ -187,14 +187,3 @@ def upload(device, image: np.ndarray, mipmaps: bool = True) -> WgpuTexture:
         device.queue.write_texture({"texture": texture, "mip_level": level, "origin": (0, 0, 0)},
                                    np.ascontiguousarray(data), {"offset": 0, "bytes_per_row": w * 16}, (w, h, 1))
     return WgpuTexture(texture, texture.create_view(), width, height)
-
-
-def _rgba(image: np.ndarray) -> np.ndarray:
-    channels = image.shape[2]
-    if channels == 1:
-        return np.concatenate([np.repeat(image, 3, axis=2), np.ones_like(image)], axis=2)
-    if channels == 2:
-        return np.concatenate([np.repeat(image[..., :1], 3, axis=2), image[..., 1:2]], axis=2)
-    if channels == 3:
-        return opaque(image)
-    return image[..., :4]
