@@ -42,6 +42,7 @@ from service_testing import RedisServer, Server, stop, wait_until  # noqa: E402
 
 ORACLE_PY = Path(os.environ.get("ORACLE_VENV", Path.home() / ".cache" / "mx-oracle" / "venv")) / "bin" / "python"
 TEXTURES = ("wood_color.jpg", "brick_base_gray.jpg", "cloth.jpg", "grid.png")
+REFERENCE_FRAMES = 3  # the oracle times the median of these; one is the material's own
 REFERENCE_TIMING = re.compile(r"compile\+link ([\d.]+)s\s+frame\(.*?\) median ([\d.]+) ms")
 # shading model -> (its colour input, its float inputs with their ranges)
 MODELS = {
@@ -88,18 +89,23 @@ def build_library(folder: Path, count: int, seed: int, images: Path) -> list[Pat
 
 
 def reference(paths: list[Path], size: int, out: Path, shared: Path) -> dict:
-    """The oracle's process per material: wall time, and its compile and frame times."""
+    """The oracle's process per material: wall time, and its compile and frame times. The oracle
+    draws REFERENCE_FRAMES frames to time a steady one, where a pipeline's process would draw one
+    (as our batch does): the extra frames, at the median it reports, are taken off its wall time."""
     walls, compiles, frames = [], [], []
     for path in paths:
         started = time.perf_counter()
         run = subprocess.run([str(ORACLE_PY), str(shared / "oracle" / "mx_refrender.py"), str(path),
-                              "-o", str(out / f"{path.stem}.png"), "--size", str(size), "--repeat", "3"],
+                              "-o", str(out / f"{path.stem}.png"), "--size", str(size),
+                              "--repeat", str(REFERENCE_FRAMES)],
                              capture_output=True, text=True, cwd=shared / "corpus")
-        walls.append(time.perf_counter() - started)
+        wall = time.perf_counter() - started
         timing = REFERENCE_TIMING.search(run.stderr)
         if run.returncode == 0 and timing:
             compiles.append(float(timing.group(1)))
             frames.append(float(timing.group(2)) / 1e3)
+            wall -= (REFERENCE_FRAMES - 1) * frames[-1]
+        walls.append(wall)
     return {"materials": len(paths), "seconds": sum(walls), "compiled": len(compiles), "reused": 0,
             "frame_s": statistics.median(frames) if frames else float("nan"),
             "compile_s": statistics.median(compiles) if compiles else float("nan")}
