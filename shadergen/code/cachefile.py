@@ -4,14 +4,15 @@ the library code it uses.
 Most of the library's IR is in its functions' parameters, bodies and facts and a few large
 constants' values (the albedo and DFG tables), and a request uses a part of them. Each of those
 fields is pickled apart, as bytes inside the file, and unpickled the first time it is read
-(ir.Item's `pending`); the rest (every item's name, key and type, the modules, the symbol table)
-is read at once. A function's facts are apart from its body: the passes read the facts of every
-function they keep or drop, a request prints only some bodies (targets/printed.py holds the text
-of the others); its parameters are apart from both, read where a call is resolved to it or it is
-printed (most of a cold process's unpickling was the parameters of functions it never called). A reference from a deferred field to a library item (a callee) is written as the item's
-place among the library's items, and one from a body to a statement its facts name (a member
-store) as its place among those; both are read back as the same objects. A forwarding function's
-facts hold its call's arguments: it is read whole, at once.
+(ir.Item's `pending`); the rest (every item's name, key and type, the modules, the symbol table) is
+read at once. A function's facts are apart from its body: the passes read the facts of every
+function they keep or drop, a request prints only some bodies (targets/printed.py holds the text of
+the others); its parameters are apart from both, read where a call is resolved to it or it is
+printed (most of a cold process's unpickling was the parameters of functions it never called). A
+reference from a deferred field to a library item (a callee) is written as the item's place among
+the library's items, and one from a body to a statement its facts name (a member store) as its place
+among those; both are read back as the same objects. A forwarding function's facts hold its call's
+arguments: it is read whole, at once.
 """
 import io
 import pickle
