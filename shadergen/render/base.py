@@ -48,12 +48,15 @@ class SceneRenderer:
     the search paths and the roots is ever read. `lp_threads` caps the software rasterizer's
     threads (LP_NUM_THREADS) when the renderer creates the process's context, so that several
     worker processes share the cores. `max_programs`: compiled programs kept for records of the
-    same source (one per topology in complete and reduced); 0 compiles every render's program afresh."""
+    same source (one per topology in complete and reduced); 0 compiles every render's program afresh.
+    `power_of_two_files` False keeps file images at their own sides where a filtered read would
+    have them resampled (textures.power_of_two)."""
 
     MAX_PROGRAMS = 64
 
     def __init__(self, texture_roots=(), search_paths=(), *, confined: bool = True, lp_threads: int | None = None,
-                 max_programs: int = MAX_PROGRAMS, texture_budget_bytes: int = 512 << 20):
+                 max_programs: int = MAX_PROGRAMS, texture_budget_bytes: int = 512 << 20,
+                 power_of_two_files: bool = True):
         self.texture_roots = [os.path.abspath(p) for p in texture_roots]
         self.search_paths = [os.path.abspath(p) for p in search_paths]
         self.confined = confined
@@ -63,7 +66,7 @@ class SceneRenderer:
         self.program_counts = {"compiled": 0, "reused": 0}  # how often a render compiled or reused its program
         self._meshes: dict[str, Mesh] = {}
         self._environments: OrderedDict[str, EnvironmentTextures] = OrderedDict()
-        self._textures = TextureCache(texture_budget_bytes)
+        self._textures = TextureCache(texture_budget_bytes, power_of_two_sides=power_of_two_files)
 
     def trim_textures(self) -> None:
         """Release the cached textures of files that are gone (after a job whose folder held its

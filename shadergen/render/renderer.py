@@ -40,10 +40,10 @@ class Renderer(SceneRenderer):
     for the arguments."""
 
     def __init__(self, *args, file_mipmaps: bool = True, **kwargs):
-        """`file_mipmaps` False binds file images without their mipmaps (the base level, bilinear or
-        closest): a like-for-like read for a bench that compares with a single bilinear lookup
-        (bench/osl_agreement.py); renders, records and thumbnails keep the default."""
-        super().__init__(*args, **kwargs)
+        """`file_mipmaps` False binds file images without their mipmaps (the base level at the file's
+        own sides, bilinear or closest): a like-for-like read for a bench that compares with a single
+        bilinear lookup (bench/osl_agreement.py); renders, records and thumbnails keep the default."""
+        super().__init__(*args, power_of_two_files=file_mipmaps, **kwargs)
         self.file_mipmaps = file_mipmaps
         self._framebuffers: dict[int, object] = {}
         self._luts: dict[tuple, object] = {}  # a LUT's description -> its texture

@@ -7,6 +7,8 @@ as RGBA: a grey one as grey (what MaterialX's GL texture handler's RRR1 swizzle 
 opaque. One format for every file keeps one machine code per program: llvmpipe compiles a
 fragment shader's code per texture format and swizzle bound, which cost a library thumbnail of a
 known topology ~1.8 s whenever its texture had another channel count than the first one's.
+For the same reason a filtered image is stored at power-of-two sides (power_of_two): llvmpipe's
+machine code also depends on whether each side of a bound texture is a power of two.
 """
 import base64
 import os
@@ -140,19 +142,21 @@ class TextureCache:
     `components` and `release()`. An image of more than `max_image_values` values is refused
     (too_large) from its header (default: imageio.image_limit())."""
 
-    def __init__(self, budget_bytes: int = 512 << 20, max_image_values: int | None = None):
+    def __init__(self, budget_bytes: int = 512 << 20, max_image_values: int | None = None,
+                 power_of_two_sides: bool = True):
         self.budget_bytes = budget_bytes
         self.max_image_values = max_image_values
+        self.power_of_two_sides = power_of_two_sides
         self._files: OrderedDict[tuple, object] = OrderedDict()
         self._constants: dict[tuple, object] = {}
 
-    def file(self, upload, path: str, name: str | None = None):
-        """The texture of a path resolve_file returned (a package member included). A refusal
-        calls a file `name` (as the document wrote it, not where the server keeps it), a package's
-        member by its name in the package."""
+    def file(self, upload, path: str, name: str | None = None, power_of_two_sides: bool = False):
+        """The texture of a path resolve_file returned (a package member included), resampled to
+        power-of-two sides if asked (power_of_two). A refusal calls a file `name` (as the document
+        wrote it, not where the server keeps it), a package's member by its name in the package."""
         package, member = split_member(path)
         stat = os.stat(package)
-        key = (path, stat.st_mtime_ns, stat.st_size)
+        key = (path, stat.st_mtime_ns, stat.st_size, power_of_two_sides)
         texture = self._files.get(key)
         if texture is None:
             if member is None:
@@ -160,7 +164,7 @@ class TextureCache:
             else:
                 with member_file(package, member) as copy:
                     image = read_image(copy, member, self.max_image_values)
-            texture = upload(image)
+            texture = upload(power_of_two(image) if power_of_two_sides else image)
             self._files[key] = texture
         self._files.move_to_end(key)
         return texture
@@ -176,8 +180,10 @@ class TextureCache:
         the warning saying why the file could not be used."""
         problem = request.problem
         if request.path:
+            # a "closest" read keeps the file's own texels: resampling would move their edges
+            resample = self.power_of_two_sides and not request.sampling.closest
             try:
-                return self.file(upload, request.path, request.file), None
+                return self.file(upload, request.path, request.file, resample), None
             except RenderError as exc:
                 if exc.code in REFUSALS:
                     raise
@@ -199,8 +205,8 @@ class TextureCache:
 
 
 def _unchanged(key: tuple) -> bool:
-    """Whether the file of a TextureCache key (path, mtime, size) is still there as it was read."""
-    path, mtime_ns, size = key
+    """Whether the file of a TextureCache key (path, mtime, size, resampled) is still there as it was read."""
+    path, mtime_ns, size, _ = key
     try:
         stat = os.stat(split_member(path)[0])
     except OSError:
@@ -242,6 +248,57 @@ def rgba(image: np.ndarray) -> np.ndarray:
 def opaque(rgb: np.ndarray) -> np.ndarray:
     """An (h, w, 3) image as (h, w, 4), alpha 1."""
     return np.concatenate([rgb, np.ones_like(rgb[..., :1])], axis=2)
+
+
+def power_of_two(image: np.ndarray) -> np.ndarray:
+    """`image` resampled so that each side is the power of two nearest it in ratio (640 texels
+    become 512, 768 become 1024: at most 1.41 times more or fewer), as real-time engines import
+    textures: llvmpipe compiles a program's machine code apart for power-of-two and other sides of
+    a bound texture, so a library thumbnail of a known topology whose file had the other kind of
+    side than the first one's cost ~1.8 s to compile again. The filter is a cubic (_cubic_resample),
+    not mip_chain's linear one: detail near the file's own texel frequency would otherwise beat
+    through the mip levels (1-texel stripes 60 -> 64 wide: level 1 between 0.47 and 0.94 where the
+    file's own chain is 0.5 grey, within 0.05 of it with the cubic). The result stays within each
+    channel's range in the file, which the cubic's small negative lobes would leave."""
+    height, width = image.shape[:2]
+    sides = (_nearest_power_of_two(height), _nearest_power_of_two(width))
+    if sides == (height, width):
+        return image
+    resampled = _cubic_resample(_cubic_resample(image, sides[0], 0), sides[1], 1)
+    return np.clip(resampled, image.min(axis=(0, 1)), image.max(axis=(0, 1)))
+
+
+def _nearest_power_of_two(side: int) -> int:
+    below = 1 << (side.bit_length() - 1)
+    return 2 * below if side * side >= 2 * below * below else below
+
+
+def _cubic_resample(image: np.ndarray, size: int, axis: int) -> np.ndarray:
+    """`image` at `size` texels spanning the same extent along `axis`, filtered by _mitchell (its
+    support widened by the ratio where the image shrinks), the edge texels repeated beyond it."""
+    n = image.shape[axis]
+    scale = min(1.0, size / n)
+    support = 2.0 / scale
+    centre = (np.arange(size) + 0.5) * n / size - 0.5  # each new texel's centre in the old texels
+    first = np.floor(centre - support).astype(int) + 1
+    taps = range(int(np.ceil(2 * support)))
+    weights = np.stack([_mitchell((first + k - centre) * scale) for k in taps])
+    weights = (weights / weights.sum(axis=0)).astype("f4")
+    shape = [1] * image.ndim
+    shape[axis] = size
+    resampled = np.zeros(image.shape[:axis] + (size,) + image.shape[axis + 1:], "f4")
+    for k in taps:
+        resampled += np.take(image, np.clip(first + k, 0, n - 1), axis=axis) * weights[k].reshape(shape)
+    return resampled
+
+
+def _mitchell(x: np.ndarray) -> np.ndarray:
+    """Mitchell and Netravali's cubic with B = C = 1/3 ("Reconstruction Filters in Computer
+    Graphics", SIGGRAPH 1988): little ringing, little blur; its weights sum to one at any phase."""
+    x = np.abs(x)
+    inner = (7 * x ** 3 - 12 * x ** 2 + 16 / 3) / 6
+    outer = (-7 / 3 * x ** 3 + 12 * x ** 2 - 20 * x + 32 / 3) / 6
+    return np.where(x < 1, inner, np.where(x < 2, outer, 0.0))
 
 
 def mip_chain(image: np.ndarray) -> list[np.ndarray]:

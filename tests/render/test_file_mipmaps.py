@@ -7,13 +7,12 @@ from shadergen.api import Generator
 from shadergen.render import Renderer
 
 
-@pytest.fixture
-def stripes(tmp_path) -> str:
-    """A document reading an image of 1-texel black and white columns, 60 texels wide."""
+def stripes(folder, columns: int) -> str:
+    """A document reading an image of 1-texel black and white columns, `columns` texels wide."""
     oiio = pytest.importorskip("OpenImageIO")
-    pixels = np.zeros((60, 60, 3), "f4")
+    pixels = np.zeros((columns, columns, 3), "f4")
     pixels[:, 1::2] = 1.0
-    assert oiio.ImageBuf(pixels).write(str(tmp_path / "stripes.exr"))
+    assert oiio.ImageBuf(pixels).write(str(folder / "stripes.exr"))
     return """<?xml version="1.0"?>
 <materialx version="1.39">
   <image name="img" type="color3"><input name="file" type="filename" value="stripes.exr"/></image>
@@ -21,9 +20,12 @@ def stripes(tmp_path) -> str:
 </materialx>"""
 
 
-@pytest.mark.parametrize("mipmaps", [True, False])
-def test_a_minified_image_reads_its_mipmaps_or_its_base_level(renderer, stripes, tmp_path, mipmaps):
-    record = Generator().prepare(stripes).emit()
+# Mipmapped: 64 columns, a power of two, stored as they are (test_texture_sides.py bounds what
+# resampling other sides leaves). Base level: 60 columns, the file's own, so that 8 pixels' lookups
+# fall at 8 different fractions of a texel.
+@pytest.mark.parametrize("mipmaps, columns", [(True, 64), (False, 60)])
+def test_a_minified_image_reads_its_mipmaps_or_its_base_level(renderer, tmp_path, mipmaps, columns):
+    record = Generator().prepare(stripes(tmp_path, columns)).emit()
     reader = renderer if mipmaps else Renderer(search_paths=[], file_mipmaps=False)
     inside = reader.render(record, size=8, mesh="plane", document_dir=str(tmp_path)).rgba[1:-1, 1:-1, 0]
     if mipmaps:  # a level where the columns have averaged to grey
