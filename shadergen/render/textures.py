@@ -1,7 +1,7 @@
 """File textures (and colour transforms' LUTs) of a shader record: where a filename may be read from, how MaterialX says it is
 sampled, and the GL textures kept between renders.
 
-Images are uploaded top row first, untouched (float32, no colour conversion); the generated code
+Images are uploaded top row first, as float32 without colour conversion; the generated code
 flips v (MaterialX's fileTextureVerticalFlip) and converts colour spaces. Every image is stored
 as RGBA: a grey one as grey (what MaterialX's GL texture handler's RRR1 swizzle reads), an RGB one
 opaque. One format for every file keeps one machine code per program: llvmpipe compiles a
