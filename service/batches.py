@@ -25,6 +25,12 @@ from .generation import GenerateParams
 from .thumbnails import ThumbnailOrder, ThumbnailService
 
 FINISHED = ("done", "failed")
+# The state is written at most this often while documents finish, and when the last one does. A
+# write is the whole state (a 500-document batch's is ~90 kB, read back first to check the lease),
+# so writing it per document made a batch cost the square of its size. A runner that dies between
+# writes leaves those documents to the one that takes over: their PNGs are stored, so they are
+# cache hits there.
+PROGRESS_INTERVAL_S = 0.25
 
 
 class _Superseded(Exception):
@@ -66,8 +72,12 @@ class BatchService:
         turns = asyncio.Semaphore(self.concurrency)
         saving = asyncio.Lock()  # one writer at a time: a later state is never overwritten by an earlier one
 
+        saved = time.monotonic()
+
         async def save() -> None:
+            nonlocal saved
             async with saving:
+                saved = time.monotonic()
                 await self._save(state)
 
         async def renew() -> None:  # the lease outlives a document that takes longer than it
@@ -90,7 +100,9 @@ class BatchService:
             state["done"] += 1
             if state["done"] == state["total"]:
                 state["state"] = "done"
-            await save()
+                await save()
+            elif time.monotonic() - saved >= PROGRESS_INTERVAL_S:
+                await save()
 
         renewing = asyncio.create_task(renew())
         try:
