@@ -77,12 +77,10 @@ CAUSES = {
     "standard_surface_brick_procedural": (
         "texture footprint, in the main: the truth is each pixel's area (2x2 sub-pixels of 64 samples, each texture "
         "read at its ray's footprint), ours one point per pixel whose MIP-filtered inputs enter a non-linear graph (a "
-        "mask mixes mortar and brick and divides the roughness): the base colour alone (an emission variant) is "
-        "29.8 dB "
-        "from the truth at 128 px (mortar red +15-25 %, blue -20-33 %), 42.0 dB at 512 px averaged 4x4. Of the 7 % "
+        "mask mixes mortar and brick and divides the roughness): the base colour alone (an emission variant) is 29.8 dB"
+        " from the truth at 128 px (mortar red +15-25 %, blue -20-33 %), 42.0 dB at 512 px averaged 4x4. Of the 7 % "
         "more light, part was the truth's: testrender's dPdv points south, the thumbnail's bitangent north, so the "
-        "normal "
-        "map tilted the other way along v (the truth 4-8 % darker in the middle and lower bands); now -dPdv "
+        "normal map tilted the other way along v (the truth 4-8 % darker in the middle and lower bands); now -dPdv "
         "(gts.THUMBNAIL_BITANGENT): ours at 512 averaged 4x4 35.9 -> 38.7 dB. The rest, ours 3 % brighter at 512/4, "
         "most at grazing angles and in the mortar, is testrender's single-scattering GGX: with specular_roughness 0.5 "
         "ours is within 1 % of the truth, with 1.0 (the mortar's: roughness_amount / mask, clamped) 5 % brighter, as "
@@ -319,8 +317,8 @@ def write_table(path: str, checks: list[str], materials: list[dict], args, last_
             continue
         s = summary(m)
         lines.append(f"| {m['name']} | {m['truth']['samples']} | {fmt(m['truth']['noise_db'])} | "
-                     f"{fmt(s['ours_best'])} | "
-                     f"{fmt(s['ours_in_budget'])} | {fmt(s['ref16'])} | {fmt(s['reference_best'])} | {fmt(s['thumbnail'])} | "
+                     f"{fmt(s['ours_best'])} | {fmt(s['ours_in_budget'])} | {fmt(s['ref16'])} | "
+                     f"{fmt(s['reference_best'])} | {fmt(s['thumbnail'])} | "
                      f"{m.get('cause') or CAUSES.get(m['name'], '')} |")
     measured = [m for m in materials if "rows" in m]
     if measured:
