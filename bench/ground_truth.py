@@ -10,7 +10,9 @@ sub-pixel quadrupled from --start-samples until the render's noise, estimated ag
 pixels at a quarter of its samples (gts.nested_noise_psnr), is under --converged-db (PSNR over the
 sphere, sRGB, peak 1), or --max-samples.
 It is cached by the OSL as the scene runs it (scene_form), the scene and the map (--cache, default
-~/.cache/shadergen/ground_truth/).
+~/.cache/shadergen/ground_truth/); a cached truth short of --converged-db is converged on from its
+last render by a run with more --max-samples. With --truths-only a run only path-traces (a long,
+niced run ahead of a quiet measuring one).
 
 Against it, at --size: our GL thumbnail (`complete` and `specialized`) with `fis`, `prefilter` and
 `hybrid` environment lighting at bench/accuracy_time.py's points, our WGSL on wgpu (fis, its
@@ -111,36 +113,46 @@ def truth_rgba(rgb: np.ndarray) -> np.ndarray:
     return np.concatenate([rgb, gts.sphere_mask(rgb.shape[0], SILHOUETTE_INSET)[..., None].astype("f8")], -1)
 
 
-def converge(render, side: int, args) -> dict:
+def converge(render, side: int, args, done: dict | None = None) -> dict:
     """Quadruples the samples until the estimated noise is under args.converged_db; render(side,
     samples). testrender takes aa x aa samples: aa doubles, so that each render's first quarter is
     the one before it (the noise's estimate needs that), from an even aa of at least
-    args.start_samples, estimated against aa / 2."""
+    args.start_samples, estimated against aa / 2; or on from `done`, a truth converged this way
+    before (its render the next one's first quarter)."""
     mask = gts.sphere_mask(side, SILHOUETTE_INSET)
     start = time.perf_counter()
-    aa = max(2, math.ceil(math.sqrt(args.start_samples)))
-    aa += aa % 2
-    coarse = gts.pixel_mean(render(2 * side, (aa // 2) ** 2))
+    if done is None:
+        aa = max(2, math.ceil(math.sqrt(args.start_samples)))
+        aa += aa % 2
+        coarse, before = gts.pixel_mean(render(2 * side, (aa // 2) ** 2)), 0.0
+    else:
+        aa = 2 * math.isqrt(done["samples"] // 4)
+        coarse, before = done["rgb"], done["seconds"]
     while True:
         fine = gts.pixel_mean(render(2 * side, aa * aa))
         noise_db = gts.nested_noise_psnr(coarse, fine, mask)
         if noise_db >= args.converged_db or aa * aa >= args.max_samples:
             # the four sub-pixels per output pixel: 4 aa^2 samples per output pixel
             return {"rgb": fine, "samples": 4 * aa * aa, "noise_db": noise_db,
-                    "seconds": time.perf_counter() - start}
+                    "seconds": before + time.perf_counter() - start}
         coarse, aa = fine, 2 * aa
 
 
-def cached_truth(key: str, compute, cache: str) -> dict:
-    path = os.path.join(cache, f"{key}.npz")
+def cached_truth(key: str, render, side: int, args) -> dict:
+    """The truth cached under `key` where it is converged (or has --max-samples), else converged
+    on from the cached one (or from the start) and cached."""
+    path = os.path.join(args.cache, f"{key}.npz")
+    done = None
     try:
         with np.load(path) as f:
-            return {"rgb": f["rgb"], "samples": int(f["samples"]), "noise_db": float(f["noise_db"]),
-                    "seconds": float(f["seconds"]), "cached": True}
+            done = {"rgb": f["rgb"], "samples": int(f["samples"]), "noise_db": float(f["noise_db"]),
+                    "seconds": float(f["seconds"])}
     except (OSError, ValueError, KeyError, EOFError):
         pass
-    result = compute()
-    os.makedirs(cache, exist_ok=True)
+    if done is not None and (done["noise_db"] >= args.converged_db or done["samples"] >= 4 * args.max_samples):
+        return {**done, "cached": True}
+    result = converge(render, side, args, done)
+    os.makedirs(args.cache, exist_ok=True)
     tmp = path + f".{os.getpid()}.npz"
     np.savez(tmp, **{k: v for k, v in result.items()})
     os.replace(tmp, path)
@@ -180,13 +192,12 @@ def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
     xml_probe = gts.scene_xml(world.material_group(name, output), *world.environment()).replace(world.folder, "")
     # what testrender reads and how it is run: the shader as the scene runs it, not the record's hash,
     # which moves with every library and generator file (fingerprint.py) while the OSL stays the same
-    key = gts.digest(source, xml_probe, env_key, str(args.size), str(args.converged_db),
-                     str(args.max_samples), open(gts.__file__, "rb").read())
+    key = gts.digest(source, xml_probe, env_key, str(args.size), open(gts.__file__, "rb").read())
 
     def render(side, samples):
         return world.render_material(name, output, side, samples, cwd=os.path.dirname(document))
 
-    return {**cached_truth(key, lambda: converge(render, args.size, args), args.cache), "element": record.get("element")}
+    return {**cached_truth(key, render, args.size, args), "element": record.get("element")}
 
 
 def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
@@ -204,8 +215,9 @@ def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
     direct = gts.mirror_image(world.radiance, args.size)
     lines.append(f"mirror sphere against the environment computed directly: "
                  f"{gts.psnr_viewed(mirror, direct, gts.sphere_mask(args.size, SILHOUETTE_INSET)):.1f} dB over the sphere")
-    truth = converge(lambda s, n: world.render("white_lambert", s, n, surface_params={"albedo": "color 0.8 0.8 0.8"}),
-                     args.size, args)
+    key = gts.digest("white_lambert 0.8", world.radiance.tobytes(), str(args.size), open(gts.__file__, "rb").read())
+    truth = cached_truth(key, lambda s, n: world.render("white_lambert", s, n, surface_params={"albedo": "color 0.8 0.8 0.8"}),
+                         args.size, args)
     gl = renderer.render(Generator().prepare(DIFFUSE_CHECK).emit(), size=args.size, env_samples=1024).rgba
     rgb = truth["rgb"]
     exact = gts.lambert_image(world.radiance, args.size, 0.8)
@@ -384,6 +396,8 @@ def main() -> int:
     parser.add_argument("--converged-db", type=float, default=50.0,
                         help="the estimated noise's PSNR that counts as converged")
     parser.add_argument("--frames", type=int, default=3, help="frames per real-time render (the first is not timed)")
+    parser.add_argument("--truths-only", action="store_true",
+                        help="path-trace and cache the truths, measure nothing (a long run ahead of a quiet one)")
     parser.add_argument("--table", default=os.path.join(ROOT, "docs", "ground_truth.md"))
     parser.add_argument("--plot", default=os.path.join(ROOT, "docs", "ground_truth.png"))
     args = parser.parse_args()
@@ -404,7 +418,8 @@ def main() -> int:
         world = gts.Scene(folder, environment.radiance)
         world.irradiance = environment.irradiance
         checks, diffuse = scene_checks(world, renderers["gl"], args)
-        checks += glass_checks(world, renderers["gl"], args)
+        if not args.truths_only:
+            checks += glass_checks(world, renderers["gl"], args)
         for line in checks:
             print(line, flush=True)
         # the table's machinery on the check: every real-time image of DIFFUSE_CHECK against testrender's
@@ -412,12 +427,13 @@ def main() -> int:
         check_document = os.path.join(folder, "oren_nayar_check.mtlx")
         with open(check_document, "w", encoding="utf-8") as f:
             f.write(DIFFUSE_CHECK)
-        check = {"name": "check: oren_nayar_diffuse_bsdf 0.8", "truth": {**diffuse, "cached": False},
-                 "rows": measure(check_document, truth_rgba(diffuse["rgb"]), renderers, args),
+        check = {"name": "check: oren_nayar_diffuse_bsdf 0.8", "truth": diffuse,
+                 "rows": [] if args.truths_only else measure(check_document, truth_rgba(diffuse["rgb"]), renderers, args),
                  "cause": "truth: testrender's oren_nayar_diffuse_bsdf (a scene shader), not our OSL"}
-        s = summary(check)
-        print(f"{check['name']}: ours best {fmt(s['ours_best'])} dB, reference best {fmt(s['reference_best'])} dB",
-              flush=True)
+        s = summary(check) if check["rows"] else None
+        if s:
+            print(f"{check['name']}: ours best {fmt(s['ours_best'])} dB, reference best {fmt(s['reference_best'])} dB",
+                  flush=True)
         materials = []
         for document in documents:
             name = os.path.splitext(os.path.basename(document))[0]
@@ -428,6 +444,10 @@ def main() -> int:
             if "error" in truth:
                 materials.append({"name": name, "error": truth["error"]})
                 print(f"{name}: no ground truth: {truth['error']}", flush=True)
+                continue
+            if args.truths_only:
+                print(f"{name}: truth {truth['samples']} spp (noise {truth['noise_db']:.1f} dB, "
+                      f"{'cached' if truth['cached'] else format(truth['seconds'], '.0f') + ' s'})", flush=True)
                 continue
             try:
                 rows = measure(document, truth_rgba(truth["rgb"]), renderers, args)
@@ -443,6 +463,8 @@ def main() -> int:
                   f"reference best {fmt(s['reference_best'])} dB", flush=True)
             # the table so far, so that a run stopped early leaves the materials it finished
             write_table(args.table, checks, [check] + materials, args, summary_line(materials) + " (so far)")
+    if args.truths_only:
+        return 0
     last = summary_line(materials)
     write_table(args.table, checks, [check] + materials, args, last)
     plot([check] + materials, args.plot, args)
