@@ -66,6 +66,7 @@ def replaced(source: str, old: str, new: str) -> str:
 
 
 LIGHT_LOOP = "for (int activeLightIndex"
+LIGHT_LOOP_VARIANT = "light loop"  # in the names of the variants that need it
 TRANSMISSION = "// transmission, seen along the view direction"
 VARIANTS = {
     "as generated": lambda s: s,
@@ -90,13 +91,15 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("document", nargs="?", default=DEFAULT_DOCUMENT)
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--lights", action="store_true",
+                    help="with the light loop (a lit preview's program; a thumbnail's has none)")
     args = ap.parse_args()
     import numpy as np
     sys.path.insert(0, ROOT)
     from shadergen.api import generate_file
-    record = next(r for r in generate_file(args.document, environment="fis", lights=True) if "stages" in r)
+    record = next(r for r in generate_file(args.document, environment="fis", lights=args.lights) if "stages" in r)
     env = dict(os.environ, MESA_SHADER_CACHE_DISABLE="true", PYTHONPATH=ROOT)
-    names = list(VARIANTS)
+    names = [name for name in VARIANTS if args.lights or LIGHT_LOOP_VARIANT not in name]
     timings = {name: [] for name in names}
     start = time.strftime("%H:%M:%S")
     with tempfile.TemporaryDirectory() as tmp:
@@ -115,7 +118,7 @@ def main() -> int:
     medians = {name: {key: statistics.median(t[key] for t in timings[name]) for key in timings[name][0]}
                for name in names}
     base = medians["as generated"]
-    print(f"\n{os.path.basename(args.document)} complete (lit, fis), {args.runs} interleaved run(s) from {start}, "
+    print(f"\n{os.path.basename(args.document)} complete ({'lit' if args.lights else 'unlit'}, fis), {args.runs} interleaved run(s) from {start}, "
           f"load average {os.getloadavg()[0]:.1f}; thread CPU ms, medians\n")
     print("| variant | fragment lines | compile+link | ratio | first render (with code generation) | ratio "
           "| PSNR vs as generated |")
