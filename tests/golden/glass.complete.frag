@@ -84,6 +84,7 @@ struct SpecularLobe
     vec3 albedo;
     vec3 environment;
     vec3 environmentAlbedo;
+    vec3 refracted;
 };
 const int MAX_LIGHT_SOURCES = 3;
 // Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
@@ -1261,10 +1262,25 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.albedo = vec3(0.0);
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
+    lobe.refracted = vec3(0.0);
     if (lobe.weight > 0.0)
         lobe.environment = mx_environment_reflected(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
                                                     lobe.environmentAlbedo);
     return lobe;
+}
+
+// The environment seen through a prepared lobe's interface, with Fresnel data `fd` and `tint`:
+// prepared once per shading point like its reflection. Drivers inline every call, so computed in
+// the closure's TRANSMISSION branch it would be compiled into every context's call of the closure,
+// and for each lobe of a shader that refracts at all; here a lobe whose scatter mode is a constant
+// R (0) drops it at compile time.
+void mx_specular_lobe_refract(ClosureData closureData, FresnelData fd, vec3 tint, int scatterMode,
+                              inout SpecularLobe lobe)
+{
+    if (scatterMode != 0 && lobe.weight > 0.0)
+        lobe.refracted = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
+                                                 closureData.V, lobe.X, lobe.alpha, lobe.distribution, fd,
+                                                 tint);
 }
 
 // The lobe towards closureData.L (REFLECTION), multiple scattering included.
@@ -1355,6 +1371,7 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
                                      vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
                                     distribution, scatter_mode);
+    mx_specular_lobe_refract(closureData, fd, lobe.tint, scatter_mode, lobe);
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
     float tableAlbedo = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.ior.x);
     lobe.albedo = mx_specular_albedo(NdotV, lobe.alpha, fd, vec3(tableAlbedo));
@@ -1378,9 +1395,7 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe),
                                                  lobe.weight);
         if (lobe.scatterMode != 0)
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
-                                                    closureData.V, lobe.X, lobe.alpha, lobe.distribution,
-                                                    lobe.fd, lobe.tint) * lobe.weight;
+            bsdf.response = lobe.refracted * lobe.weight;
     }
     else  // REFLECTION
     {

@@ -69,6 +69,7 @@ struct SpecularLobe {
     albedo: vec3f,
     environment: vec3f,
     environmentAlbedo: vec3f,
+    refracted: vec3f,
 }
 
 const MAX_LIGHT_SOURCES: i32 = 3;
@@ -814,6 +815,7 @@ fn mx_specular_lobe_prepare(closureData: ClosureData, weight: f32, tint: vec3f, 
     lobe.albedo = vec3f(0.0);
     lobe.environment = vec3f(0.0);
     lobe.environmentAlbedo = vec3f(0.0);
+    lobe.refracted = vec3f(0.0);
     if (lobe.weight > 0.0) {
         var written_0: vec3f = lobe.environmentAlbedo;
         var written_1: vec3f = lobe.environmentAlbedo;
@@ -823,6 +825,20 @@ fn mx_specular_lobe_prepare(closureData: ClosureData, weight: f32, tint: vec3f, 
         lobe.environmentAlbedo = written_1;
     }
     return lobe;
+}
+
+// The environment seen through a prepared lobe's interface, with Fresnel data `fd` and `tint`:
+// prepared once per shading point like its reflection. Drivers inline every call, so computed in
+// the closure's TRANSMISSION branch it would be compiled into every context's call of the closure,
+// and for each lobe of a shader that refracts at all; here a lobe whose scatter mode is a constant
+// R (0) drops it at compile time.
+fn mx_specular_lobe_refract(closureData: ClosureData, fd: FresnelData, tint: vec3f, scatterMode: i32,
+                            lobe: ptr<function, SpecularLobe>) {
+    if (scatterMode != 0 && (*lobe).weight > 0.0) {
+        (*lobe).refracted = mx_surface_transmission(mx_facing_normal((*lobe).surfaceN, closureData.V),
+                                                    closureData.V, (*lobe).X, (*lobe).alpha,
+                                                    (*lobe).distribution, fd, tint);
+    }
 }
 
 // The lobe towards closureData.L (REFLECTION), multiple scattering included.
@@ -886,6 +902,7 @@ fn mx_dielectric_bsdf_prepare(closureData: ClosureData, weight: f32, tint: vec3f
                                           vec3f(0.0), vec3f(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
     *lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
                                      distribution, scatter_mode);
+    mx_specular_lobe_refract(closureData, fd, (*lobe).tint, scatter_mode, lobe);
     let NdotV: f32 = clamp(dot((*lobe).N, (*lobe).V), MX_EPS, 1.0);
     let tableAlbedo: f32 = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha((*lobe).alpha), fd.ior.x);
     (*lobe).albedo = mx_specular_albedo(NdotV, (*lobe).alpha, fd, vec3f(tableAlbedo));
@@ -907,11 +924,7 @@ fn mx_dielectric_bsdf(closureData: ClosureData, lobe: SpecularLobe, bsdf: ptr<fu
         if (transmission) {
             (*bsdf).throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe),
                                                         lobe.weight);
-            if (lobe.scatterMode != 0) {
-                (*bsdf).response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
-                                                           closureData.V, lobe.X, lobe.alpha,
-                                                           lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
-            }
+            if (lobe.scatterMode != 0) { (*bsdf).response = lobe.refracted * lobe.weight; }
         }
         else {  // REFLECTION
             // the light crosses the interface on its way in too

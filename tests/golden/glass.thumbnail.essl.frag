@@ -47,11 +47,11 @@ struct SpecularLobe
     vec3 V;
     vec3 X;
     vec2 alpha;
-    FresnelData fd;
     int scatterMode;
     int distribution;
     vec3 environment;
     vec3 environmentAlbedo;
+    vec3 refracted;
 };
 // Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
 // function branches on it: REFLECTION (one light, closureData.L towards it), TRANSMISSION (what is
@@ -388,15 +388,29 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.N = mx_facing_normal(lobe.surfaceN, lobe.V);
     lobe.X = X;
     lobe.alpha = mx_ggx_clamp_alpha(roughness);
-    lobe.fd = fd;
     lobe.scatterMode = scatterMode;
     lobe.distribution = distribution;
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
+    lobe.refracted = vec3(0.0);
     if (lobe.weight > 0.0)
         lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1, false,
                                                   lobe.environmentAlbedo);
     return lobe;
+}
+
+// The environment seen through a prepared lobe's interface, with Fresnel data `fd` and `tint`:
+// prepared once per shading point like its reflection. Drivers inline every call, so computed in
+// the closure's TRANSMISSION branch it would be compiled into every context's call of the closure,
+// and for each lobe of a shader that refracts at all; here a lobe whose scatter mode is a constant
+// R (0) drops it at compile time.
+void mx_specular_lobe_refract(ClosureData closureData, FresnelData fd, vec3 tint, int scatterMode,
+                              inout SpecularLobe lobe)
+{
+    if (scatterMode != 0 && lobe.weight > 0.0)
+        lobe.refracted = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
+                                                 closureData.V, lobe.X, lobe.alpha, lobe.distribution, fd,
+                                                 tint);
 }
 
 // What the lobe reflects of the environment as seen through it along the real view direction:
@@ -428,6 +442,7 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
                                      vec3(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
                                     distribution, scatter_mode);
+    mx_specular_lobe_refract(closureData, fd, lobe.tint, scatter_mode, lobe);
 }
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
@@ -448,9 +463,7 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe),
                                                  lobe.weight);
         if (lobe.scatterMode != 0)
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
-                                                    closureData.V, lobe.X, lobe.alpha, lobe.distribution,
-                                                    lobe.fd, lobe.tint) * lobe.weight;
+            bsdf.response = lobe.refracted * lobe.weight;
     }
 }
 

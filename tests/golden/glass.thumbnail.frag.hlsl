@@ -43,11 +43,11 @@ struct SpecularLobe
     float3 V;
     float3 X;
     float2 alpha;
-    FresnelData fd;
     int scatterMode;
     int distribution;
     float3 environment;
     float3 environmentAlbedo;
+    float3 refracted;
 };
 
 // Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
@@ -438,15 +438,29 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, flo
     lobe.N = mx_facing_normal(lobe.surfaceN, lobe.V);
     lobe.X = X;
     lobe.alpha = mx_ggx_clamp_alpha(roughness);
-    lobe.fd = fd;
     lobe.scatterMode = scatterMode;
     lobe.distribution = distribution;
     lobe.environment = (float3)0.0;
     lobe.environmentAlbedo = (float3)0.0;
+    lobe.refracted = (float3)0.0;
     if (lobe.weight > 0.0)
         lobe.environment = mx_environment_samples(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1, false,
                                                   lobe.environmentAlbedo);
     return lobe;
+}
+
+// The environment seen through a prepared lobe's interface, with Fresnel data `fd` and `tint`:
+// prepared once per shading point like its reflection. Drivers inline every call, so computed in
+// the closure's TRANSMISSION branch it would be compiled into every context's call of the closure,
+// and for each lobe of a shader that refracts at all; here a lobe whose scatter mode is a constant
+// R (0) drops it at compile time.
+void mx_specular_lobe_refract(ClosureData closureData, FresnelData fd, float3 tint, int scatterMode,
+                              inout SpecularLobe lobe)
+{
+    if (scatterMode != 0 && lobe.weight > 0.0)
+        lobe.refracted = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
+                                                 closureData.V, lobe.X, lobe.alpha, lobe.distribution, fd,
+                                                 tint);
 }
 
 // What the lobe reflects of the environment as seen through it along the real view direction:
@@ -479,6 +493,7 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, float3 ti
                                      (float3)0.0, (float3)0.0, 0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
                                     distribution, scatter_mode);
+    mx_specular_lobe_refract(closureData, fd, lobe.tint, scatter_mode, lobe);
 }
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
@@ -499,9 +514,7 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe),
                                                  lobe.weight);
         if (lobe.scatterMode != 0)
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
-                                                    closureData.V, lobe.X, lobe.alpha, lobe.distribution,
-                                                    lobe.fd, lobe.tint) * lobe.weight;
+            bsdf.response = lobe.refracted * lobe.weight;
     }
 }
 

@@ -38,11 +38,11 @@ struct SpecularLobe {
     V: vec3f,
     X: vec3f,
     alpha: vec2f,
-    fd: FresnelData,
     scatterMode: i32,
     distribution: i32,
     environment: vec3f,
     environmentAlbedo: vec3f,
+    refracted: vec3f,
 }
 
 // Closure contexts. The surface node evaluates a BSDF graph once per context and every closure
@@ -363,11 +363,11 @@ fn mx_specular_lobe_prepare(closureData: ClosureData, weight: f32, tint: vec3f, 
     lobe.N = mx_facing_normal(lobe.surfaceN, lobe.V);
     lobe.X = X;
     lobe.alpha = mx_ggx_clamp_alpha(roughness);
-    lobe.fd = fd;
     lobe.scatterMode = scatterMode;
     lobe.distribution = distribution;
     lobe.environment = vec3f(0.0);
     lobe.environmentAlbedo = vec3f(0.0);
+    lobe.refracted = vec3f(0.0);
     if (lobe.weight > 0.0) {
         var written_0: vec3f = lobe.environmentAlbedo;
         var written_1: vec3f = lobe.environmentAlbedo;
@@ -377,6 +377,20 @@ fn mx_specular_lobe_prepare(closureData: ClosureData, weight: f32, tint: vec3f, 
         lobe.environmentAlbedo = written_1;
     }
     return lobe;
+}
+
+// The environment seen through a prepared lobe's interface, with Fresnel data `fd` and `tint`:
+// prepared once per shading point like its reflection. Drivers inline every call, so computed in
+// the closure's TRANSMISSION branch it would be compiled into every context's call of the closure,
+// and for each lobe of a shader that refracts at all; here a lobe whose scatter mode is a constant
+// R (0) drops it at compile time.
+fn mx_specular_lobe_refract(closureData: ClosureData, fd: FresnelData, tint: vec3f, scatterMode: i32,
+                            lobe: ptr<function, SpecularLobe>) {
+    if (scatterMode != 0 && (*lobe).weight > 0.0) {
+        (*lobe).refracted = mx_surface_transmission(mx_facing_normal((*lobe).surfaceN, closureData.V),
+                                                    closureData.V, (*lobe).X, (*lobe).alpha,
+                                                    (*lobe).distribution, fd, tint);
+    }
 }
 
 // What the lobe reflects of the environment as seen through it along the real view direction:
@@ -405,6 +419,7 @@ fn mx_dielectric_bsdf_prepare(closureData: ClosureData, weight: f32, tint: vec3f
                                           vec3f(0.0), vec3f(0.0), 0.0, thinfilm_thickness, thinfilm_ior);
     *lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X,
                                      distribution, scatter_mode);
+    mx_specular_lobe_refract(closureData, fd, (*lobe).tint, scatter_mode, lobe);
 }
 
 // In each context. What the interface reflects, multiple scattering included, does not reach the
@@ -423,11 +438,7 @@ fn mx_dielectric_bsdf(closureData: ClosureData, lobe: SpecularLobe, bsdf: ptr<fu
         if (transmission) {
             (*bsdf).throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe),
                                                         lobe.weight);
-            if (lobe.scatterMode != 0) {
-                (*bsdf).response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V),
-                                                           closureData.V, lobe.X, lobe.alpha,
-                                                           lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
-            }
+            if (lobe.scatterMode != 0) { (*bsdf).response = lobe.refracted * lobe.weight; }
         }
     }
 }

@@ -17,6 +17,11 @@ void mx_dielectric_bsdf_prepare(ClosureData closureData, float weight, vec3 tint
                                      0.0, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, tint, roughness, retroreflective, fd, N, X, distribution,
                                     scatter_mode);
+#ifdef MX_FEATURE_TRANSMISSION
+#ifdef MX_FEATURE_REFRACTION
+    mx_specular_lobe_refract(closureData, fd, lobe.tint, scatter_mode, lobe);
+#endif
+#endif
 #ifdef MX_FEATURE_LIGHTS
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
     float tableAlbedo = mx_dielectric_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.ior.x);
@@ -44,8 +49,7 @@ void mx_dielectric_bsdf(ClosureData closureData, SpecularLobe lobe, inout BSDF b
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
 #ifdef MX_FEATURE_REFRACTION
         if (lobe.scatterMode != 0)
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V, lobe.X,
-                                                    lobe.alpha, lobe.distribution, lobe.fd, lobe.tint) * lobe.weight;
+            bsdf.response = lobe.refracted * lobe.weight;
 #endif
     }
 #endif

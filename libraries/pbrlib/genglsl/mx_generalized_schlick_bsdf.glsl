@@ -16,6 +16,14 @@ void mx_generalized_schlick_bsdf_prepare(ClosureData closureData, float weight, 
                                      max(color90, 0.0), exponent, thinfilm_thickness, thinfilm_ior);
     lobe = mx_specular_lobe_prepare(closureData, weight, vec3(1.0), roughness, retroreflective, fd, N, X, distribution,
                                     scatter_mode);
+#ifdef MX_FEATURE_TRANSMISSION
+#ifdef MX_FEATURE_REFRACTION
+    // refracted with the index whose normal reflectance is the mean of color0
+    FresnelData refractFd = fd;
+    refractFd.ior = vec3(mx_f0_to_ior(dot(fd.F0, vec3(1.0 / 3.0))));
+    mx_specular_lobe_refract(closureData, refractFd, vec3(1.0), scatter_mode, lobe);
+#endif
+#endif
 #ifdef MX_FEATURE_LIGHTS
     float NdotV = clamp(dot(lobe.N, lobe.V), MX_EPS, 1.0);
     vec3 tableAlbedo = mx_ggx_albedo(NdotV, mx_ggx_isotropic_alpha(lobe.alpha), fd.F0, fd.F90);
@@ -43,13 +51,7 @@ void mx_generalized_schlick_bsdf(ClosureData closureData, SpecularLobe lobe, ino
         bsdf.throughput = mx_specular_throughput(mx_specular_transmission_albedo(closureData, lobe), lobe.weight);
 #ifdef MX_FEATURE_REFRACTION
         if (lobe.scatterMode != 0)
-        {
-            // Refracted with the index whose normal reflectance is the mean of color0.
-            FresnelData fd = lobe.fd;
-            fd.ior = vec3(mx_f0_to_ior(dot(fd.F0, vec3(1.0 / 3.0))));
-            bsdf.response = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V,
-                                                    lobe.X, lobe.alpha, lobe.distribution, fd, vec3(1.0)) * lobe.weight;
-        }
+            bsdf.response = lobe.refracted * lobe.weight;
 #endif
     }
 #endif

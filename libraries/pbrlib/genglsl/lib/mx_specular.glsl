@@ -9,7 +9,9 @@
 //                 BRDF's), F and the multiple-scattering compensation taken at the half vector.
 //   INDIRECT      the environment, sampled once by filtered importance sampling, compensated there.
 //   TRANSMISSION  no light of its own: what is seen through a layer loses exactly the albedo its
-//                 environment term has (the same samples).
+//                 environment term has (the same samples); a lobe that refracts (scatter modes T
+//                 and RT) adds the environment seen through it, prepared too
+//                 (mx_specular_lobe_refract).
 #include "mx_closure_type.glsl"
 #include "mx_transmission_refract.glsl"
 
@@ -31,6 +33,7 @@ struct SpecularLobe
     vec3 albedo;             // what the lobe reflects of light arriving along V (the caller's table value, compensated)
     vec3 environment;        // the environment the lobe reflects towards V
     vec3 environmentAlbedo;  // the fraction of the environment it reflects, from the same samples
+    vec3 refracted;          // the environment seen through the interface (scatter modes T and RT)
 };
 
 // The fraction of light arriving with `cosine` that the lobe reflects, multiple scattering
@@ -65,11 +68,27 @@ SpecularLobe mx_specular_lobe_prepare(ClosureData closureData, float weight, vec
     lobe.albedo = vec3(0.0);
     lobe.environment = vec3(0.0);
     lobe.environmentAlbedo = vec3(0.0);
+    lobe.refracted = vec3(0.0);
     if (lobe.weight > 0.0)
         lobe.environment = mx_environment_reflected(lobe.N, lobe.V, X, lobe.alpha, fd, scatterMode != 1,
                                                     lobe.environmentAlbedo);
     return lobe;
 }
+
+#ifdef MX_FEATURE_REFRACTION
+// The environment seen through a prepared lobe's interface, with Fresnel data `fd` and `tint`:
+// prepared once per shading point like its reflection. Drivers inline every call, so computed in
+// the closure's TRANSMISSION branch it would be compiled into every context's call of the closure,
+// and for each lobe of a shader that refracts at all; here a lobe whose scatter mode is a constant
+// R (0) drops it at compile time.
+void mx_specular_lobe_refract(ClosureData closureData, FresnelData fd, vec3 tint, int scatterMode,
+                              inout SpecularLobe lobe)
+{
+    if (scatterMode != 0 && lobe.weight > 0.0)
+        lobe.refracted = mx_surface_transmission(mx_facing_normal(lobe.surfaceN, closureData.V), closureData.V,
+                                                 lobe.X, lobe.alpha, lobe.distribution, fd, tint);
+}
+#endif
 
 // The lobe towards closureData.L (REFLECTION), multiple scattering included.
 vec3 mx_specular_reflection(ClosureData closureData, SpecularLobe lobe)
