@@ -3,14 +3,14 @@
 
 Drivers inline every call, so what a fragment costs to compile is the code they see after inlining:
 the BSDF tree written out per context, the sample loops, the thin film at every Fresnel call. This
-generates one material's `complete` record (lit, environment by fis), removes one part at a time
-from its pixel stage (each edit finds its text or fails), and compiles each variant in a fresh
-process with Mesa's shader cache off, interleaved over --runs. It reports the CPU time of the
-thread that compiles (less disturbed by a loaded machine than wall time) for compile+link and for
-the first render, which includes llvmpipe's code generation; images are compared to the unedited
-one only to show what an edit removed.
+generates one material's `complete` record (environment by fis; unlit, as a thumbnail's program
+is, or with --lights), removes one part at a time from its pixel stage (each edit finds its text or
+fails), and compiles each variant in a fresh process with Mesa's shader cache off, interleaved over
+--runs. It reports the CPU time of the thread that compiles (less disturbed by a loaded machine
+than wall time) for compile+link and for the first render, which includes llvmpipe's code
+generation; images are compared to the unedited one only to show what an edit removed.
 
-  .venv/bin/python bench/compile_cost.py [DOC.mtlx] [--runs 3]
+  .venv/bin/python bench/compile_cost.py [DOC.mtlx] [--runs 3] [--lights]
 """
 import argparse
 import json
