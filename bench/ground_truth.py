@@ -73,11 +73,12 @@ GLASS_CHECK = '''<?xml version="1.0"?>
 '''
 AMBER = (0.9, 0.55, 0.15)
 # The cause of each material below GOAL_DB or below the reference, with the evidence, measured by
-# hand from the cached truths (ours and the reference's GL images at fis 256, 128x128, against the
-# truth: PSNR, the mean per channel and the signed error per N.V band over the sphere).
+# hand from the cached truths of 256 samples per pixel (ours and the reference's GL images at fis
+# 256, 128x128, against the truth: PSNR, the mean per channel and the signed error per N.V band
+# over the sphere).
 CAUSES = {
     "standard_surface_brick_procedural": (
-        "texture footprint, in the main: the truth is each pixel's area (2x2 sub-pixels of 64 samples, each texture "
+        "texture footprint, in the main: the truth is each pixel's area (2x2 sub-pixels of many samples, each texture "
         "read at its ray's footprint), ours one point per pixel whose MIP-filtered inputs enter a non-linear graph (a "
         "mask mixes mortar and brick and divides the roughness): the base colour alone (an emission variant) is 29.8 dB"
         " from the truth at 128 px (mortar red +15-25 %, blue -20-33 %), 42.0 dB at 512 px averaged 4x4. Of the 7 % "
