@@ -6,7 +6,8 @@ gltf_pbr, UsdPreviewSurface), each with random values and random node names, unt
 its base colour from a corpus texture, and measures in one run, each on the same library:
 
 - the reference's per-material process (../shared/oracle/mx_refrender.py, one process per
-  material, as a pipeline without our service runs it) on --reference-sample of them;
+  material, as a pipeline without our service runs it) on --reference-sample of them, in slices
+  drawn before, between and after our runs, so that the machine's drift reaches both sides;
 - our batch command line (`shadergen render --batch`, one process);
 - our service (`shadergen serve`) with 1, 2 and 3 local render workers routed by topology, 3 with
   the shared queue (routing that ignores topology), and --celery-workers Celery workers on a
@@ -42,6 +43,7 @@ from service_testing import RedisServer, Server, stop, wait_until  # noqa: E402
 
 ORACLE_PY = Path(os.environ.get("ORACLE_VENV", Path.home() / ".cache" / "mx-oracle" / "venv")) / "bin" / "python"
 TEXTURES = ("wood_color.jpg", "brick_base_gray.jpg", "cloth.jpg", "grid.png")
+REFERENCE = "reference (process per material)"
 REFERENCE_FRAMES = 3  # the oracle times the median of these; one is the material's own
 REFERENCE_TIMING = re.compile(r"compile\+link ([\d.]+)s\s+frame\(.*?\) median ([\d.]+) ms")
 # shading model -> (its colour input, its float inputs with their ranges)
@@ -106,9 +108,19 @@ def reference(paths: list[Path], size: int, out: Path, shared: Path) -> dict:
             frames.append(float(timing.group(2)) / 1e3)
             wall -= (REFERENCE_FRAMES - 1) * frames[-1]
         walls.append(wall)
-    return {"materials": len(paths), "seconds": sum(walls), "compiled": len(compiles), "reused": 0,
+    return {"walls": walls, "compiles": compiles, "frames": frames}
+
+
+def reference_row(slices: list[dict]) -> dict:
+    """The reference's row from its slices, drawn between our runs: a machine whose speed drifts
+    over the run (it does, by a quarter between hours) then slows or speeds both sides alike."""
+    walls = [w for part in slices for w in part["walls"]]
+    compiles = [c for part in slices for c in part["compiles"]]
+    frames = [f for part in slices for f in part["frames"]]
+    return {"materials": len(walls), "seconds": sum(walls), "compiled": len(compiles), "reused": 0,
             "frame_s": statistics.median(frames) if frames else float("nan"),
-            "compile_s": statistics.median(compiles) if compiles else float("nan")}
+            "compile_s": statistics.median(compiles) if compiles else float("nan"),
+            "slices_s": [sum(part["walls"]) / len(part["walls"]) for part in slices if part["walls"]]}
 
 
 def batch_cli(library: Path, size: int, out: Path) -> dict:
@@ -221,33 +233,40 @@ def main() -> None:
     # the topologies: shading model x textured, as the source of each decides
     topologies = len({(re.search(r"<(\w+) name=\"\w+\" type=\"surfaceshader\"", p.read_text()).group(1),
                        "<image" in p.read_text()) for p in paths})
-    rows = {}
-    sample = paths[:: max(1, len(paths) // args.reference_sample)][: args.reference_sample]
-    (tmp / "reference").mkdir()
-    rows["reference (process per material)"] = reference(sample, args.size, tmp / "reference", args.shared)
-    print("reference:", rows["reference (process per material)"], flush=True)
-    rows["ours: batch CLI"] = batch_cli(library, args.size, tmp / "cli")
-    print("batch CLI:", rows["ours: batch CLI"], flush=True)
-    frame_s, compile_s = rows["ours: batch CLI"]["frame_s"], rows["ours: batch CLI"]["compile_s"]
+    runs = {"ours: batch CLI": lambda run_dir: batch_cli(library, args.size, run_dir)}
+
+    def cli_costs() -> dict:  # the frame and program cost the service rows are held against
+        return {key: rows["ours: batch CLI"][key] for key in ("frame_s", "compile_s")}
+
     for workers, routing in ((1, "topology"), (2, "topology"), (3, "topology"), (3, "shared")):
-        label = f"ours: service, {workers} local render workers, {routing} routing"
-        run_dir = tmp / f"local{workers}{routing}"
-        run_dir.mkdir()
-        rows[label] = dict(local_service(run_dir, paths, args.size, workers, routing, images), frame_s=frame_s,
-                           compile_s=compile_s)
-        print(f"{label}:", rows[label], flush=True)
+        runs[f"ours: service, {workers} local render workers, {routing} routing"] = (
+            lambda run_dir, workers=workers, routing=routing:
+            dict(local_service(run_dir, paths, args.size, workers, routing, images), **cli_costs()))
     if args.celery_workers:
-        label = f"ours: service, {args.celery_workers} Celery workers"
-        run_dir = tmp / "celery"
+        runs[f"ours: service, {args.celery_workers} Celery workers"] = (
+            lambda run_dir: dict(celery_service(run_dir, paths, args.size, args.celery_workers, images),
+                                 **cli_costs()))
+    # the reference's sample in slices, one before each of our runs and one after the last (each
+    # slice every k-th of the sample, so that every slice mixes the shading models)
+    sample = paths[:: max(1, len(paths) // args.reference_sample)][: args.reference_sample]
+    slices = [sample[i:: len(runs) + 1] for i in range(len(runs) + 1)]
+    (tmp / "reference").mkdir()
+    rows = {REFERENCE: None}
+    reference_slices = []
+    for k, (label, run) in enumerate(runs.items()):
+        reference_slices.append(reference(slices[k], args.size, tmp / "reference", args.shared))
+        run_dir = tmp / f"run{k}"
         run_dir.mkdir()
-        rows[label] = dict(celery_service(run_dir, paths, args.size, args.celery_workers, images), frame_s=frame_s,
-                           compile_s=compile_s)
+        rows[label] = run(run_dir)
         print(f"{label}:", rows[label], flush=True)
+    reference_slices.append(reference(slices[-1], args.size, tmp / "reference", args.shared))
+    rows[REFERENCE] = reference_row(reference_slices)
+    print("reference:", rows[REFERENCE], flush=True)
     table = report(rows, topologies, args)
     print(table)
     if args.docs:
         write_docs(rows, table, args)
-    ref = rows["reference (process per material)"]
+    ref = rows[REFERENCE]
     ref_rate = ref["materials"] / ref["seconds"]
     best = max((r for k, r in rows.items() if k.startswith("ours")), key=lambda r: r["materials"] / r["seconds"])
     cli = rows["ours: batch CLI"]
@@ -259,9 +278,11 @@ def main() -> None:
 
 
 def report(rows: dict, topologies: int, args) -> str:
-    ref = rows["reference (process per material)"]
+    ref = rows[REFERENCE]
     ref_rate = ref["materials"] / ref["seconds"]
-    lines = [f"{args.materials} materials ({topologies} topologies), {args.size} px, seed {args.seed}", "",
+    drift = ", ".join(f"{seconds:.2f}" for seconds in ref["slices_s"])
+    lines = [f"{args.materials} materials ({topologies} topologies), {args.size} px, seed {args.seed}; the "
+             f"reference's sample drawn in slices before, between and after our runs (s/material: {drift})", "",
              "| run | materials | errors | materials/s | x reference | compiled | reused | hit rate | s/material | "
              "goal s/material |", "|---|---|---|---|---|---|---|---|---|---|"]
     for label, r in rows.items():
