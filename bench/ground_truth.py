@@ -352,6 +352,7 @@ def plot(materials: list[dict], path: str, args) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     measured = [m for m in materials if "rows" in m]
     if not measured:
@@ -371,6 +372,12 @@ def plot(materials: list[dict], path: str, args) -> None:
                             label=f"{shader} {interface} {method}", markersize=5)
         ax.axhline(GOAL_DB, color="grey", linestyle=":", linewidth=0.8)
         ax.set_xscale("log")
+        # ticks at 1, 2 and 5 per decade, labelled as plain numbers: matplotlib's own labels every
+        # minor tick of a range within about a decade, and those overlap
+        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda x, _: f"{x:g}"))
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.tick_params(labelsize=7)
         ax.set_title(m["name"], fontsize=9)
         ax.set_xlabel("steady frame, ms (log)", fontsize=8)
         ax.set_ylabel("PSNR vs ground truth, dB", fontsize=8)
