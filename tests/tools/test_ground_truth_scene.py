@@ -148,3 +148,31 @@ def test_our_absorbing_glass_sphere_against_the_sphere_computed_directly():
     ours = Renderer(search_paths=[]).render(Generator().prepare(document).emit(), size=side, env_samples=64).rgba[..., :3]
     exact = gts.glass_sphere_image(Environment.procedural().radiance, side, 1.5, -np.log(np.asarray(amber)))
     assert gts.psnr_viewed(ours, exact, gts.sphere_mask(side, 2.0)) > 33.0
+
+
+def test_a_truth_short_of_convergence_is_converged_on_from_its_cache(world, tmp_path):
+    """bench/ground_truth.py's cache: a truth stopped by --max-samples before --converged-db is
+    picked up by a later run with more samples, which renders only the next count (its first
+    quarter is the cached render) and gives the very image a fresh run at that count gives."""
+    sys.path.insert(0, str(ROOT / "bench"))
+    import ground_truth
+    from types import SimpleNamespace
+
+    side, counts = 8, []
+
+    def render(s, samples):
+        counts.append(samples)
+        return world.render("mirror", s, samples)
+
+    def args(cache, max_samples):
+        return SimpleNamespace(cache=str(cache), start_samples=4, max_samples=max_samples, converged_db=200.0)
+
+    short = ground_truth.cached_truth("mirror", render, side, args(tmp_path / "a", 4))
+    assert (short["samples"], short["cached"], counts) == (16, False, [1, 4])
+    again = ground_truth.cached_truth("mirror", render, side, args(tmp_path / "a", 4))
+    assert again["cached"] and counts == [1, 4]  # converged as far as asked: read, not rendered
+    counts.clear()
+    resumed = ground_truth.cached_truth("mirror", render, side, args(tmp_path / "a", 16))
+    assert (resumed["samples"], resumed["cached"], counts) == (64, False, [16])
+    fresh = ground_truth.cached_truth("mirror", render, side, args(tmp_path / "b", 16))
+    assert np.array_equal(resumed["rgb"], fresh["rgb"]) and resumed["noise_db"] == fresh["noise_db"]
