@@ -118,8 +118,8 @@ def main() -> int:
     medians = {name: {key: statistics.median(t[key] for t in timings[name]) for key in timings[name][0]}
                for name in names}
     base = medians["as generated"]
-    print(f"\n{os.path.basename(args.document)} complete ({'lit' if args.lights else 'unlit'}, fis), {args.runs} interleaved run(s) from {start}, "
-          f"load average {os.getloadavg()[0]:.1f}; thread CPU ms, medians\n")
+    print(f"\n{os.path.basename(args.document)} complete ({'lit' if args.lights else 'unlit'}, fis), "
+          f"{args.runs} interleaved run(s) from {start}, load average {os.getloadavg()[0]:.1f}; thread CPU ms, medians\n")
     print("| variant | fragment lines | compile+link | ratio | first render (with code generation) | ratio "
           "| PSNR vs as generated |")
     print("|---|---:|---:|---:|---:|---:|---:|")

@@ -139,6 +139,12 @@ def converge(render, side: int, args, done: dict | None = None) -> dict:
         coarse, aa = fine, 2 * aa
 
 
+def truth_key(args, *parts: str) -> str:
+    """The cache key of a truth of `parts` (what testrender reads and how it is run) at args.size,
+    rendered by this scene (its code's bytes): not the samples, which a later run may add to."""
+    return gts.digest(*parts, str(args.size), open(gts.__file__, "rb").read())
+
+
 def cached_truth(key: str, render, side: int, args) -> dict:
     """The truth cached under `key` where it is converged (or has --max-samples), else converged
     on from the cached one (or from the start) and cached."""
@@ -193,7 +199,7 @@ def material_truth(document: str, world: gts.Scene, env_key: str, args) -> dict:
     xml_probe = gts.scene_xml(world.material_group(name, output), *world.environment()).replace(world.folder, "")
     # what testrender reads and how it is run: the shader as the scene runs it, not the record's hash,
     # which moves with every library and generator file (fingerprint.py) while the OSL stays the same
-    key = gts.digest(source, xml_probe, env_key, str(args.size), open(gts.__file__, "rb").read())
+    key = truth_key(args, source, xml_probe, env_key)
 
     def render(side, samples):
         return world.render_material(name, output, side, samples, cwd=os.path.dirname(document))
@@ -216,8 +222,9 @@ def scene_checks(world: gts.Scene, renderer, args) -> tuple[list[str], dict]:
     direct = gts.mirror_image(world.radiance, args.size)
     lines.append(f"mirror sphere against the environment computed directly: "
                  f"{gts.psnr_viewed(mirror, direct, gts.sphere_mask(args.size, SILHOUETTE_INSET)):.1f} dB over the sphere")
-    key = gts.digest("white_lambert 0.8", world.radiance.tobytes(), str(args.size), open(gts.__file__, "rb").read())
-    truth = cached_truth(key, lambda s, n: world.render("white_lambert", s, n, surface_params={"albedo": "color 0.8 0.8 0.8"}),
+    key = truth_key(args, "white_lambert 0.8", world.radiance.tobytes())
+    truth = cached_truth(key, lambda s, n: world.render("white_lambert", s, n,
+                                                        surface_params={"albedo": "color 0.8 0.8 0.8"}),
                          args.size, args)
     gl = renderer.render(Generator().prepare(DIFFUSE_CHECK).emit(), size=args.size, env_samples=1024).rgba
     rgb = truth["rgb"]
@@ -435,11 +442,11 @@ def main() -> int:
         check_document = os.path.join(folder, "oren_nayar_check.mtlx")
         with open(check_document, "w", encoding="utf-8") as f:
             f.write(DIFFUSE_CHECK)
-        check = {"name": "check: oren_nayar_diffuse_bsdf 0.8", "truth": diffuse,
-                 "rows": [] if args.truths_only else measure(check_document, truth_rgba(diffuse["rgb"]), renderers, args),
+        rows = [] if args.truths_only else measure(check_document, truth_rgba(diffuse["rgb"]), renderers, args)
+        check = {"name": "check: oren_nayar_diffuse_bsdf 0.8", "truth": diffuse, "rows": rows,
                  "cause": "truth: testrender's oren_nayar_diffuse_bsdf (a scene shader), not our OSL"}
-        s = summary(check) if check["rows"] else None
-        if s:
+        if rows:
+            s = summary(check)
             print(f"{check['name']}: ours best {fmt(s['ours_best'])} dB, reference best {fmt(s['reference_best'])} dB",
                   flush=True)
         materials = []

@@ -113,7 +113,7 @@ def reference(paths: list[Path], size: int, out: Path, shared: Path) -> dict:
 
 def reference_row(slices: list[dict]) -> dict:
     """The reference's row from its slices, drawn between our runs: a machine whose speed drifts
-    over the run (it does, by a quarter between hours) then slows or speeds both sides alike."""
+    over the run (this one did, by up to a third within one) then slows or speeds both sides alike."""
     walls = [w for part in slices for w in part["walls"]]
     compiles = [c for part in slices for c in part["compiles"]]
     frames = [f for part in slices for f in part["frames"]]
