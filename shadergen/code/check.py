@@ -26,14 +26,11 @@ None is written where an operator takes mixed shapes itself: `vec3 * float`, `ma
 
 Errors are ShaderGenError("invalid_source", "<file>:<line>:<col>: <what>", <file>).
 """
-import copy
-
 from . import ir
 from .builtins import BUILTIN_VARIABLES, BUILTINS
 from .lex import source_error
-from .parse import GLSL_TYPES
-from .types import (array_element, array_of, array_size, column_of, is_array, is_matrix, is_numeric, is_scalar,
-                    is_vector, scalar_of, size_of, vector_of)
+from .types import (GLSL_TYPES, array_element, array_of, array_size, column_of, is_array, is_matrix, is_numeric,
+                    is_scalar, is_vector, scalar_of, size_of, vector_of)
 
 __all__ = ["check_modules", "check_expression", "Symbols", "library_symbols"]
 
@@ -697,7 +694,7 @@ def check_expression(expr: ir.Expr, placeholder_types: dict[str, str], library) 
         where = expr.where[0] if expr.where else "inline expression"
         checker = Checker(where, library.symbols, library.externals)
         checker.placeholders = placeholder_types
-        found = checker.expr(copy.deepcopy(expr))
+        found = checker.expr(ir.copy_tree(expr))
         if len(library.typed) < MAX_TYPED:
             library.typed[memo_key] = found
     return found

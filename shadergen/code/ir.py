@@ -28,7 +28,7 @@ __all__ = [
     "Stmt", "Declare", "Assign", "ExprStatement", "If", "For", "While", "Return", "Break", "Continue",
     "Discard", "Block", "Comment", "Section",
     "Item", "Struct", "Constant", "Global", "Param", "Function", "Module",
-    "replace", "children", "walk", "shape",
+    "replace", "copy_tree", "children", "walk", "shape",
 ]
 
 
@@ -387,6 +387,20 @@ def slots_of(cls: type) -> tuple[str, ...]:
         found = _SLOTS[cls] = tuple(name for c in cls.__mro__ for name in getattr(c, "__slots__", ())
                                     if name not in ("facts", "pending"))
     return found
+
+
+def copy_tree(node):
+    """A copy of a tree in which every node is new (the checker types a template's copy in place);
+    names, numbers and a call's callee are shared. (copy.deepcopy would do, but importing copy
+    costs a cold process 4 ms: it brings weakref.)"""
+    new = replace(node)
+    for name in type(node).CHILDREN:
+        value = getattr(new, name)
+        if isinstance(value, Node):
+            setattr(new, name, copy_tree(value))
+        elif isinstance(value, list):
+            setattr(new, name, [copy_tree(v) if isinstance(v, Node) else v for v in value])
+    return new
 
 
 def replace(node, **changes):

@@ -28,7 +28,6 @@ from .check import check_expression, check_modules, flat_items, library_symbols
 from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
 from .instantiate import maker
-from .parse import parse_expression, parse_module
 
 __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
@@ -154,6 +153,7 @@ class CodeLibrary:
         text = expression_text.strip()
         found = self.templates.get(text) or self.parsed.get(text)
         if found is None:
+            from .parse import parse_expression  # (a process that reads its library from the cache parses little)
             found = parse_expression(text, where)
             if len(self.parsed) < MAX_MEMO:
                 self.parsed[text] = found
@@ -211,6 +211,7 @@ def inline_sources(library: Library) -> list[tuple[str, str]]:
 def build(library: Library, externals: dict[str, str], key: str) -> tuple:
     """The cache's state: parsed and checked modules, the symbol table, the inline templates."""
     root = library.root
+    from .parse import parse_expression, parse_module  # (only where the cache is built: 1 ms of a cold start)
     modules = {PRELUDE: parse_module(PRELUDE, read_source(PRELUDE_PATH))}
     identifiers = set()
     for relative in sorted(source_files(root)):

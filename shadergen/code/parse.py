@@ -37,17 +37,15 @@ import re
 
 from . import ir
 from .lex import Token, source_error, tokenize
+from .types import GLSL_TYPES
 
 # `#pragma shadergen feature NAME [unless INPUT OP VALUE]` (features.py says what it means). The
 # patterns here are sources, compiled (and kept in re's cache) where a source is parsed: a process
 # that reads its library from the cache parses nothing, and compiling them was 0.9 ms of its start.
 DECLARATION = r"^\s*#\s*pragma\s+shadergen\s+feature\s+(\w+)(?:\s+unless\s+(\w+)\s*(==|!=|<=|>=|<|>)\s*(\S+))?\s*$"
 
-__all__ = ["parse_module", "parse_expression", "GLSL_TYPES"]
+__all__ = ["parse_module", "parse_expression"]
 
-GLSL_TYPES = frozenset({
-    "void", "bool", "int", "uint", "float", "vec2", "vec3", "vec4", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3",
-    "uvec4", "bvec2", "bvec3", "bvec4", "mat2", "mat3", "mat4", "sampler2D"})
 BINARY = (("||",), ("&&",), ("|",), ("^",), ("&",), ("==", "!="), ("<", ">", "<=", ">="), ("<<", ">>"),
           ("+", "-"), ("*", "/", "%"))  # loosest first
 PRECEDENCE = {op: level for level, ops in enumerate(BINARY) for op in ops}

@@ -5,7 +5,7 @@ memoised (a type is a short string, there are a few dozen of them).
 from functools import lru_cache
 
 __all__ = [
-    "ir_type", "SCALARS", "is_scalar", "is_vector", "is_matrix", "is_array", "is_numeric", "scalar_of",
+    "ir_type", "SCALARS", "GLSL_TYPES", "is_scalar", "is_vector", "is_matrix", "is_array", "is_numeric", "scalar_of",
     "size_of", "columns_of", "column_of", "vector_of", "array_element", "array_size", "array_of",
 ]
 
@@ -18,6 +18,9 @@ MATERIALX_TYPES = {
     "displacementshader": "displacementshader", "lightshader": "lightshader", "material": "surfaceshader",
 }
 SCALARS = ("bool", "int", "uint", "float")
+GLSL_TYPES = frozenset({  # the type names the sources may write that are not structs
+    "void", "bool", "int", "uint", "float", "vec2", "vec3", "vec4", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3",
+    "uvec4", "bvec2", "bvec3", "bvec4", "mat2", "mat3", "mat4", "sampler2D"})
 VECTOR_PREFIX = {"float": "vec", "int": "ivec", "uint": "uvec", "bool": "bvec"}
 PREFIX_SCALAR = {"vec": "float", "ivec": "int", "uvec": "uint", "bvec": "bool"}
 

@@ -6,7 +6,6 @@ The function is written once per shader and transform, named by the shader's nam
 resource prefix); the textures are private uniforms, their texels in the record's `luts`.
 """
 from ..code import build
-from ..code.parse import parse_module
 from ..code import ir
 from ..errors import ShaderGenError
 from .base import NodeImpl, register
@@ -43,6 +42,7 @@ class OcioTransform(NodeImpl):
                                  "transforms work", node.path)
         ctx.memo[key] = function = ctx.namer(f"cm_{transform.slug}")
         text, luts = transform.shader(function)
+        from ..code.parse import parse_module  # (an OCIO transform's source only: not on every start)
         module = parse_module(f"OCIO {transform.source} -> {transform.working}", text)
         textures = {lut.name: lut for lut in luts}
         for item in module.items:
