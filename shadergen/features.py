@@ -33,14 +33,12 @@ writes that context (one with a transmitting lobe, passes/closures.py).
 """
 import operator
 
+from .code.externals import ENVIRONMENT_MACROS
 from .errors import ShaderGenError
 from .graph import Graph, Input, Node
 
 PREFIX = "MX_FEATURE_"
-# Ways of environment lighting, each with the compiler macros a renderer defines for it: filtered
-# importance sampling; a prefiltered map, one lookup; that lookup corrected by a few samples.
-ENVIRONMENT_MACROS = {"fis": (), "prefilter": ("MX_ENV_PREFILTER",), "hybrid": ("MX_ENV_PREFILTER", "MX_ENV_HYBRID")}
-ENVIRONMENTS = tuple(ENVIRONMENT_MACROS)
+ENVIRONMENTS = tuple(ENVIRONMENT_MACROS)  # the ways of environment lighting (code/externals.py)
 LIGHTS_FEATURE = "LIGHTS"  # closure code for lights: needed by shaders with a light loop
 TRANSMISSION_FEATURE = "TRANSMISSION"  # closure code for the transmission context: needed by surfaces writing it
 COMPARE = {"==": operator.eq, "!=": operator.ne, "<=": operator.le, ">=": operator.ge, "<": operator.lt, ">": operator.gt}
@@ -90,11 +88,3 @@ def graph_features(graph: Graph) -> set[str]:
         if hasattr(function, "graph"):
             needed |= graph_features(function.graph)
     return needed
-
-
-def environment_macros(environment: str | None) -> frozenset[tuple[str, bool]]:
-    """The compiler macros a shader for `environment` (ENVIRONMENTS, None: either) has decided."""
-    if environment is None:
-        return frozenset()
-    defined = ENVIRONMENT_MACROS[environment]
-    return frozenset((macro, macro in defined) for macros in ENVIRONMENT_MACROS.values() for macro in macros)

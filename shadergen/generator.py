@@ -9,11 +9,12 @@ blocks, functions, main. The graph arrives finished (passes/): emission only wal
 from .code import build, ir
 from .code import stage as code_passes
 from .code.build import Builder
+from .code.externals import environment_macros
 from .code.facts import collect
 from .code.types import ir_type
 from .code.values import enum_index, value_expr
 from .errors import ShaderGenError
-from .features import LIGHTS_FEATURE, environment_macros, graph_features
+from .features import LIGHTS_FEATURE, graph_features
 from .graph import BRANCH_INPUTS, Function, Graph, Input, Node, Output, Socket
 from .library import Scope
 from .naming import SourceNames

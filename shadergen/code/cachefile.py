@@ -36,25 +36,35 @@ _RESTORING = _thread.allocate_lock()  # two threads asking for one item's fields
 # import costs a cold process more than the lock)
 
 
-def library_items(modules: dict) -> list:
-    """Every top-level item of the modules, in module and source order: what a reference is a place in."""
-    return [item for module in modules.values() for item in flat_items(module.items) if isinstance(item, ir.Item)]
+def library_items(modules: dict, resolutions: dict | None = None) -> list:
+    """Every top-level item of the modules, in module and source order, then the items of the
+    library's functions with their sections resolved (code/library.py's resolutions) that are
+    not among those: what a reference is a place in."""
+    items = [item for module in modules.values() for item in flat_items(module.items) if isinstance(item, ir.Item)]
+    if resolutions:
+        known = {id(item) for item in items}
+        for resolved, _ in resolutions.values():
+            for item in flat_items(resolved):
+                if isinstance(item, ir.Item) and id(item) not in known:
+                    known.add(id(item))
+                    items.append(item)
+    return items
 
 
-def dumps(state, modules: dict) -> bytes:
-    """`state` pickled, the DEFERRED fields of the items of `modules` apart."""
+def dumps(state, items: list) -> bytes:
+    """`state` pickled, the DEFERRED fields of `items` (library_items) apart."""
     out = io.BytesIO()
-    _StateWriter(out, {id(item): n for n, item in enumerate(library_items(modules))}).dump(state)
+    _StateWriter(out, {id(item): n for n, item in enumerate(items)}).dump(state)
     return out.getvalue()
 
 
-def loads(data: bytes, modules_of) -> object:
-    """What `dumps` wrote; `modules_of(state)` gives its modules (to resolve references by place)."""
+def loads(data: bytes, items_of) -> object:
+    """What `dumps` wrote; `items_of(state)` gives its library_items (to resolve references by place)."""
     items: list = []
     reader = pickle.Unpickler(io.BytesIO(data))
     reader.persistent_load = lambda pid: items if pid == "items" else _unknown(pid)
     state = reader.load()
-    items.extend(library_items(modules_of(state)))
+    items.extend(items_of(state))
     return state
 
 

@@ -24,16 +24,18 @@ from ..errors import ShaderGenError
 from ..fingerprint import library_files
 from ..library import Library, cache_dir, collection_paused, read_checked, read_source, write_checked
 from . import cachefile, ir
+from .externals import ENVIRONMENT_MACROS, environment_macros
 from .check import check_expression, check_modules, flat_items, library_symbols
 from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
 from .instantiate import maker
+from .passes import sections
 
 __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-6"
+CACHE_FORMAT = b"shadergen-code-7"
 # an identifier as the libraries' sources spell one (comments and strings included: only ever more);
 # compiled where a library is built (re's cache), not by every process that imports this module
 _SOURCE_IDENTIFIER = r"(?a)\b[A-Za-z_]\w*"
@@ -49,7 +51,7 @@ def _running_ir() -> bytes:
 
 
 RUNNING_IR = _running_ir()
-STATE_SIZE = 7  # the fields of CodeLibrary.state()
+STATE_SIZE = 8  # the fields of CodeLibrary.state()
 MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
 # What a node implementation calling a library function by name needs to know of its definitions
 # (nodes/base.py SourceFunctionImpl, the passes that read it): whether any takes derivatives, itself
@@ -68,13 +70,15 @@ class CodeLibrary:
     identifier its sources spell (`identifiers`): WGSL reads a uniform through its buffer wherever
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
-    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls", "typed",
-                 "parsed", "makers", "generated")
+    __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls",
+                 "resolutions_pickled", "resolved", "typed", "parsed", "makers", "generated")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
-        self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls = state
+        (self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls,
+         self.resolutions_pickled) = state
         self.identifiers = frozenset(identifiers)
+        self.resolved = None  # Resolved: the resolutions, read from their pickle when first asked
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
@@ -98,7 +102,7 @@ class CodeLibrary:
         """What the cache holds (equal for equal libraries, whatever order they were read in)."""
         # the identifiers as a sorted tuple: a set's order depends on how it was filled
         return (self.key, self.modules, self.symbols, self.templates, self.externals, tuple(sorted(self.identifiers)),
-                self.calls)
+                self.calls, self.resolutions_pickled)
 
     # -- lookups -----------------------------------------------------------------------------------
     def module(self, path: str) -> ir.Module:
@@ -113,6 +117,20 @@ class CodeLibrary:
     def functions(self, name: str) -> list[ir.Function]:
         """Every overload of a library function (none: an empty list)."""
         return list(self.symbols.functions.get(name, {}).values())
+
+    def resolution(self, function, decisions: tuple) -> tuple[tuple, int] | None:
+        """A library function's sections resolved for `decisions` (code/passes/sections.py's
+        resolve), as the cache holds them (resolutions_of); None for anything else."""
+        resolved = self.read_resolutions()
+        place = resolved.places.get(id(function))
+        return None if place is None else resolved.table.get((place, decisions))
+
+    def read_resolutions(self) -> "Resolved":
+        """The resolutions, read from their pickle the first time a stage asks (only a shader with
+        sections needs them: most of the standard library's have none)."""
+        if self.resolved is None:
+            self.resolved = Resolved(self.modules, self.resolutions_pickled)
+        return self.resolved
 
     def calls_of(self, name: str) -> Calls:
         """What calling the library function `name` means to the passes (Calls)."""
@@ -230,7 +248,42 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
     # WGSL spells a library name that is one of its reserved words `<name>_` (targets/wgsl)
     identifiers = tuple(sorted(identifiers | {f"{n}_" for n in identifiers}))
     state = (key, modules, symbols, cachefile.Apart(templates), dict(sorted(externals.items())), identifiers)
-    return state + (calls_by_name(CodeLibrary(root, state + ({},))),)
+    resolutions = resolutions_of(modules)
+    pickled = cachefile.dumps(resolutions, cachefile.library_items(modules, resolutions))
+    return state + (calls_by_name(CodeLibrary(root, state + ({}, pickled))), pickled)
+
+
+class Resolved:
+    """The library's functions with their sections resolved (resolutions_of), read from their
+    pickle: `table`, (place, decisions) -> (items, count); `places`, id(item) -> place among the
+    library's items; `copies`, the items of the resolutions (targets/printed.py prints them once)."""
+    __slots__ = ("table", "places", "copies")
+
+    def __init__(self, modules: dict, pickled: bytes):
+        originals = cachefile.library_items(modules)
+        self.table = cachefile.loads(pickled, lambda table: cachefile.library_items(modules, table))
+        self.places = {id(item): n for n, item in enumerate(originals)}
+        self.copies = cachefile.library_items(modules, self.table)[len(originals):]
+
+
+def resolutions_of(modules: dict) -> dict:
+    """(place among library_items, decisions) -> (items, sections resolved): every library function
+    with sections, resolved (code/passes/sections.py) for every set of decisions a stage can make
+    of its macros (it decides no macro but the environment's, code/externals.py), with its facts
+    read; those that resolve no section are left out (the pass keeps the function). A cold process
+    reads a stage's copies, their facts and their printed lines instead of reading, rebuilding,
+    walking and printing each body (carpaint: 21)."""
+    out = {}
+    decided_options = [environment_macros(e) for e in (None, *ENVIRONMENT_MACROS)]
+    for place, item in enumerate(cachefile.library_items(modules)):
+        mentioned = sections.macros_in(item) if isinstance(item, ir.Function) else ()
+        for decisions in sections.decisions_of(mentioned, decided_options) if mentioned else ():
+            resolved, count = sections.resolve(item, decisions)
+            if count:
+                out[(place, decisions)] = resolved, count
+                for copy in resolved:
+                    facts(copy)  # (pickled with it)
+    return out
 
 
 def calls_by_name(code: CodeLibrary) -> dict[str, Calls]:
@@ -271,11 +324,11 @@ def read_cache(path: str, key: str) -> tuple | None:
     if body is None:
         return None
     try:
-        state = cachefile.loads(body, lambda state: state[1])
+        state = cachefile.loads(body, lambda state: cachefile.library_items(state[1]))
         return state if isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key else None
     except (pickle.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
 
 
 def write_cache(path: str, state: tuple) -> None:
-    write_checked(path, cachefile.dumps(state, state[1]))
+    write_checked(path, cachefile.dumps(state, cachefile.library_items(state[1])))

@@ -77,7 +77,7 @@ def run(ctx, counts: dict) -> StageCode:
     own = getattr(ctx.target, "own_functions", ())
     if own:
         items = [without_body(i) if isinstance(i, ir.Function) and i.name in own else i for i in items]
-    reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts)
+    reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts, code)
     counts.update(passes)
     structs, constants, functions = [], [], []
     for i in reached.items:  # one look at each item (a section's is a walk of its body)

@@ -11,6 +11,7 @@ from shadergen.code.check import check_modules, flat_items
 from shadergen.code.externals import EXTERNALS
 from shadergen.code.library import PRELUDE, PRELUDE_PATH, CodeLibrary, build, cache_key, inline_sources, source_files
 from shadergen.code.parse import parse_expression, parse_module
+from shadergen.code.passes import sections
 from shadergen.code.types import ir_type
 from shadergen.errors import ShaderGenError
 from shadergen.library import Library, Scope, read_source
@@ -329,7 +330,8 @@ def test_the_cache_round_trips_and_a_corrupt_file_is_rebuilt(library, tmp_path, 
     assert reloaded.modules is not built.modules
     # the file's bytes again (a plain pickle of the reloaded state would differ in what it shares:
     # a body read apart has strings of its own)
-    assert cachefile.dumps(reloaded.state(), reloaded.modules) == cachefile.dumps(built.state(), built.modules)
+    items = [cachefile.library_items(c.modules) for c in (reloaded, built)]
+    assert cachefile.dumps(reloaded.state(), items[0]) == cachefile.dumps(built.state(), items[1])
     # a reloaded call still resolves to the function object of its module
     call = next(n for n in ir.walk(reloaded.functions("mx_dielectric_bsdf")[0]) if isinstance(n, ir.Call) and n.callee)
     assert call.callee in reloaded.functions(call.name)
@@ -368,6 +370,31 @@ def test_a_reloaded_librarys_inline_templates_are_read_when_first_asked(library,
     template = reloaded.template(text)
     assert list(reloaded.templates.values) == [text] and text not in reloaded.templates.blobs
     assert reloaded.template(text) is template and ir.shape(template) == ir.shape(built.template(text))
+
+
+def test_a_function_with_sections_comes_resolved_from_the_cache_with_its_printed_lines(library, tmp_path, monkeypatch):
+    """What a cold process's sections pass gets for a library function: the copy the cache holds
+    (read only once a stage asks), equal to resolving it afresh, the same object request after
+    request, and printed by the printed library's file, not again."""
+    monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
+    CodeLibrary.load(library, EXTERNALS)  # builds the cache
+    reloaded = CodeLibrary.load(library, EXTERNALS)
+    PrintedLibrary(reloaded, "glsl", printed)  # writes the printed library, the copies' lines too
+    assert reloaded.resolved is not None
+    reloaded = CodeLibrary.load(library, EXTERNALS)
+    assert reloaded.resolved is None  # nothing read before a stage asks
+    function = next(f for f in library_items(reloaded.modules) if isinstance(f, ir.Function)
+                    and any(m.startswith(sections.FEATURE_PREFIX) for m in sections.macros_in(f)))
+    # a stage without the features, which decides no other macro (no environment chosen)
+    decisions = tuple((m, False if m.startswith(sections.FEATURE_PREFIX) else None) for m in sections.macros_in(function))
+    copies, count = reloaded.resolution(function, decisions)
+    fresh, fresh_count = sections.resolve(function, decisions)
+    assert count == fresh_count > 0 and [ir.shape(i) for i in copies] == [ir.shape(i) for i in fresh]
+    resolved, _ = sections.run([function], frozenset(), frozenset(), reloaded)
+    assert resolved == list(copies)  # the very objects: later passes' memos and the printed lines hit
+    read = PrintedLibrary(reloaded, "glsl", lambda item: pytest.fail("printed again"))
+    assert read.lines(copies[0]) == tuple(printed(copies[0]))
+    assert read.lines(fresh[0]) is None  # a copy made here is printed from its IR
 
 
 def test_library_items_are_printed_once_per_library_into_a_file(library, code, tmp_path, monkeypatch):

@@ -443,7 +443,7 @@ import pytest  # noqa: E402
 
 from shadergen.code.check import flat_items  # noqa: E402
 from shadergen.code.types import ir_type  # noqa: E402
-from shadergen.features import environment_macros  # noqa: E402
+from shadergen.code.externals import environment_macros  # noqa: E402
 from shadergen.library import default_library  # noqa: E402
 from shadergen.nodes.base import SourceFunctionImpl, implementation_for  # noqa: E402
 

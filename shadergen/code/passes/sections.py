@@ -2,15 +2,19 @@
 text: a section of a feature the stage needs (`#ifdef MX_FEATURE_X`, X among `features`) stays
 without its directives, the section of one it does not need gives its `other` (the `#else` side,
 or nothing); `features` None (a stage whose nodes were not asked) needs every feature. A compiler
-macro the caller decided (`macros`: (name, defined) pairs, features.environment_macros) resolves
+macro the caller decided (`macros`: (name, defined) pairs, code/externals.py's environment_macros) resolves
 the same way; any other macro's section stays a Section, for a target to write out or to give its
 default. An `if`'s `else` clause held by a section (ir.Section) becomes that `if`'s `else` or
 `else if`, or none.
 
 Library items recur in every request: each item's result is memoised per the decisions of the
-macros it mentions, so a request only looks up what it decides.
+macros it mentions, so a request only looks up what it decides. A library function's results for
+every decision a stage can make are worked out with the library's cache (code/library.py) and read
+from it: a new process then neither reads, rebuilds and walks the function's body nor prints the
+copy (the printed library holds them).
 """
 from functools import lru_cache
+from itertools import product
 
 from .. import ir
 from ..facts import facts
@@ -19,15 +23,16 @@ from .rewrite import rebuild_list
 FEATURE_PREFIX = "MX_FEATURE_"
 
 
-def run(items: list, features: frozenset | None, macros: frozenset = frozenset()) -> tuple[list, int]:
+def run(items: list, features: frozenset | None, macros: frozenset = frozenset(), library=None) -> tuple[list, int]:
     """The items with their sections resolved, and how many sections were resolved. Memoised per
-    (items, features, macros): a module's items recur in every request."""
-    out, count = _run(tuple(items), None if features is None else frozenset(features), frozenset(macros))
+    (items, features, macros): a module's items recur in every request. `library`: the items'
+    CodeLibrary, whose `resolution(item, decisions)` answers for its own functions."""
+    out, count = _run(tuple(items), None if features is None else frozenset(features), frozenset(macros), library)
     return list(out), count
 
 
 @lru_cache(maxsize=4096)
-def _run(items: tuple, features: frozenset | None, macros: frozenset) -> tuple[tuple, int]:
+def _run(items: tuple, features: frozenset | None, macros: frozenset, library) -> tuple[tuple, int]:
     decided = dict(macros)
     out, count = [], 0
     for item in items:
@@ -35,10 +40,26 @@ def _run(items: tuple, features: frozenset | None, macros: frozenset) -> tuple[t
         if not mentioned:
             out.append(item)
             continue
-        resolved, n = _resolved(item, tuple((m, decision(m, features, decided)) for m in mentioned))
+        decisions = tuple((m, decision(m, features, decided)) for m in mentioned)
+        found = library.resolution(item, decisions) if library is not None else None
+        resolved, n = found if found is not None else _resolved(item, decisions)
         out.extend(resolved)
         count += n
     return tuple(out), count
+
+
+def decisions_of(mentioned: tuple, decided_options) -> list[tuple]:
+    """Every `decisions` (resolve's) a stage can make of the macros `mentioned` when the macros it
+    decides are one of `decided_options` ((name, defined) sets): a feature is needed or not, a
+    decided macro is what it was decided, any other is left to the target. In order, each once."""
+    out = {}
+    for decided in decided_options:
+        decided = dict(decided)
+        states = [(decided[m],) if m in decided else (True, False) if m.startswith(FEATURE_PREFIX) else (None,)
+                  for m in mentioned]
+        for chosen in product(*states):
+            out.setdefault(tuple(zip(mentioned, chosen)))
+    return list(out)
 
 
 def decision(macro: str, features: frozenset | None, decided: dict) -> bool | None:
@@ -62,8 +83,9 @@ def macros_in(item) -> tuple[str, ...]:
     return tuple(sorted(facts(item).macros)) if isinstance(item, ir.Item) else ()  # (a comment: none)
 
 
-@lru_cache(maxsize=16384)
-def _resolved(item, decisions: tuple) -> tuple[tuple, int]:
+def resolve(item, decisions: tuple) -> tuple[tuple, int]:
+    """(the items `item` becomes, the sections resolved) for `decisions`, ((macro, decision) of
+    each macro it mentions, in macros_in's order)."""
     defined = {m: d for m, d in decisions if d is not None}
     count = 0
 
@@ -75,3 +97,6 @@ def _resolved(item, decisions: tuple) -> tuple[tuple, int]:
         return stmt.body if defined[stmt.macro] == stmt.defined else (stmt.other or [])
 
     return tuple(rebuild_list([item], section)), count
+
+
+_resolved = lru_cache(maxsize=16384)(resolve)  # (a copy per item and decisions: later passes' memos hit)

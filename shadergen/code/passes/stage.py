@@ -9,12 +9,13 @@ from ..facts import collect
 from . import fields, forward, reach, sections
 
 
-def run(items: list, features: frozenset | None, macros: frozenset, roots=(), names=()) -> tuple:
+def run(items: list, features: frozenset | None, macros: frozenset, roots=(), names=(), library=None) -> tuple:
     """(reach.Reached of what the stage keeps, {"sections", "reach", "fields", "forward": count}:
     sections resolved, items left unreached, dead members and stores, calls made straight)
     for `items` (the library items the stage's files bring, in library order), `roots` (main's
-    statements, the generated functions) and `names` (items the generator names without IR)."""
-    resolved, counts = sections.run(items, features, macros)
+    statements, the generated functions) and `names` (items the generator names without IR);
+    `library`: the CodeLibrary the items come from (sections.run)."""
+    resolved, counts = sections.run(items, features, macros, library)
     root_facts = collect(roots)
     reached, unreached = reach.run(resolved, root_facts, names)
     total = {"sections": counts, "reach": unreached, "fields": 0, "forward": 0}
