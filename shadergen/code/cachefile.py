@@ -15,10 +15,9 @@ among those; both are read back as the same objects. A forwarding function's fac
 arguments: it is read whole, at once.
 """
 import io
-import pickle
 import _thread
 
-from . import ir
+from . import ir, pickling
 from .check import flat_items
 
 # the fields of an item kept in the file until asked for, each read apart, except a body: its
@@ -61,7 +60,7 @@ def dumps(state, items: list) -> bytes:
 def loads(data: bytes, items_of) -> object:
     """What `dumps` wrote; `items_of(state)` gives its library_items (to resolve references by place)."""
     items: list = []
-    reader = pickle.Unpickler(io.BytesIO(data))
+    reader = pickling.Unpickler(io.BytesIO(data))
     reader.persistent_load = lambda pid: items if pid == "items" else _unknown(pid)
     state = reader.load()
     items.extend(items_of(state))
@@ -69,12 +68,12 @@ def loads(data: bytes, items_of) -> object:
 
 
 def _unknown(pid):
-    raise pickle.UnpicklingError(f"unknown persistent id {pid!r}")
+    raise pickling.UnpicklingError(f"unknown persistent id {pid!r}")
 
 
-class _StateWriter(pickle.Pickler):
+class _StateWriter(pickling.Pickler):
     def __init__(self, file, index: dict[int, int]):
-        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        super().__init__(file, protocol=pickling.PROTOCOL)
         self.index = index
 
     def reducer_override(self, obj):
@@ -94,12 +93,12 @@ class _StateWriter(pickle.Pickler):
         return "items" if obj is _ITEMS else None
 
 
-class _FieldWriter(pickle.Pickler):
+class _FieldWriter(pickling.Pickler):
     """A deferred field: a library item in it written as its place (an int), a statement of the
     item's stores as its place among them (a 1-tuple)."""
 
     def __init__(self, file, index: dict[int, int], stores: dict[int, int]):
-        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        super().__init__(file, protocol=pickling.PROTOCOL)
         self.index, self.stores = index, stores
 
     def persistent_id(self, obj):
@@ -135,7 +134,7 @@ class Apart:
             with _RESTORING:
                 blob = self.blobs.pop(key, None)
                 if blob is not None:
-                    self.values[key] = pickle.loads(blob)
+                    self.values[key] = pickling.loads(blob)
             found = self.values.get(key)
         return found
 
@@ -143,7 +142,7 @@ class Apart:
         return iter(self.keys)
 
     def __reduce__(self):
-        blobs = {key: self.blobs[key] if key in self.blobs else pickle.dumps(self.values[key], pickle.HIGHEST_PROTOCOL)
+        blobs = {key: self.blobs[key] if key in self.blobs else pickling.dumps(self.values[key], pickling.PROTOCOL)
                  for key in self.keys}
         return Apart, ({}, blobs)
 
@@ -163,6 +162,6 @@ class _Pending:
                 blob = self.blobs.pop(field, None)
                 if blob is not None:
                     stores = item.facts.stores if field == "body" else ()
-                    reader = pickle.Unpickler(io.BytesIO(blob))
+                    reader = pickling.Unpickler(io.BytesIO(blob))
                     reader.persistent_load = lambda pid: self.items[pid] if pid.__class__ is int else stores[pid[0]].statement
                     setattr(item, field, reader.load())

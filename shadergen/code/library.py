@@ -16,16 +16,15 @@ every node's `where`, and the pickle does not depend on where the library lies.
 """
 import hashlib
 import os
-import pickle
 import re
 from collections import namedtuple
 
 from ..errors import ShaderGenError
 from ..fingerprint import library_files
 from ..library import Library, cache_dir, collection_paused, read_checked, read_source, write_checked
-from . import cachefile, ir
-from .externals import ENVIRONMENT_MACROS, environment_macros
+from . import cachefile, ir, pickling
 from .check import check_expression, check_modules, flat_items, library_symbols
+from .externals import ENVIRONMENT_MACROS, environment_macros
 from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
 from .instantiate import maker
@@ -326,7 +325,7 @@ def read_cache(path: str, key: str) -> tuple | None:
     try:
         state = cachefile.loads(body, lambda state: cachefile.library_items(state[1]))
         return state if isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key else None
-    except (pickle.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
+    except (pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
 
 

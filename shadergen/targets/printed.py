@@ -10,8 +10,8 @@ printed from its IR. The file is named by the code
 cache's key, which covers the library and the generator's code, and by the target.
 """
 import os
-import pickle
 
+from ..code import pickling
 from ..code.cachefile import library_items
 from ..errors import ShaderGenError
 from ..library import cache_dir, read_checked, write_checked
@@ -33,8 +33,8 @@ class PrintedLibrary:
         if found is None or len(found[0]) != len(items):
             copies = code.read_resolutions().copies
             found = (tuple(_lines(print_item, item) for item in items),
-                     pickle.dumps(tuple(_lines(print_item, item) for item in copies), protocol=pickle.HIGHEST_PROTOCOL))
-            write_checked(path, pickle.dumps((key, *found), protocol=pickle.HIGHEST_PROTOCOL))
+                     pickling.dumps(tuple(_lines(print_item, item) for item in copies), protocol=pickling.PROTOCOL))
+            write_checked(path, pickling.dumps((key, *found), protocol=pickling.PROTOCOL))
         self.printed, self.copies_pickled = found
         self.copies = None  # id(copy) -> its lines, read when first asked
 
@@ -45,7 +45,7 @@ class PrintedLibrary:
         if self.code.resolved is None:
             return None  # (no stage asked for a resolution: `item` is none of them)
         if self.copies is None:
-            lines = pickle.loads(self.copies_pickled)
+            lines = pickling.loads(self.copies_pickled)
             self.copies = {id(copy): text for copy, text in zip(self.code.resolved.copies, lines)}
         return self.copies.get(id(item))
 
@@ -61,7 +61,7 @@ def _read(path: str, key: bytes) -> tuple | None:
     """(the library items' lines, the copies' lines pickled), or None."""
     body = read_checked(path)
     try:
-        stored_key, printed, copies = pickle.loads(body) if body is not None else (None, None, None)
-    except (pickle.UnpicklingError, EOFError, ValueError, TypeError):
+        stored_key, printed, copies = pickling.loads(body) if body is not None else (None, None, None)
+    except (pickling.UnpicklingError, EOFError, ValueError, TypeError):
         return None
     return (printed, copies) if stored_key == key and isinstance(printed, tuple) and isinstance(copies, bytes) else None
