@@ -89,11 +89,13 @@ def facts(item: ir.Item) -> Facts:
 
 
 def collect(nodes) -> Facts:
-    """The facts of generated code (root statements, generated functions), read each time."""
-    return _read(list(nodes), None)
+    """The facts of generated code (root statements, generated functions), read each time. Its
+    `stores` are left empty: the passes edit library items only, never the roots (finding whether
+    a store does anything else walks it again, for every member store of main)."""
+    return _read(list(nodes), None, False)
 
 
-def _read(nodes, function: ir.Function | None) -> Facts:
+def _read(nodes, function: ir.Function | None, read_stores: bool = True) -> Facts:
     """One pass over the nodes (the walk is inlined: facts of a library's functions are read on a
     cold process's first request, where a generic walk costs several times as much)."""
     callees: dict[int, ir.Function] = {}
@@ -152,7 +154,7 @@ def _read(nodes, function: ir.Function | None) -> Facts:
             root = _target_root(n.target)
             if isinstance(root, ir.Name) and root.kind not in LOCAL_KINDS:
                 writes_outside = True
-            stored = stored_members(n.target)
+            stored = stored_members(n.target) if read_stores else None
             if stored:
                 stores.append(Store(n, stored, _occurrences(n), not _has_effects(n)))
         elif cls is ir.Section:
