@@ -34,7 +34,7 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-7"
+CACHE_FORMAT = b"shadergen-code-6"
 # an identifier as the libraries' sources spell one (comments and strings included: only ever more);
 # compiled where a library is built (re's cache), not by every process that imports this module
 _SOURCE_IDENTIFIER = r"(?a)\b[A-Za-z_]\w*"
@@ -50,7 +50,7 @@ def _running_ir() -> bytes:
 
 
 RUNNING_IR = _running_ir()
-STATE_SIZE = 8  # the fields of CodeLibrary.state()
+STATE_SIZE = 7  # the fields of CodeLibrary.state()
 MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
 # What a node implementation calling a library function by name needs to know of its definitions
 # (nodes/base.py SourceFunctionImpl, the passes that read it): whether any takes derivatives, itself
@@ -70,14 +70,13 @@ class CodeLibrary:
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
     __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls",
-                 "resolutions_pickled", "resolved", "typed", "parsed", "makers", "generated")
+                 "resolved", "typed", "parsed", "makers", "generated")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
-        (self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls,
-         self.resolutions_pickled) = state
+        self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls = state
         self.identifiers = frozenset(identifiers)
-        self.resolved = None  # Resolved: the resolutions, read from their pickle when first asked
+        self.resolved = None  # Resolved: the resolutions, read from their file when first asked
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
@@ -101,7 +100,7 @@ class CodeLibrary:
         """What the cache holds (equal for equal libraries, whatever order they were read in)."""
         # the identifiers as a sorted tuple: a set's order depends on how it was filled
         return (self.key, self.modules, self.symbols, self.templates, self.externals, tuple(sorted(self.identifiers)),
-                self.calls, self.resolutions_pickled)
+                self.calls)
 
     # -- lookups -----------------------------------------------------------------------------------
     def module(self, path: str) -> ir.Module:
@@ -125,10 +124,18 @@ class CodeLibrary:
         return None if place is None else resolved.table.get((place, decisions))
 
     def read_resolutions(self) -> "Resolved":
-        """The resolutions, read from their pickle the first time a stage asks (only a shader with
-        sections needs them: most of the standard library's have none)."""
+        """The resolutions, read the first time a stage asks (only a shader with sections needs
+        them: most of the standard library's have none) from their file beside the code's, which
+        the first process to ask writes (a damaged one is written again)."""
         if self.resolved is None:
-            self.resolved = Resolved(self.modules, self.resolutions_pickled)
+            path = os.path.join(cache_dir(), f"resolutions-{self.key[:24]}.pickle")
+            try:
+                self.resolved = Resolved(self.modules, read_checked(path), self.key)
+            except (pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
+                resolutions = resolutions_of(self.modules)
+                body = cachefile.dumps((self.key, resolutions), cachefile.library_items(self.modules, resolutions))
+                write_checked(path, body)
+                self.resolved = Resolved(self.modules, body, self.key)
         return self.resolved
 
     def calls_of(self, name: str) -> Calls:
@@ -247,20 +254,23 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
     # WGSL spells a library name that is one of its reserved words `<name>_` (targets/wgsl)
     identifiers = tuple(sorted(identifiers | {f"{n}_" for n in identifiers}))
     state = (key, modules, symbols, cachefile.Apart(templates), dict(sorted(externals.items())), identifiers)
-    resolutions = resolutions_of(modules)
-    pickled = cachefile.dumps(resolutions, cachefile.library_items(modules, resolutions))
-    return state + (calls_by_name(CodeLibrary(root, state + ({}, pickled))), pickled)
+    return state + (calls_by_name(CodeLibrary(root, state + ({},))),)
 
 
 class Resolved:
-    """The library's functions with their sections resolved (resolutions_of), read from their
-    pickle: `table`, (place, decisions) -> (items, count); `places`, id(item) -> place among the
-    library's items; `copies`, the items of the resolutions (targets/printed.py prints them once)."""
+    """The library's functions with their sections resolved (resolutions_of), read from what
+    CodeLibrary.read_resolutions wrote: `table`, (place, decisions) -> (items, count); `places`,
+    id(item) -> place among the library's items; `copies`, the items of the resolutions
+    (targets/printed.py prints them once). A file of another library, or none, raises ValueError."""
     __slots__ = ("table", "places", "copies")
 
-    def __init__(self, modules: dict, pickled: bytes):
+    def __init__(self, modules: dict, body: bytes | None, key: str):
+        if body is None:
+            raise ValueError("no resolutions")
         originals = cachefile.library_items(modules)
-        self.table = cachefile.loads(pickled, lambda table: cachefile.library_items(modules, table))
+        stored_key, self.table = cachefile.loads(body, lambda state: cachefile.library_items(modules, state[1]))
+        if stored_key != key:
+            raise ValueError("the resolutions of another library")
         self.places = {id(item): n for n, item in enumerate(originals)}
         self.copies = cachefile.library_items(modules, self.table)[len(originals):]
 

@@ -379,8 +379,14 @@ def test_a_function_with_sections_comes_resolved_from_the_cache_with_its_printed
     monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
     CodeLibrary.load(library, EXTERNALS)  # builds the cache
     reloaded = CodeLibrary.load(library, EXTERNALS)
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith("resolutions-")]  # written when first asked
     PrintedLibrary(reloaded, "glsl", printed)  # writes the printed library, the copies' lines too
-    assert reloaded.resolved is not None
+    (resolutions,) = [p for p in tmp_path.iterdir() if p.name.startswith("resolutions-")]
+    written = resolutions.read_bytes()
+    for damage in (b"", written[:100] + b"garbage" + written[107:]):  # missing, damaged: written again alike
+        resolutions.write_bytes(damage)
+        CodeLibrary.load(library, EXTERNALS).read_resolutions()
+        assert resolutions.read_bytes() == written
     reloaded = CodeLibrary.load(library, EXTERNALS)
     assert reloaded.resolved is None  # nothing read before a stage asks
     function = next(f for f in library_items(reloaded.modules) if isinstance(f, ir.Function)
