@@ -391,8 +391,8 @@ def slots_of(cls: type) -> tuple[str, ...]:
 
 def copy_tree(node):
     """A copy of a tree in which every node is new (the checker types a template's copy in place);
-    names, numbers and a call's callee are shared. (copy.deepcopy would do, but importing copy
-    costs a cold process 4 ms: it brings weakref.)"""
+    names, numbers and a call's callee are shared. (copy.deepcopy would do, but a cold process
+    imports nothing else of copy, nor of the weakref it brings: up to 4 ms under -X importtime.)"""
     new = replace(node)
     for name in type(node).CHILDREN:
         value = getattr(new, name)
