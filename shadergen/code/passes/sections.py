@@ -49,16 +49,16 @@ def _run(items: tuple, features: frozenset | None, macros: frozenset, library) -
 
 
 def decisions_of(mentioned: tuple, decided_options) -> list[tuple]:
-    """Every `decisions` (resolve's) a stage can make of the macros `mentioned` when the macros it
-    decides are one of `decided_options` ((name, defined) sets): a feature is needed or not, a
-    decided macro is what it was decided, any other is left to the target. In order, each once."""
+    """Every `decisions` (resolve's) a stage can make of the macros `mentioned`, as _run makes
+    them (decision), when the macros it decides are one of `decided_options` ((name, defined)
+    sets) and it needs any set of the features among them. In order, each once."""
+    features = [m[len(FEATURE_PREFIX):] for m in mentioned if m.startswith(FEATURE_PREFIX)]
     out = {}
     for decided in decided_options:
         decided = dict(decided)
-        states = [(decided[m],) if m in decided else (True, False) if m.startswith(FEATURE_PREFIX) else (None,)
-                  for m in mentioned]
-        for chosen in product(*states):
-            out.setdefault(tuple(zip(mentioned, chosen)))
+        for needed in product((True, False), repeat=len(features)):
+            chosen = frozenset(f for f, n in zip(features, needed) if n)
+            out.setdefault(tuple((m, decision(m, chosen, decided)) for m in mentioned))
     return list(out)
 
 
