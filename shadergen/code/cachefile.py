@@ -35,19 +35,22 @@ _RESTORING = _thread.allocate_lock()  # two threads asking for one item's fields
 # import costs a cold process more than the lock)
 
 
-def library_items(modules: dict, resolutions: dict | None = None) -> list:
-    """Every top-level item of the modules, in module and source order, then the items of the
-    library's functions with their sections resolved (code/library.py's resolutions) that are
-    not among those: what a reference is a place in."""
-    items = [item for module in modules.values() for item in flat_items(module.items) if isinstance(item, ir.Item)]
-    if resolutions:
-        known = {id(item) for item in items}
-        for resolved, _ in resolutions.values():
-            for item in flat_items(resolved):
-                if isinstance(item, ir.Item) and id(item) not in known:
-                    known.add(id(item))
-                    items.append(item)
-    return items
+def library_items(modules: dict) -> list:
+    """Every top-level item of the modules, in module and source order: what a reference is a place in."""
+    return [item for module in modules.values() for item in flat_items(module.items) if isinstance(item, ir.Item)]
+
+
+def copies_in(items: list, resolutions: dict) -> list:
+    """The items of the library's functions with their sections resolved (code/library.py's
+    resolutions) that are not among `items` (library_items), in order: their places follow."""
+    known = {id(item) for item in items}
+    out = []
+    for resolved, _ in resolutions.values():
+        for item in flat_items(resolved):
+            if isinstance(item, ir.Item) and id(item) not in known:
+                known.add(id(item))
+                out.append(item)
+    return out
 
 
 def dumps(state, items: list) -> bytes:

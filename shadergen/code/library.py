@@ -70,12 +70,13 @@ class CodeLibrary:
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
     __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls",
-                 "resolved", "typed", "parsed", "makers", "generated")
+                 "indexed", "resolved", "typed", "parsed", "makers", "generated")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
         self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls = state
         self.identifiers = frozenset(identifiers)
+        self.indexed = None  # (library_items, id(item) -> its place among them), made when first asked
         self.resolved = None  # Resolved: the resolutions, read from their file when first asked
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
@@ -116,26 +117,32 @@ class CodeLibrary:
         """Every overload of a library function (none: an empty list)."""
         return list(self.symbols.functions.get(name, {}).values())
 
+    def items(self) -> tuple[list, dict[int, int]]:
+        """The library's items (cachefile.library_items) and id(item) -> its place among them."""
+        if self.indexed is None:
+            items = cachefile.library_items(self.modules)
+            self.indexed = items, {id(item): n for n, item in enumerate(items)}
+        return self.indexed
+
     def resolution(self, function, decisions: tuple) -> tuple[tuple, int] | None:
         """A library function's sections resolved for `decisions` (code/passes/sections.py's
         resolve), as the cache holds them (resolutions_of); None for anything else."""
-        resolved = self.read_resolutions()
-        place = resolved.places.get(id(function))
-        return None if place is None else resolved.table.get((place, decisions))
+        place = self.items()[1].get(id(function))
+        return None if place is None else self.read_resolutions().table.get((place, decisions))
 
     def read_resolutions(self) -> "Resolved":
         """The resolutions, read the first time a stage asks (only a shader with sections needs
         them: most of the standard library's have none) from their file beside the code's, which
         the first process to ask writes (a damaged one is written again)."""
         if self.resolved is None:
+            items = self.items()[0]
             path = os.path.join(cache_dir(), f"resolutions-{self.key[:24]}.pickle")
-            try:
-                self.resolved = Resolved(self.modules, read_checked(path), self.key)
-            except (pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
-                resolutions = resolutions_of(self.modules)
-                body = cachefile.dumps((self.key, resolutions), cachefile.library_items(self.modules, resolutions))
-                write_checked(path, body)
-                self.resolved = Resolved(self.modules, body, self.key)
+            state = read_state(path, lambda state: items + cachefile.copies_in(items, state[1]),
+                               lambda state: isinstance(state, tuple) and len(state) == 2 and state[0] == self.key)
+            table = state[1] if state is not None else resolutions_of(self.modules)
+            self.resolved = Resolved(table, cachefile.copies_in(items, table))
+            if state is None:
+                write_checked(path, cachefile.dumps((self.key, table), items + self.resolved.copies))
         return self.resolved
 
     def calls_of(self, name: str) -> Calls:
@@ -258,21 +265,13 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
 
 
 class Resolved:
-    """The library's functions with their sections resolved (resolutions_of), read from what
-    CodeLibrary.read_resolutions wrote: `table`, (place, decisions) -> (items, count); `places`,
-    id(item) -> place among the library's items; `copies`, the items of the resolutions
-    (targets/printed.py prints them once). A file of another library, or none, raises ValueError."""
-    __slots__ = ("table", "places", "copies")
+    """The library's functions with their sections resolved (resolutions_of): `table`, (place,
+    decisions) -> (items, count); `copies`, the items of the resolutions, whose places follow the
+    library's items (targets/printed.py prints them once)."""
+    __slots__ = ("table", "copies")
 
-    def __init__(self, modules: dict, body: bytes | None, key: str):
-        if body is None:
-            raise ValueError("no resolutions")
-        originals = cachefile.library_items(modules)
-        stored_key, self.table = cachefile.loads(body, lambda state: cachefile.library_items(modules, state[1]))
-        if stored_key != key:
-            raise ValueError("the resolutions of another library")
-        self.places = {id(item): n for n, item in enumerate(originals)}
-        self.copies = cachefile.library_items(modules, self.table)[len(originals):]
+    def __init__(self, table: dict, copies: list):
+        self.table, self.copies = table, copies
 
 
 def resolutions_of(modules: dict) -> dict:
@@ -329,14 +328,21 @@ def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:
 
 def read_cache(path: str, key: str) -> tuple | None:
     """The cached state, or None (missing, damaged, or another key's)."""
+    return read_state(path, lambda state: cachefile.library_items(state[1]),
+                      lambda state: isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key)
+
+
+def read_state(path: str, items_of, valid) -> object | None:
+    """What cachefile.dumps wrote into `path` (`items_of`: cachefile.loads'), where `valid(state)`;
+    None where the file is missing, damaged, or not `valid` (another library's)."""
     body = read_checked(path)
     if body is None:
         return None
     try:
-        state = cachefile.loads(body, lambda state: cachefile.library_items(state[1]))
-        return state if isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key else None
+        state = cachefile.loads(body, items_of)
     except (pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
+    return state if valid(state) else None
 
 
 def write_cache(path: str, state: tuple) -> None:

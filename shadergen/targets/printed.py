@@ -12,7 +12,6 @@ cache's key, which covers the library and the generator's code, and by the targe
 import os
 
 from ..code import pickling
-from ..code.cachefile import library_items
 from ..errors import ShaderGenError
 from ..library import cache_dir, read_checked, write_checked
 
@@ -25,8 +24,7 @@ class PrintedLibrary:
 
     def __init__(self, code, target: str, print_item):
         self.code = code
-        items = library_items(code.modules)
-        self.place = {id(item): n for n, item in enumerate(items)}
+        items, self.place = code.items()
         key = f"{code.key}\0{target}".encode()
         path = os.path.join(cache_dir(), f"printed-{target}-{code.key[:24]}.pickle")
         found = _read(path, key)

@@ -330,8 +330,8 @@ def test_the_cache_round_trips_and_a_corrupt_file_is_rebuilt(library, tmp_path, 
     assert reloaded.modules is not built.modules
     # the file's bytes again (a plain pickle of the reloaded state would differ in what it shares:
     # a body read apart has strings of its own)
-    items = [cachefile.library_items(c.modules) for c in (reloaded, built)]
-    assert cachefile.dumps(reloaded.state(), items[0]) == cachefile.dumps(built.state(), items[1])
+    assert cachefile.dumps(reloaded.state(), library_items(reloaded.modules)) == \
+        cachefile.dumps(built.state(), library_items(built.modules))
     # a reloaded call still resolves to the function object of its module
     call = next(n for n in ir.walk(reloaded.functions("mx_dielectric_bsdf")[0]) if isinstance(n, ir.Call) and n.callee)
     assert call.callee in reloaded.functions(call.name)
