@@ -6,8 +6,8 @@ a cold `generate` spent on emission. The first process to ask prints every item 
 once (an item it cannot print is left to fail where a shader asks for it) and writes the lines;
 later processes read them. Only the library's own items are looked up here (its functions with
 their sections resolved among them, code/library.py): a copy a pass made (members dropped) is
-printed from its IR. The file is named by the code
-cache's key, which covers the library and the generator's code, and by the target.
+printed from its IR. The file is named by the code cache's key, which covers the library and the
+generator's code, and by the target.
 """
 import os
 
