@@ -54,6 +54,17 @@ def renderable_elements(doc: Document, scope: Scope) -> list[Element]:
     return outputs + [o for o in doc.root.children_of("output") if o.get("type") not in closures]
 
 
+def document_scope(doc: Document, library) -> Scope:
+    """The definitions `doc` sees with `library`, read once per document and library: a client
+    asks for a document's elements one at a time, and what the scope memoises for a document that
+    defines nodes of its own (each nodegraph body it uses, built once) serves every element."""
+    key = ("scope", library)
+    scope = doc.memo.get(key)
+    if scope is None:
+        scope = doc.memo[key] = Scope(library, doc.root)
+    return scope
+
+
 def _named_renderable(doc: Document, scope: Scope, element: str) -> list[Element]:
     """The renderable elements `element` names (what `_names` answers for each), in order. A
     client asks for the elements of a document one at a time, so a document without labels is read
@@ -286,7 +297,7 @@ class Generator:
         doc = source if isinstance(source, Document) else self.load(
             source, base_dir=base_dir, allow_includes=allow_includes, document_format=document_format,
             include_roots=include_roots)
-        scope = Scope(self.library, doc.root)
+        scope = document_scope(doc, self.library)
         if element:
             elems = _named_renderable(doc, scope, element) or self._named(doc, element)
         else:

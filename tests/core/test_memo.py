@@ -11,6 +11,7 @@ from shadergen.api import Generator
 from shadergen.code import build, ir
 from shadergen.code import stage as code_stage
 from shadergen.library import DEFAULT_LIBRARY_ROOT, Library
+from shadergen.passes import expand
 from shadergen.targets.glsl import printer as glsl_printer
 from shadergen.targets.glsl import target as glsl_target
 
@@ -112,3 +113,29 @@ def test_values_printed_from_the_memo_are_the_ones_printed_afresh(target, monkey
     served = [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
     monkeypatch.setattr(glsl_printer, "VALUE_LINES", Forgetful())
     assert served == [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+
+
+# A document that defines a node of its own, as a nodegraph, used by two outputs: its facts are the
+# document's, not the library's
+OWN_NODEGRAPH = doc(
+    '<nodedef name="ND_double" node="double"><input name="in" type="float" value="1"/><output name="out" type="float"/></nodedef>'
+    '<nodegraph name="NG_double" nodedef="ND_double"><multiply name="m" type="float">'
+    '<input name="in1" type="float" interfacename="in"/><input name="in2" type="float" value="2"/></multiply>'
+    '<output name="out" type="float" nodename="m"/></nodegraph>'
+    '<double name="a" type="float"><input name="in" type="float" value="0.25"/></double>'
+    '<double name="b" type="float"><input name="in" type="float" value="0.5"/></double>'
+    '<output name="oa" type="float" nodename="a"/><output name="ob" type="float" nodename="b"/>')
+
+
+def test_a_documents_own_definitions_are_read_once_for_all_its_elements(monkeypatch):
+    """A client asks for a document's elements one at a time: the scope of its definitions, and the
+    nodegraph bodies it memoises, serve every element, and write what a fresh read writes."""
+    gen = Generator(Library.load())
+    document = gen.load(OWN_NODEGRAPH)
+    built, build_body = [], expand.build_body
+    monkeypatch.setattr(expand, "build_body", lambda *a: built.append(a) or build_body(*a))
+    served = [comparable(gen.prepare(document, element=e).emit()) for e in ("oa", "ob", "oa")]
+    assert len(built) == 1
+    fresh = [comparable(Generator(Library.load()).prepare(gen.load(OWN_NODEGRAPH), element=e).emit())
+             for e in ("oa", "ob", "oa")]
+    assert served == fresh and served[0] != served[1]
