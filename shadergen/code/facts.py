@@ -88,16 +88,18 @@ def facts(item: ir.Item) -> Facts:
     return found
 
 
-def collect(nodes) -> Facts:
-    """The facts of generated code (root statements, generated functions), read each time. Its
-    `stores` are left empty: the passes edit library items only, never the roots (finding whether
-    a store does anything else walks it again, for every member store of main)."""
-    return _read(list(nodes), None, False)
+def collect(nodes, shared=None) -> Facts:
+    """The facts of generated code (root statements, generated functions), read each time but
+    for the statements `shared` holds (code/statements.py Shared: typed in an earlier request, their
+    facts read once). Its `stores` are left empty: the passes edit library items only, never the
+    roots (finding whether a store does anything else walks it again, for every member store of main)."""
+    return _read(list(nodes), None, False, shared)
 
 
-def _read(nodes, function: ir.Function | None, read_stores: bool = True) -> Facts:
+def _read(nodes, function: ir.Function | None, read_stores: bool = True, shared=None) -> Facts:
     """One pass over the nodes (the walk is inlined: facts of a library's functions are read on a
-    cold process's first request, where a generic walk costs several times as much)."""
+    cold process's first request, where a generic walk costs several times as much); a shared
+    statement's facts join as they were read once."""
     callees: dict[int, ir.Function] = {}
     builtins, names, uniforms, mentioned = set(), {}, set(), {}
     members: Counter = Counter()
@@ -106,6 +108,8 @@ def _read(nodes, function: ir.Function | None, read_stores: bool = True) -> Fact
     stack = list(nodes)
     pop, push, extend = stack.pop, stack.append, stack.extend
     Name, Literal, Construct, Node = ir.Name, ir.Literal, ir.Construct, ir.Node
+    hits = shared.hits if shared is not None else {}
+    parts = []  # facts of shared statements
     while stack:
         n = pop()
         cls = n.__class__
@@ -128,6 +132,9 @@ def _read(nodes, function: ir.Function | None, read_stores: bool = True) -> Fact
             continue
         if cls is Construct and n.exact and n.type in BUILTIN_TYPES:
             continue  # a value's vector or matrix (code/values.py): numbers of built-in types, no fact
+        if hits and id(n) in hits:
+            parts.append(shared.facts_of(n))
+            continue
         for field in cls.CHILDREN:
             value = getattr(n, field)
             if value.__class__ is list:
@@ -166,6 +173,16 @@ def _read(nodes, function: ir.Function | None, read_stores: bool = True) -> Fact
     types: dict[str, None] = {}
     for type_name in mentioned:
         _note_type(type_name, types, names)
+    for part in parts:
+        callees.update((id(f), f) for f in part.callees)
+        builtins |= part.builtins
+        names.update(dict.fromkeys(part.names))
+        uniforms |= part.uniforms
+        types.update(dict.fromkeys(part.types))
+        members.update(part.members)
+        whole |= part.whole
+        writes_outside = writes_outside or part.writes_outside
+        macros |= part.macros
     out = Facts()
     out.callees = tuple(callees.values())
     out.calls = tuple(f.key for f in out.callees)

@@ -18,8 +18,9 @@ GENERATED_KINDS = frozenset({"uniform", "input", "output", "vertexdata", "builti
 
 class GeneratedChecker(Checker):
     def __init__(self, path: str, symbols: Symbols, externals: dict[str, str], library_functions: dict,
-                 memo: tuple[dict, dict]):
+                 memo: tuple[dict, dict], shared=frozenset()):
         super().__init__(path, symbols, externals)
+        self.shared = shared  # ids of statements typed in an earlier request (code/statements.py)
         self.library_functions = library_functions  # the library's own families (name -> key -> Function)
         # the library's: type -> IR type; (name, argument types) -> (Function, out positions, converts)
         self.types, self.overloads = memo
@@ -66,6 +67,10 @@ class GeneratedChecker(Checker):
         """A declaration of a variable of its typed value's type (most of main: a node's output),
         the type one the library has resolved to itself, only enters its scope: what the
         library's rules would do to it changes nothing. Anything else is checked by them."""
+        if id(s) in self.shared:  # typed before: it only declares what it declares
+            if s.__class__ is ir.Declare:
+                self.scopes[-1][s.name] = (s.type, "local")
+            return
         init = s.init if s.__class__ is ir.Declare else None
         if init is not None and init.type == s.type and (init.__class__ is not ir.Construct or init.exact) \
                 and self.types.get(s.type) == s.type:
@@ -86,13 +91,15 @@ class GeneratedChecker(Checker):
         return super().is_lvalue(e) or (isinstance(root, ir.Name) and root.kind in ("output", "vertexdata", "builtin"))
 
 
-def check_generated(library, functions: list[ir.Function], blocks: list[ir.Block], externals: dict[str, str]) -> None:
+def check_generated(library, functions: list[ir.Function], blocks: list[ir.Block], externals: dict[str, str],
+                    shared=frozenset()) -> None:
     """Types generated `functions` and root `blocks` in place; `externals`: the stage's variables
-    (name -> IR type), which the library's own names take precedence over."""
+    (name -> IR type), which the library's own names take precedence over; `shared`: ids of the
+    blocks' statements typed before, which are not typed again."""
     base = library.symbols
     # the generated functions join a copy of the library's table (none: the table itself, unchanged)
     symbols = Symbols(base.structs, base.aliases, dict(base.functions) if functions else base.functions, base.values)
-    checker = GeneratedChecker("generated code", symbols, externals, base.functions, library.generated)
+    checker = GeneratedChecker("generated code", symbols, externals, base.functions, library.generated, shared)
     for fn in functions:
         fn.returns = checker.resolve_type(fn.returns, fn)
         for p in fn.params:
@@ -102,6 +109,8 @@ def check_generated(library, functions: list[ir.Function], blocks: list[ir.Block
     for fn in functions:
         checker.function(fn)
     for block in blocks:
+        if id(block) in shared:
+            continue
         checker.scopes = [{}]
         checker.returns = "void"
         checker.block(block)

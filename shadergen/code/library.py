@@ -27,6 +27,7 @@ from .check import check_expression, check_modules, flat_items, library_symbols
 from .externals import ENVIRONMENT_MACROS, environment_macros
 from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
+from .statements import Memo
 from .instantiate import maker
 from .passes import sections
 
@@ -70,7 +71,7 @@ class CodeLibrary:
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
     __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls",
-                 "indexed", "resolved", "typed", "parsed", "makers", "generated")
+                 "indexed", "resolved", "typed", "parsed", "makers", "generated", "statements")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
@@ -82,6 +83,7 @@ class CodeLibrary:
         self.parsed: dict[str, ir.Expr] = {}  # templates of documents' own inline expressions
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
         self.generated = ({}, {})  # what typing generated code works out per library (code/generated.py)
+        self.statements = Memo()  # main's statements, typed once per shape (code/statements.py)
 
     @classmethod
     def load(cls, library: Library, externals: dict[str, str]) -> "CodeLibrary":
@@ -175,9 +177,10 @@ class CodeLibrary:
     def relative(self, path: str) -> str:
         return os.path.relpath(os.path.realpath(path), self.root) if os.path.isabs(path) else os.path.normpath(path)
 
-    def check_generated(self, functions, blocks, externals: dict[str, str]) -> None:
-        """Types the generator's own code against the library's (code/generated.py)."""
-        check_generated(self, functions, blocks, externals)
+    def check_generated(self, functions, blocks, externals: dict[str, str], shared=frozenset()) -> None:
+        """Types the generator's own code against the library's (code/generated.py); `shared`:
+        ids of statements typed before (code/statements.py)."""
+        check_generated(self, functions, blocks, externals, shared)
 
     def template(self, expression_text: str, where: str = "inline expression") -> ir.Expr:
         """The untyped template of an inline expression (`{{input}}` an ir.Placeholder)."""

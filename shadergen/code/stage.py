@@ -28,15 +28,16 @@ class StageCode:
     """What the passes kept of the pixel stage, in order: `structs`, `constants` (with the
     sections of macros left to the target that hold no function), `functions` (and the sections
     that do), then main, the vertex stage's main, and every name the pixel code reads."""
-    __slots__ = ("structs", "constants", "functions", "main", "vertex_main", "pixel_names")
+    __slots__ = ("structs", "constants", "functions", "main", "vertex_main", "pixel_names", "shared")
 
-    def __init__(self, structs, constants, functions, main, vertex_main, pixel_names):
+    def __init__(self, structs, constants, functions, main, vertex_main, pixel_names, shared=None):
         self.structs = structs
         self.constants = constants
         self.functions = functions
         self.main = main
         self.vertex_main = vertex_main
         self.pixel_names = pixel_names
+        self.shared = shared  # main's statements typed once per shape, with their lines (code/statements.py)
 
 
 def vertex_main(ctx) -> ir.Block:
@@ -70,20 +71,22 @@ def run(ctx, counts: dict) -> StageCode:
     main = ctx.pixel.main.block()
     stage_variables = externals(ctx, PIXEL)
     generated = ctx.pixel.generated
-    code.check_generated(generated, [main], stage_variables)
+    main, shared = code.statements.share(main, generated)
+    code.check_generated(generated, [main], stage_variables, shared.hits)
+    shared.remember()
     # the structs a stage variable has (a uniform's, the light array's) are part of its layout
     layouts = [t.split("[")[0] for t in stage_variables.values() if code.struct(t.split("[")[0]) is not None]
     items = code.module(PRELUDE).items + ctx.pixel.items
     own = getattr(ctx.target, "own_functions", ())
     if own:
         items = [without_body(i) if isinstance(i, ir.Function) and i.name in own else i for i in items]
-    reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts, code)
+    reached, passes = stage_passes.run(items, ctx.features, ctx.macros, [main, *generated], layouts, code, shared)
     counts.update(passes)
     structs, constants, functions = [], [], []
     for i in reached.items:  # one look at each item (a section's is a walk of its body)
         (structs if isinstance(i, ir.Struct) else functions if has_function(i) else constants).append(i)
     functions += generated
-    return StageCode(structs, constants, functions, main, None, frozenset(reached.names))
+    return StageCode(structs, constants, functions, main, None, frozenset(reached.names), shared)
 
 
 @lru_cache(maxsize=256)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from shadergen import generator
 from shadergen.api import Generator
 from shadergen.code import build, ir
 from shadergen.code import stage as code_stage
@@ -139,3 +140,73 @@ def test_a_documents_own_definitions_are_read_once_for_all_its_elements(monkeypa
     fresh = [comparable(Generator(Library.load()).prepare(gen.load(OWN_NODEGRAPH), element=e).emit())
              for e in ("oa", "ob", "oa")]
     assert served == fresh and served[0] != served[1]
+
+
+# -- main's statements, typed, read and printed once per shape (code/statements.py) ------------------
+@pytest.mark.parametrize("target", ["glsl", "essl", "vulkan", "wgsl", "osl"])
+def test_statements_from_the_memo_write_the_records_written_afresh(target, monkeypatch):
+    warm = Generator(Library.load())
+    memo = warm.library.code().statements
+    first = [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+    served = [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+    assert first == served and memo.entries  # the second time, from the memo
+    monkeypatch.setattr(memo, "entries", Forgetful())
+    assert served == [records(warm, document, interface="complete", target=target) for document in DOCUMENTS]
+    assert not memo.entries  # (made afresh)
+
+
+def main_of(gen: Generator, document) -> ir.Block:
+    """Main of `document`'s first element, as the code passes got it."""
+    got = []
+    run = code_stage.run
+
+    def keep(ctx, counts):
+        code = run(ctx, counts)
+        got.append(code.main)
+        return code
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(generator.code_passes, "run", keep)
+        gen.prepare(document).emit()
+    return got[0]
+
+
+def statements_in(block: ir.Block) -> set[int]:
+    return {id(n) for n in ir.walk(block) if isinstance(n, ir.Stmt)}
+
+
+def test_a_main_built_alike_is_the_one_typed_before_and_a_changed_one_keeps_its_alike_statements():
+    gen = Generator(Library.load())
+    coated = main_of(gen, GOLDEN / "standard_surface_coated.mtlx")
+    assert main_of(gen, GOLDEN / "standard_surface_coated.mtlx") is coated  # the whole of main, typed once
+    glass = main_of(gen, GOLDEN / "glass.mtlx")
+    # another material: the statements it builds alike are the ones typed before, the others its own
+    assert statements_in(glass) & statements_in(coated) and statements_in(glass) - statements_in(coated)
+
+
+def test_statements_built_alike_have_one_key_and_any_difference_another():
+    from shadergen.code.statements import UNKEYED, Keys
+    x = build.name("x", "local", "vec3")
+
+    def key(statement, generated=()):
+        named: dict = {}
+        for f in generated:
+            named.setdefault(f.name, []).append(f)
+        return Keys(named).statement(statement)
+
+    def call(*args, function="mx_f"):
+        return ir.ExprStatement(build.call(function, *args))
+    assert key(call(x, build.number(1.0))) == key(call(build.name("x", "local", "vec3"), build.number(1.0)))
+    assert key(call(x, build.number(1.0))) != key(call(x, ir.Literal(1, None, type="float")))  # 1.0 and 1 print apart
+    assert key(call(x)) != key(call(build.name("x", "uniform", "vec3")))
+    assert key(call(x)) != key(call(build.name("x", "local", "vec4")))
+    assert key(call(build.name("y", "local"))) is UNKEYED  # typed by the scope: no key
+    # a call of a function the request wrote is keyed by that function: another body, another key
+    body = [build.function("void", "g", [("in", "vec3", "p")], ir.Block([ir.Return(None)], True))]
+    other = [build.function("void", "g", [("in", "vec3", "p")], ir.Block([], True))]
+    assert key(call(x, function="g"), body) != key(call(x, function="g"), other)
+    assert key(call(x, function="g"), body) == key(call(x, function="g"), [ir.replace(body[0])])
+    # an inner statement is keyed (and looked up) even where the block around it has none
+    keys = Keys({})
+    inner = call(x)
+    assert keys.statement(ir.Block([inner, call(build.name("y", "local"))], True)) is UNKEYED
+    assert id(inner) in keys.found

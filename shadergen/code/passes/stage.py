@@ -9,14 +9,16 @@ from ..facts import collect
 from . import fields, forward, reach, sections
 
 
-def run(items: list, features: frozenset | None, macros: frozenset, roots=(), names=(), library=None) -> tuple:
+def run(items: list, features: frozenset | None, macros: frozenset, roots=(), names=(), library=None,
+        shared=None) -> tuple:
     """(reach.Reached of what the stage keeps, {"sections", "reach", "fields", "forward": count}:
     sections resolved, items left unreached, dead members and stores, calls made straight)
     for `items` (the library items the stage's files bring, in library order), `roots` (main's
     statements, the generated functions) and `names` (items the generator names without IR);
-    `library`: the CodeLibrary the items come from (sections.run)."""
+    `library`: the CodeLibrary the items come from (sections.run); `shared`: the roots' statements
+    typed in an earlier request, whose facts were read then (code/statements.py)."""
     resolved, counts = sections.run(items, features, macros, library)
-    root_facts = collect(roots)
+    root_facts = collect(roots, shared)
     reached, unreached = reach.run(resolved, root_facts, names)
     total = {"sections": counts, "reach": unreached, "fields": 0, "forward": 0}
     while True:

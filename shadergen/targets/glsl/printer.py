@@ -95,13 +95,14 @@ def split_else_section(section: ir.Section):
 class GlslPrinter:
     """`item`, `statements` and `expression` of typed IR as GLSL text; `spell(name_node)` decides
     how a Name is written (the stage assembler's vertex data `vd.x` against `vd_x`)."""
-    __slots__ = ("dialect", "spell", "convert_implicit", "one_line")
+    __slots__ = ("dialect", "spell", "convert_implicit", "one_line", "shared")
 
     def __init__(self, dialect: str = "glsl", spell=None):
         if dialect not in DIALECTS:
             raise ValueError(f"dialect {dialect!r}: one of {DIALECTS}")
         self.dialect = dialect
         self.spell = spell
+        self.shared = None  # while main is printed: (id -> shared statement's Entry, the target's key)
         self.convert_implicit = dialect == "essl"  # ESSL 3.00 has no implicit conversions
         # `line` prints what `render` prints on one line, in fewer calls; a printer that changes
         # how an expression is rendered (OSL's, the C family's) renders every part itself
@@ -286,6 +287,21 @@ class GlslPrinter:
         return lines
 
     def statement(self, s, depth: int, lines: list[str]) -> None:
+        """`s`'s lines, at `depth`; a statement of main shared across requests (code/statements.py)
+        is printed once per target and depth."""
+        shared = self.shared
+        entry = shared[0].get(id(s)) if shared is not None else None
+        if entry is None:
+            return self._statement(s, depth, lines)
+        key = (shared[1], depth)
+        found = entry.lines.get(key)
+        if found is None:
+            own: list[str] = []
+            self._statement(s, depth, own)
+            found = entry.lines[key] = tuple(own)
+        lines.extend(found)
+
+    def _statement(self, s, depth: int, lines: list[str]) -> None:
         cls = type(s)
         pad = INDENT * depth
         if cls is ir.Comment:

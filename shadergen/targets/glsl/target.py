@@ -78,7 +78,7 @@ class GlslTarget:
         for function in code.functions:
             w.extend(self.item(function, library))
             w.line()
-        self._main(code.main, w)
+        self._main(code.main, w, code.shared)
         return w.text()
 
     def assemble_vertex(self, ctx) -> str:
@@ -103,9 +103,15 @@ class GlslTarget:
         """A stage input's or output's qualifiers: GLSL matches them by name."""
         return direction
 
-    def _main(self, body: ir.Block, w: Writer) -> None:
+    def _main(self, body: ir.Block, w: Writer, shared=None) -> None:
+        """`shared`: main's statements typed once per shape (code/statements.py), each printed
+        once per target (this class) and depth."""
         w.line("void main()")
-        w.extend(self.printer.statements([body], 0))
+        self.printer.shared = (shared.hits, type(self)) if shared is not None else None
+        try:
+            w.extend(self.printer.statements([body], 0))
+        finally:
+            self.printer.shared = None
 
     def _uniforms(self, stage, w: Writer) -> None:
         for block in ("PrivateUniforms", "PublicUniforms"):

@@ -1,0 +1,211 @@
+"""Main's statements, typed, read and printed once per library for each shape they are built in.
+
+A node's call (`mx_noise3d_float(n3_out, ...)`), its output's declaration, a shading context's
+scope recur across the materials of a library and across the requests of one material: a
+statement built alike from alike parts is typed alike (the library decides its calls), has the
+same facts and prints the same. So each statement of main the generator builds is looked up by its
+`key`, its structure (every slot of every node, as ir.shape), where a statement typed in an earlier
+request (`Memo.remember`) takes its place: the checker only declares what it declares
+(code/generated.py), its facts are read once (code/facts.py), and a printer keeps its lines per
+target and depth. A statement that misses is looked for statement by statement inside it (a
+scope of which one lobe changed keeps the others).
+
+A statement whose typing could depend on anything but its structure and the library has no key:
+one that reads a name the generator left untyped (the checker types it by the scope) or calls a
+function the request wrote itself (a nodegraph's body, typed with that request's code). Shared
+statements are never changed: the checker skips them and the passes never edit main.
+"""
+from . import ir
+from .facts import collect
+
+MAX_MEMO = 32768  # statements kept per library (then no more are: as its other memos)
+
+
+class Entry:
+    """A statement typed in an earlier request, with its facts (read when first shared) and its
+    lines, per (printer key, depth)."""
+    __slots__ = ("statement", "facts", "lines")
+
+    def __init__(self, statement):
+        self.statement = statement
+        self.facts = None
+        self.lines: dict = {}
+
+
+class Memo:
+    """One per library (CodeLibrary.statements): key -> Entry."""
+
+    def __init__(self):
+        self.entries: dict = {}
+
+    def share(self, main: ir.Block, generated_functions) -> tuple[ir.Block, "Shared"]:
+        """`main` with the entries of alike statements in its place, outermost first (main
+        itself, when a request built one alike before; its lists are this request's own to
+        change); the others are this request's fresh statements, remembered once typed
+        (`Shared.remember`)."""
+        generated: dict[str, list] = {}
+        for f in generated_functions:
+            generated.setdefault(f.name, []).append(f)
+        keys = Keys(generated)
+        keys.statement(main)
+        shared = Shared(self)
+        body = [main]
+        shared.place(body, keys.found)
+        return body[0], shared
+
+
+class Shared:
+    """What one request shares: `hits` (id(statement) -> Entry) for the checker, the facts and
+    the printers; `fresh`, the (key, statement) pairs of its own, remembered once typed."""
+    __slots__ = ("memo", "hits", "fresh")
+
+    def __init__(self, memo: Memo):
+        self.memo = memo
+        self.hits: dict[int, Entry] = {}
+        self.fresh: list = []
+
+    def place(self, body: list, found: dict) -> None:
+        entries = self.memo.entries
+        for i, s in enumerate(body):
+            key = found.get(id(s))
+            entry = entries.get(key) if key is not None else None
+            if entry is not None:
+                body[i] = entry.statement
+                self.hits[id(entry.statement)] = entry
+                continue
+            if key is not None:
+                self.fresh.append((key, s))
+            for inner in inner_bodies(s):
+                self.place(inner, found)
+
+    def remember(self) -> None:
+        """The fresh statements, typed now, become entries (and this request's lines are kept)."""
+        entries = self.memo.entries
+        for key, s in self.fresh:
+            if len(entries) >= MAX_MEMO:
+                break
+            entry = entries.get(key)
+            if entry is None:
+                entry = entries[key] = Entry(s)
+            self.hits.setdefault(id(entry.statement), entry)
+        self.fresh = []
+
+    def facts_of(self, statement):
+        """The facts of a shared statement (code/facts.py collect)."""
+        entry = self.hits[id(statement)]
+        if entry.facts is None:
+            entry.facts = collect([statement])
+        return entry.facts
+
+
+CONTAINERS = frozenset({ir.If, ir.For, ir.While})  # statements with blocks of their own
+
+
+def inner_blocks(s) -> list:
+    """A container's blocks."""
+    if s.__class__ is ir.If:
+        return [s.then] if s.other is None else [s.then, s.other]
+    return [s.body]
+
+
+def inner_bodies(s) -> list:
+    """The statement lists inside a statement, whose statements are looked up one by one."""
+    if s.__class__ is ir.Block:
+        return [s.body]
+    return [b.body for b in inner_blocks(s)] if s.__class__ in CONTAINERS else []
+
+
+UNKEYED = ()  # the key of a statement whose typing may depend on more than its structure and the library
+
+
+class Unkeyed(Exception):
+    """Raised inside a statement's key: it has none."""
+
+
+SKIPPED = frozenset({"where", "callee", "facts", "pending"})  # not structure (as ir.shape leaves them out)
+_FIELDS: dict = {}
+
+
+def fields_of(cls) -> tuple:
+    found = _FIELDS.get(cls)
+    if found is None:
+        found = _FIELDS[cls] = tuple(s for s in ir.slots_of(cls) if s not in SKIPPED)
+    return found
+
+
+class Keys:
+    """Keys of a tree's statements, each computed once from its parts' (`found`: id -> key, for
+    every statement that has one)."""
+
+    def __init__(self, generated: dict):
+        self.found: dict[int, tuple] = {}
+        self.node = structure(generated, self)
+
+    def statements(self, body: list):
+        keys = [self.statement(s) for s in body]  # every one: an inner statement may be shared alone
+        return UNKEYED if UNKEYED in keys else tuple(keys)
+
+    def statement(self, s):
+        cls = s.__class__
+        if cls is ir.Block:
+            inner = self.statements(s.body)
+            key = UNKEYED if inner is UNKEYED else (cls, inner, s.scoped, s.comment)
+        elif cls in CONTAINERS and UNKEYED in [self.statement(b) for b in inner_blocks(s)]:
+            key = UNKEYED  # (its blocks keyed as statements first: theirs are looked up too)
+        else:
+            try:
+                key = self.node(s)
+            except Unkeyed:
+                key = UNKEYED
+        if key is not UNKEYED:
+            self.found[id(s)] = key
+        return key
+
+
+def structure(generated: dict, keys: "Keys"):
+    """node -> its structure: a tuple of its class and its fields' (a statement's block by its
+    key, keyed first); raises Unkeyed. `generated`: name -> the functions the request wrote,
+    keyed by their structure when a statement calls them. (A closure over its names: it runs for
+    every node of main in every request.)"""
+    Name, Literal, Construct, Call, Block, Node = ir.Name, ir.Literal, ir.Construct, ir.Call, ir.Block, ir.Node
+    fields, found, functions = _FIELDS, keys.found, {}
+
+    def function(name: str):
+        if name not in functions:
+            functions[name] = UNKEYED  # (a call inside itself: a recursion the checker refuses)
+            key = tuple((fn.returns, fn.name, tuple([node(p) for p in fn.params]), keys.statement(fn.body))
+                        for fn in generated[name])
+            if any(body is UNKEYED for *_, body in key):
+                raise Unkeyed
+            functions[name] = key
+        if functions[name] is UNKEYED:
+            raise Unkeyed
+        return functions[name]
+
+    def node(n):
+        cls = n.__class__
+        if cls is Name:
+            if n.type is None:
+                raise Unkeyed  # the checker types it by the scope
+            return cls, n.name, n.kind, n.type
+        if cls is Literal:
+            value = n.value
+            return cls, value.__class__, value, n.type, n.text  # 1 == 1.0 == True, printed apart
+        if cls is Construct and n.exact:
+            return n  # a value: one node for an equal value (code/values.py), by identity
+        if cls is Call and n.name in generated:
+            # the request's own function, by its structure: a call is typed by what it calls
+            return cls, function(n.name), tuple([node(x) for x in n.args])
+        out = [cls]
+        for name in fields.get(cls) or fields_of(cls):
+            v = getattr(n, name)
+            c = v.__class__
+            if c is list:  # nodes (arguments, statements) or text (a comment's lines)
+                v = tuple([node(x) if isinstance(x, Node) else x for x in v])
+            elif c is Block:
+                v = found[id(v)]  # a statement's block, keyed first (Keys.statement)
+            elif isinstance(v, Node):
+                v = node(v)
+            out.append(v)
+        return tuple(out)
+    return node
