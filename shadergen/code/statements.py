@@ -19,6 +19,7 @@ from . import ir
 from .facts import collect
 
 MAX_MEMO = 32768  # statements kept per library (then no more are: as its other memos)
+MAX_KEYS = 65536  # statement structures numbered per library
 
 
 class Entry:
@@ -33,10 +34,13 @@ class Entry:
 
 
 class Memo:
-    """One per library (CodeLibrary.statements): key -> Entry."""
+    """One per library (CodeLibrary.statements): `numbers`, each statement structure seen (its
+    key) -> its number, and `entries`, number -> Entry. A statement's key holds the numbers of the
+    statements inside it, not their keys: a key is hashed once, not again with each block around it."""
 
     def __init__(self):
-        self.entries: dict = {}
+        self.numbers: dict[tuple, int] = {}
+        self.entries: dict[int, Entry] = {}
 
     def share(self, main: ir.Block, generated_functions) -> tuple[ir.Block, "Shared"]:
         """`main` with the entries of alike statements in its place, outermost first (main
@@ -46,7 +50,7 @@ class Memo:
         generated: dict[str, list] = {}
         for f in generated_functions:
             generated.setdefault(f.name, []).append(f)
-        keys = Keys(generated)
+        keys = Keys(generated, self.numbers)
         keys.statement(main)
         shared = Shared(self)
         body = [main]
@@ -134,11 +138,12 @@ def fields_of(cls) -> tuple:
 
 
 class Keys:
-    """Keys of a tree's statements, each computed once from its parts' (`found`: id -> key, for
-    every statement that has one)."""
+    """The numbers of a tree's statements (`found`: id -> number, for every statement that has
+    one), each key computed once from its parts'."""
 
-    def __init__(self, generated: dict):
-        self.found: dict[int, tuple] = {}
+    def __init__(self, generated: dict, numbers: dict):
+        self.numbers = numbers
+        self.found: dict[int, int] = {}
         self.node = structure(generated, self)
 
     def statements(self, body: list):
@@ -157,9 +162,15 @@ class Keys:
                 key = self.node(s)
             except Unkeyed:
                 key = UNKEYED
-        if key is not UNKEYED:
-            self.found[id(s)] = key
-        return key
+        if key is UNKEYED:
+            return UNKEYED
+        number = self.numbers.get(key)
+        if number is None:
+            if len(self.numbers) >= MAX_KEYS:
+                return UNKEYED
+            number = self.numbers[key] = len(self.numbers)
+        self.found[id(s)] = number
+        return number
 
 
 def structure(generated: dict, keys: "Keys"):
@@ -203,7 +214,7 @@ def structure(generated: dict, keys: "Keys"):
             if c is list:  # nodes (arguments, statements) or text (a comment's lines)
                 v = tuple([node(x) if isinstance(x, Node) else x for x in v])
             elif c is Block:
-                v = found[id(v)]  # a statement's block, keyed first (Keys.statement)
+                v = found[id(v)]  # a statement's block, numbered first (Keys.statement)
             elif isinstance(v, Node):
                 v = node(v)
             out.append(v)
