@@ -5,16 +5,19 @@ scope recur across the materials of a library and across the requests of one mat
 statement built alike from alike parts is typed alike (the library decides its calls), has the
 same facts and prints the same. So each statement of main the generator builds is looked up by its
 `key`, its structure (every slot of every node, as ir.shape), where a statement typed in an earlier
-request (`Memo.remember`) takes its place: the checker only declares what it declares
+request (`Shared.remember`) takes its place: the checker only declares what it declares
 (code/generated.py), its facts are read once (code/facts.py), and a printer keeps its lines per
 target and depth. A statement that misses is looked for statement by statement inside it (a
 scope of which one lobe changed keeps the others).
 
 A statement whose typing could depend on anything but its structure and the library has no key:
-one that reads a name the generator left untyped (the checker types it by the scope) or calls a
-function the request wrote itself (a nodegraph's body, typed with that request's code). Shared
-statements are never changed: the checker skips them and the passes never edit main.
+one that reads a name the generator left untyped (the checker types it by the scope). A call of a
+function the request wrote itself (a nodegraph's body, the light dispatch) is keyed by that
+function's structure. Shared statements are never changed: the checker skips them and the passes
+never edit main.
 """
+import itertools
+
 from . import ir
 from .facts import collect
 
@@ -41,6 +44,7 @@ class Memo:
     def __init__(self):
         self.numbers: dict[tuple, int] = {}
         self.entries: dict[int, Entry] = {}
+        self.counter = itertools.count()  # (next() and setdefault: two threads never share a number)
 
     def share(self, main: ir.Block, generated_functions) -> tuple[ir.Block, "Shared"]:
         """`main` with the entries of alike statements in its place, outermost first (main
@@ -50,7 +54,7 @@ class Memo:
         generated: dict[str, list] = {}
         for f in generated_functions:
             generated.setdefault(f.name, []).append(f)
-        keys = Keys(generated, self.numbers)
+        keys = Keys(generated, self)
         keys.statement(main)
         shared = Shared(self)
         body = [main]
@@ -141,8 +145,8 @@ class Keys:
     """The numbers of a tree's statements (`found`: id -> number, for every statement that has
     one), each key computed once from its parts'."""
 
-    def __init__(self, generated: dict, numbers: dict):
-        self.numbers = numbers
+    def __init__(self, generated: dict, memo: Memo):
+        self.numbers, self.counter = memo.numbers, memo.counter
         self.found: dict[int, int] = {}
         self.node = structure(generated, self)
 
@@ -168,7 +172,7 @@ class Keys:
         if number is None:
             if len(self.numbers) >= MAX_KEYS:
                 return UNKEYED
-            number = self.numbers[key] = len(self.numbers)
+            number = self.numbers.setdefault(key, next(self.counter))
         self.found[id(s)] = number
         return number
 

@@ -184,15 +184,15 @@ def test_a_main_built_alike_is_the_one_typed_before_and_a_changed_one_keeps_its_
 
 
 def test_statements_built_alike_have_one_key_and_any_difference_another():
-    from shadergen.code.statements import UNKEYED, Keys
+    from shadergen.code.statements import UNKEYED, Keys, Memo
     x = build.name("x", "local", "vec3")
-    numbers: dict = {}  # a library's: one number for each structure
+    memo = Memo()  # a library's: one number for each structure
 
     def key(statement, generated=()):
         named: dict = {}
         for f in generated:
             named.setdefault(f.name, []).append(f)
-        return Keys(named, numbers).statement(statement)
+        return Keys(named, memo).statement(statement)
 
     def call(*args, function="mx_f"):
         return ir.ExprStatement(build.call(function, *args))
@@ -207,7 +207,7 @@ def test_statements_built_alike_have_one_key_and_any_difference_another():
     assert key(call(x, function="g"), body) != key(call(x, function="g"), other)
     assert key(call(x, function="g"), body) == key(call(x, function="g"), [ir.replace(body[0])])
     # an inner statement is keyed (and looked up) even where the block around it has none
-    keys = Keys({}, numbers)
+    keys = Keys({}, memo)
     inner = call(x)
     assert keys.statement(ir.Block([inner, call(build.name("y", "local"))], True)) is UNKEYED
     assert id(inner) in keys.found
