@@ -229,8 +229,10 @@ def test_a_packages_textures_leave_the_render_worker_with_its_job(server, tmp_pa
         resident.append(memory.resident_bytes(worker) >> 20)
     assert one(server, RENDER) == worker
     # (MiB) flat once the allocator has its working set (measured: 223 after the first job, 337 from
-    # the seventh to the last); before, each job added its texture, about 21 MiB
-    assert max(resident[12:]) - resident[11] < 32, resident
+    # the seventh to the last), which swings by up to 40 from one job to the next (a job's peak
+    # against the one before it failed 1 run in 9 with no leak); before, each job added its
+    # texture, about 21 MiB: 250 more twelve jobs on, which the last jobs' least shows
+    assert min(resident[-4:]) - max(resident[8:12]) < 32, resident
 
 
 def test_the_render_pool_keeps_no_package_after_its_job(server, tmp_path):
