@@ -389,6 +389,19 @@ def slots_of(cls: type) -> tuple[str, ...]:
     return found
 
 
+_STRUCTURE: dict[type, tuple[str, ...]] = {}
+
+
+def structure_slots(cls: type) -> tuple[str, ...]:
+    """The slots that make a node what it is (`shape`, code/statements.py keys): every slot but
+    its `where` (where a node was written does not change what it does) and a call's `callee`
+    (which its name and its arguments' types decide)."""
+    found = _STRUCTURE.get(cls)
+    if found is None:
+        found = _STRUCTURE[cls] = tuple(name for name in slots_of(cls) if name not in ("where", "callee"))
+    return found
+
+
 def copy_tree(node):
     """A copy of a tree in which every node is new (the checker types a template's copy in place);
     names, numbers and a call's callee are shared. (copy.deepcopy would do, but a cold process
@@ -415,13 +428,10 @@ def replace(node, **changes):
 
 
 def shape(value):
-    """A hashable value equal for two trees exactly when they are built alike: every slot of every
-    node (its `where` left out: where a node was written does not change what it does; a call's
-    `callee` too, which its name and its arguments' types decide). Numbers keep their Python type,
-    since 1 == 1.0 == True."""
+    """A hashable value equal for two trees exactly when they are built alike: every structure
+    slot of every node (structure_slots). Numbers keep their Python type, since 1 == 1.0 == True."""
     if isinstance(value, Node):
-        return (type(value),) + tuple(shape(getattr(value, name)) for name in slots_of(type(value))
-                                      if name not in ("where", "callee"))
+        return (type(value),) + tuple(shape(getattr(value, name)) for name in structure_slots(type(value)))
     if isinstance(value, (list, tuple)):
         return tuple(shape(v) for v in value)
     if isinstance(value, (bool, int, float)):

@@ -27,9 +27,9 @@ from .check import check_expression, check_modules, flat_items, library_symbols
 from .externals import ENVIRONMENT_MACROS, environment_macros
 from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
-from .statements import Memo
 from .instantiate import maker
 from .passes import sections
+from .statements import Memo
 
 __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 

@@ -4,11 +4,11 @@ A node's call (`mx_noise3d_float(n3_out, ...)`), its output's declaration, a sha
 scope recur across the materials of a library and across the requests of one material: a
 statement built alike from alike parts is typed alike (the library decides its calls), has the
 same facts and prints the same. So each statement of main the generator builds is looked up by its
-`key`, its structure (every slot of every node, as ir.shape), where a statement typed in an earlier
-request (`Shared.remember`) takes its place: the checker only declares what it declares
-(code/generated.py), its facts are read once (code/facts.py), and a printer keeps its lines per
-target and depth. A statement that misses is looked for statement by statement inside it (a
-scope of which one lobe changed keeps the others).
+`key`, its structure (the structure slots of every node, as ir.shape reads them), where a
+statement typed in an earlier request (`Shared.remember`) takes its place: the checker only
+declares what it declares (code/generated.py), its facts are read once (code/facts.py), and a
+printer keeps its lines per target and depth. A statement that misses is looked for statement by
+statement inside it (a scope of which one lobe changed keeps the others).
 
 A statement whose typing could depend on anything but its structure and the library has no key:
 one that reads a name the generator left untyped (the checker types it by the scope). A call of a
@@ -130,17 +130,6 @@ class Unkeyed(Exception):
     """Raised inside a statement's key: it has none."""
 
 
-SKIPPED = frozenset({"where", "callee", "facts", "pending"})  # not structure (as ir.shape leaves them out)
-_FIELDS: dict = {}
-
-
-def fields_of(cls) -> tuple:
-    found = _FIELDS.get(cls)
-    if found is None:
-        found = _FIELDS[cls] = tuple(s for s in ir.slots_of(cls) if s not in SKIPPED)
-    return found
-
-
 class Keys:
     """The numbers of a tree's statements (`found`: id -> number, for every statement that has
     one), each key computed once from its parts'."""
@@ -183,7 +172,7 @@ def structure(generated: dict, keys: "Keys"):
     keyed by their structure when a statement calls them. (A closure over its names: it runs for
     every node of main in every request.)"""
     Name, Literal, Construct, Call, Block, Node = ir.Name, ir.Literal, ir.Construct, ir.Call, ir.Block, ir.Node
-    fields, found, functions = _FIELDS, keys.found, {}
+    slots, found, functions = ir.structure_slots, keys.found, {}
 
     def function(name: str):
         if name not in functions:
@@ -212,7 +201,7 @@ def structure(generated: dict, keys: "Keys"):
             # the request's own function, by its structure: a call is typed by what it calls
             return cls, function(n.name), tuple([node(x) for x in n.args])
         out = [cls]
-        for name in fields.get(cls) or fields_of(cls):
+        for name in slots(cls):
             v = getattr(n, name)
             c = v.__class__
             if c is list:  # nodes (arguments, statements) or text (a comment's lines)
