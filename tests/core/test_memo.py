@@ -211,3 +211,20 @@ def test_statements_built_alike_have_one_key_and_any_difference_another():
     inner = call(x)
     assert keys.statement(ir.Block([inner, call(build.name("y", "local"))], True)) is UNKEYED
     assert id(inner) in keys.found
+
+
+def test_a_main_that_fails_its_typing_leaves_nothing_in_the_memo_and_fails_again():
+    """Bad input reaching the checker through main (an implementation whose function takes
+    other arguments): the statement memo keeps only what was typed, so the same document fails
+    the same way the second time rather than being served a half-typed main."""
+    source = Path(DEFAULT_LIBRARY_ROOT) / "stdlib" / "genglsl" / "lib" / "mx_hsv.glsl"
+    bad = doc('<nodedef name="ND_odd" node="odd"><input name="in" type="color3" value="1,1,1"/>'
+              '<output name="out" type="float"/></nodedef>'
+              f'<implementation name="IM_odd" nodedef="ND_odd" target="genglsl" file="{source}" function="mx_hsvtorgb"/>'
+              '<odd name="o" type="float"/><output name="out" type="float" nodename="o"/>')
+    gen = Generator(Library.load())
+    memo = gen.library.code().statements
+    errors = [records(gen, bad)[0]["error"] for _ in range(2)]
+    assert errors[0]["code"] == "invalid_source" and "mx_hsvtorgb" in errors[0]["message"]
+    assert errors[1] == errors[0] and not memo.entries
+    assert records(gen, MARBLE) == records(Generator(Library.load()), MARBLE) and memo.entries
