@@ -259,12 +259,21 @@ class EmitContext:
         """Evaluate the closure nodes upstream of `inp` in one shading context (seed's
         SgNodeContext): the caller has declared `closureData` for that context. Data nodes feeding
         the closures were computed once, before. Returns the expression of the result."""
-        nodes = self.closure_nodes(inp)[::-1]  # what a closure reads before it
         saved = self.closure
         self.closure = context
+        # The calls are alike in every context (what a closure function does in each is decided
+        # by the closure data it is passed): the first context's statements serve the others too,
+        # the same objects, built, keyed and typed once (code/statements.py, code/generated.py).
+        key = ("closure_statements", id(inp))
         try:
-            for node in nodes:
-                node.impl.emit_function_call(node, self)
+            emitted = self.memo.get(key)
+            if emitted is not None:
+                self.body.statements.extend(emitted)
+            else:
+                start = len(self.body.statements)
+                for node in self.closure_nodes(inp)[::-1]:  # what a closure reads before it
+                    node.impl.emit_function_call(node, self)
+                self.memo[key] = self.body.statements[start:]
         finally:
             self.closure = saved
         return self.value(inp)

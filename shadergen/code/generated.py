@@ -21,6 +21,7 @@ class GeneratedChecker(Checker):
                  memo: tuple[dict, dict], shared=frozenset()):
         super().__init__(path, symbols, externals)
         self.shared = shared  # ids of statements typed in an earlier request (code/statements.py)
+        self.typed: set[int] = set()  # ids of statements typed in this one
         self.library_functions = library_functions  # the library's own families (name -> key -> Function)
         # the library's: type -> IR type; (name, argument types) -> (Function, out positions, converts)
         self.types, self.overloads = memo
@@ -67,10 +68,11 @@ class GeneratedChecker(Checker):
         """A declaration of a variable of its typed value's type (most of main: a node's output),
         the type one the library has resolved to itself, only enters its scope: what the
         library's rules would do to it changes nothing. Anything else is checked by them."""
-        if id(s) in self.shared:  # typed before: it only declares what it declares
+        if id(s) in self.shared or id(s) in self.typed:  # typed before: it only declares what it declares
             if s.__class__ is ir.Declare:
                 self.scopes[-1][s.name] = (s.type, "local")
             return
+        self.typed.add(id(s))  # (main may hold a statement twice: a closure's call in each context)
         init = s.init if s.__class__ is ir.Declare else None
         if init is not None and init.type == s.type and (init.__class__ is not ir.Construct or init.exact) \
                 and self.types.get(s.type) == s.type:

@@ -228,3 +228,17 @@ def test_a_main_that_fails_its_typing_leaves_nothing_in_the_memo_and_fails_again
     assert errors[0]["code"] == "invalid_source" and "mx_hsvtorgb" in errors[0]["message"]
     assert errors[1] == errors[0] and not memo.entries
     assert records(gen, MARBLE) == records(Generator(Library.load()), MARBLE) and memo.entries
+
+
+def test_a_surfaces_closure_calls_are_built_once_for_all_its_contexts():
+    main = main_of(Generator(Library.load()), GOLDEN / "standard_surface_coated.mtlx")
+    contexts = {}  # the context's closure data -> its statements after it, but for the one adding up
+    for block in (n for n in ir.walk(main) if isinstance(n, ir.Block)):
+        for i, s in enumerate(block.body):
+            if isinstance(s, ir.Declare) and s.name == "closureData":
+                contexts[s.init.args[0].name] = [id(c) for c in block.body[i + 1:-1]]
+    # the BSDF's calls under each light, in the environment and along the view direction are one
+    # list of statements; the EDF's, in the emission context, are its own
+    reflection = contexts.pop("CLOSURE_TYPE_REFLECTION")
+    assert reflection and reflection == contexts.pop("CLOSURE_TYPE_INDIRECT") == contexts.pop("CLOSURE_TYPE_TRANSMISSION")
+    assert set(contexts.pop("CLOSURE_TYPE_EMISSION")).isdisjoint(reflection) and not contexts
