@@ -11,6 +11,7 @@ from .code import stage as code_passes
 from .code.build import Builder
 from .code.externals import environment_macros
 from .code.facts import collect
+from .code.statements import alike_key
 from .code.types import ir_type
 from .code.values import enum_index, value_expr
 from .errors import ShaderGenError
@@ -139,13 +140,20 @@ class EmitContext:
         return self.vars[id(out)].name
 
     def assign(self, out: Output, expression: ir.Expr) -> None:
-        self.body.declare(ir_type(out.type), self.output_name(out), expression)
+        self.assign_made(out, (expression,), lambda: expression)
+
+    def assign_made(self, out: Output, parts: tuple, make) -> None:
+        """`out` declared with the value `make()` builds from `parts` (the expressions it reads,
+        with whatever else decides it)."""
+        type_name, name = ir_type(out.type), self.output_name(out)
+        self.add_alike(("assign", type_name, name, *parts), lambda: ir.Declare(type_name, name, make(), False))
 
     def declare(self, out: Output) -> ir.Name:
-        name = self.output_name(out)
+        type_name, name = ir_type(out.type), self.output_name(out)
         # closure functions accumulate into their result: it starts from zero
         zero = value_expr(out.type, None) if out.type in CLOSURES else None
-        return self.body.declare(ir_type(out.type), name, zero)
+        self.add_alike(("declare", type_name, name, zero), lambda: ir.Declare(type_name, name, zero, False))
+        return self.vars[id(out)]  # (output_name's)
 
     def call(self, function: str, node: Node) -> None:
         outs = [self.declare(o) for o in node.outputs.values()]
@@ -156,7 +164,37 @@ class EmitContext:
             args = [self.value(i) for i in node.inputs.values()] + outs
         if is_closure_node(node):
             args = self.target.closures.arguments() + args
-        self.body.call(function, *args)
+        self.call_statement(function, args)
+
+    def call_statement(self, function: str, args: list[ir.Expr]) -> None:
+        # a call of a function this request wrote is decided by that function too (its body)
+        written = any(f.name == function for f in self.pixel.generated)
+        self.add_alike(None if written else ("call", function, *args),
+                       lambda: ir.ExprStatement(build.call(function, *args)))
+
+    def local(self, type_name: str, name: str) -> ir.Name:
+        """A variable of the body being written, declared without a value (a prepared lobe's state)."""
+        self.add_alike(("declare", type_name, name, None), lambda: ir.Declare(type_name, name, None, False))
+        return build.name(name, "local", type_name)
+
+    def add_alike(self, parts: tuple | None, make) -> None:
+        """Adds the statement `make()` builds from `parts` (what decides it: its kind, the names it
+        declares, the expressions it reads) to main; or the one an earlier request built from
+        alike parts and typed then, without building it (code/statements.py `Memo.alike`)."""
+        stage = self.pixel
+        if parts is None or self.body is not stage.main:  # (a generated function's body is typed whole)
+            self.body.add(make())
+            return
+        key = alike_key(parts)
+        found = self.code.statements.built_alike(key) if key is not None else None
+        if found is not None:
+            statement, stage.alike_found[id(statement)] = found
+            self.body.add(statement)
+            return
+        statement = make()
+        self.body.add(statement)
+        if key is not None:
+            stage.alike_fresh.append((key, statement))
 
     # -- variables ---------------------------------------------------------------------------
     def add_variable(self, stage: str, block: str, var: Variable) -> Variable:

@@ -117,6 +117,10 @@ class Stage:
         self.items: list = []  # the library's IR items it asked for, in that order
         self.generated: list = []  # the functions the generator wrote (typed with main), in order
         self.main = Builder()  # body of main()
+        # main's statements served from an earlier request's, by what they are built from (id ->
+        # number), and those built here with what they were built from (code/statements.py)
+        self.alike_found: dict[int, int] = {}
+        self.alike_fresh: list = []
         self.code = None  # what the code passes kept (code/stage.py), once they ran
         self.emitted: set = set()  # keys of library files and generated functions already added
 

@@ -71,7 +71,7 @@ def run(ctx, counts: dict) -> StageCode:
     main = ctx.pixel.main.block()
     stage_variables = externals(ctx, PIXEL)
     generated = ctx.pixel.generated
-    main, shared = code.statements.share(main, generated)
+    main, shared = code.statements.share(main, generated, ctx.pixel.alike_found, ctx.pixel.alike_fresh)
     code.check_generated(generated, [main], stage_variables, shared.hits)
     shared.remember()
     # the structs a stage variable has (a uniform's, the light array's) are part of its layout

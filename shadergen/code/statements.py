@@ -15,6 +15,12 @@ one that reads a name the generator left untyped (the checker types it by the sc
 function the request wrote itself (a nodegraph's body, the light dispatch) is keyed by that
 function's structure. Shared statements are never changed: the checker skips them and the passes
 never edit main.
+
+Most of main is a node's call, or its output's declaration with the node's inline expression,
+built from names and values. Those the generator looks up before it builds them
+(EmitContext.add_alike): what a statement is built from (`alike_key`: its text, names and values)
+leads to the number its statement had (`Memo.alike`), and an earlier request's typed statement
+of that number is taken as it is, neither built nor keyed again.
 """
 import itertools
 
@@ -45,17 +51,35 @@ class Memo:
         self.numbers: dict[tuple, int] = {}
         self.entries: dict[int, Entry] = {}
         self.counter = itertools.count()  # (next() and setdefault: two threads never share a number)
+        # what a statement of main is built from (EmitContext.add_alike: `alike_key`) -> its number,
+        # so that the generator takes a typed one instead of building it again
+        self.alike: dict[tuple, int] = {}
 
-    def share(self, main: ir.Block, generated_functions) -> tuple[ir.Block, "Shared"]:
+    def built_alike(self, key: tuple) -> tuple | None:
+        """(statement, number) of the statement an earlier request built from `key`'s parts and
+        typed; None if none was."""
+        number = self.alike.get(key)
+        entry = self.entries.get(number) if number is not None else None
+        return (entry.statement, number) if entry is not None else None
+
+    def share(self, main: ir.Block, generated_functions, found=None, fresh=()) -> tuple[ir.Block, "Shared"]:
         """`main` with the entries of alike statements in its place, outermost first (main
         itself, when a request built one alike before; its lists are this request's own to
         change); the others are this request's fresh statements, remembered once typed
-        (`Shared.remember`)."""
+        (`Shared.remember`). `found`: id -> number of the statements the generator took from
+        the memo (`built_alike`); `fresh`: (what it was built from, statement) of those it built."""
         generated: dict[str, list] = {}
         for f in generated_functions:
             generated.setdefault(f.name, []).append(f)
         keys = Keys(generated, self)
+        if found:
+            keys.found.update(found)
         keys.statement(main)
+        alike = self.alike
+        for key, s in fresh:
+            number = keys.found.get(id(s))
+            if number is not None and len(alike) < MAX_KEYS:
+                alike[key] = number
         shared = Shared(self)
         body = [main]
         shared.place(body, keys.found)
@@ -104,6 +128,27 @@ class Shared:
         if entry.facts is None:
             entry.facts = collect([statement])
         return entry.facts
+
+
+def alike_key(parts: tuple) -> tuple | None:
+    """What a statement is built from as a key (EmitContext.add_alike): its text and the
+    expressions it reads, each by what decides its structure (a typed name by its name, kind and
+    type; a literal by its value and text; a value by its identity, as `Keys`); None when one is
+    anything else (built from other expressions: keyed once built)."""
+    out = []
+    for p in parts:
+        cls = p.__class__
+        if cls is str or p is None:
+            out.append(p)
+        elif cls is ir.Name and p.type is not None:
+            out.append((p.name, p.kind, p.type))
+        elif cls is ir.Literal:
+            out.append((cls, p.value.__class__, p.value, p.type, p.text))
+        elif cls is ir.Construct and p.exact:
+            out.append(p)
+        else:
+            return None
+    return tuple(out)
 
 
 CONTAINERS = frozenset({ir.If, ir.For, ir.While})  # statements with blocks of their own

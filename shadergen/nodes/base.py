@@ -7,6 +7,7 @@ receive the EmitContext: it knows the stages, the syntax, and how to spell an in
 `ctx.closure` carries the shading context (reflection, transmission, indirect, emission) for BSDF
 nodes that are called once per context; it is None for ordinary data nodes.
 """
+import itertools
 import os
 import re
 
@@ -68,11 +69,14 @@ class InlineImpl(NodeImpl):
 
     def emit_function_call(self, node, ctx) -> None:
         inputs = {name: ctx.value(i) for name, i in node.inputs.items()}
-        try:
-            expression = ctx.code.instance(self.expression, inputs, self.where)
-        except ShaderGenError as e:  # a placeholder naming no input of the node, among others
-            raise ShaderGenError("invalid_implementation", e.message, node.path) from None
-        ctx.assign(next(iter(node.outputs.values())), expression)
+
+        def make():
+            try:
+                return ctx.code.instance(self.expression, inputs, self.where)
+            except ShaderGenError as e:  # a placeholder naming no input of the node, among others
+                raise ShaderGenError("invalid_implementation", e.message, node.path) from None
+        # the expression is decided by its text and its inputs (their types choose the template's typing)
+        ctx.assign_made(next(iter(node.outputs.values())), (self.expression, *itertools.chain(*inputs.items())), make)
 
 
 class SourceFunctionImpl(NodeImpl):

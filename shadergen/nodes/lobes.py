@@ -59,8 +59,8 @@ def emit_lobes(ctx, inp: Input, point_arguments) -> None:
         state = impl.prepared_state if isinstance(impl, SourceFunctionImpl) else None
         if state is not None:
             args = point_arguments() + [ctx.value(i) for i in node.inputs.values()]
-            lobe = ctx.prepared_lobes[id(node)] = ctx.body.declare(state, ctx.namer(f"{ctx.names.node(node)}_lobe"))
-            ctx.body.call(f"{impl.function}_prepare", *args, lobe)
+            lobe = ctx.prepared_lobes[id(node)] = ctx.local(state, ctx.namer(f"{ctx.names.node(node)}_lobe"))
+            ctx.call_statement(f"{impl.function}_prepare", args + [lobe])
 
 
 def emit_weights(ctx, nodes: list[Node]) -> None:

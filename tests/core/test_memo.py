@@ -242,3 +242,41 @@ def test_a_surfaces_closure_calls_are_built_once_for_all_its_contexts():
     reflection = contexts.pop("CLOSURE_TYPE_REFLECTION")
     assert reflection and reflection == contexts.pop("CLOSURE_TYPE_INDIRECT") == contexts.pop("CLOSURE_TYPE_TRANSMISSION")
     assert set(contexts.pop("CLOSURE_TYPE_EMISSION")).isdisjoint(reflection) and not contexts
+
+
+def test_main_statements_built_from_alike_parts_are_taken_typed_and_not_built_again(monkeypatch):
+    from shadergen.code.library import CodeLibrary
+    made = []
+    instance = CodeLibrary.instance
+
+    def counted(self, expression_text, values, where="inline expression"):
+        made.append(expression_text)
+        return instance(self, expression_text, values, where)
+    monkeypatch.setattr(CodeLibrary, "instance", counted)
+
+    def scaled(factor: str):
+        return doc('<texcoord name="t" type="vector2"/><multiply name="m" type="vector2">'
+                   f'<input name="in1" type="vector2" nodename="t"/><input name="in2" type="float" value="{factor}"/>'
+                   '</multiply><output name="o" type="vector2" nodename="m"/>')
+    gen = Generator(Library.load())
+    first = records(gen, scaled("2"), interface="specialized")
+    assert made  # built, typed, remembered
+    made.clear()
+    assert records(gen, scaled("2"), interface="specialized") == first and not made  # taken, not built
+    other = records(gen, scaled("3"), interface="specialized")  # another value in the source: built
+    assert made and other == records(Generator(Library.load()), scaled("3"), interface="specialized")
+
+
+def test_what_a_statement_is_built_from_has_one_key_and_any_difference_another():
+    from shadergen.code.statements import alike_key
+    x = build.name("x", "local", "vec3")
+    assert alike_key(("call", "mx_f", x, build.number(1.0))) == \
+        alike_key(("call", "mx_f", build.name("x", "local", "vec3"), build.number(1.0)))
+    assert alike_key(("call", "mx_f", x, build.number(1.0))) != \
+        alike_key(("call", "mx_f", x, ir.Literal(1, None, type="float")))  # 1.0 and 1 print apart
+    assert alike_key(("call", "mx_f", x)) != alike_key(("call", "mx_f", build.name("x", "uniform", "vec3")))
+    assert alike_key(("call", "mx_f", x)) != alike_key(("call", "mx_g", x))
+    assert alike_key(("assign", "vec3", "a", x)) != alike_key(("assign", "vec3", "b", x))
+    # typed by the scope, or built from other expressions: keyed (if at all) once built
+    assert alike_key(("call", "mx_f", build.name("y", "local"))) is None
+    assert alike_key(("assign", "vec3", "a", build.binary("*", x, x))) is None
