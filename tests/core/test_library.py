@@ -2,7 +2,7 @@ import json
 from pathlib import Path
 
 from shadergen.api import Generator
-from shadergen.library import Library, cache_dir
+from shadergen.library import CHECKSUM_SIZE, Library, cache_dir
 
 from .conftest import doc
 
@@ -47,15 +47,15 @@ def test_parsed_library_is_cached_on_disk_and_rebuilt_when_corrupt(tmp_path, mon
     assert len(cached) == 1 and cached[0].name.startswith(f"library-{first.content_hash[:24]}")
     text = cached[0].read_text()
     lines = [json.loads(line) for line in text.splitlines()]  # JSON Lines, never a pickle
-    # the digest, the index (every library file), the nodedefs' output types, then each definition's children
-    assert len(lines[0]) == 64 and len(lines[1]) == len(first.roots) and lines[2] == first.output_types
+    # the checksum, the index (every library file), the nodedefs' output types, then each definition's children
+    assert len(lines[0]) == CHECKSUM_SIZE and len(lines[1]) == len(first.roots) and lines[2] == first.output_types
     assert len(lines) > 500
     cached[0].write_text("{corrupt")
     again = Library.load()
     assert again.content_hash == first.content_hash and len(again.nodedefs) == len(first.nodedefs)
     assert Generator(again).prepare(doc('<sin name="s" type="float"/><output name="o" type="float" nodename="s"/>')).emit()
     # Damage that is still JSON (a definition's children, decoded only when read) is caught by the
-    # file's digest up front: the library is rebuilt, never broken later.
+    # file's checksum up front: the library is rebuilt, never broken later.
     assert cached[0].read_text() == text
     damaged = text.replace('"name":"in"', '"name":"im"', 1)
     assert damaged != text
