@@ -31,6 +31,7 @@ NodeRef = namedtuple("NodeRef", "elem output")  # a connection's upstream node, 
 class Socket:
     """An interface input of a nodegraph body: while the body is expanded, the input of the node
     it implements (`origin`); afterwards, a published uniform read by several inputs of the body."""
+    __slots__ = ("name", "type", "value", "path", "meta", "consumers", "origin", "public", "default")
 
     def __init__(self, name: str, type: str, value: object = None, path: str | None = None, meta: dict | None = None,
                  origin: "Input | None" = None, public: bool = False, default: object = None):
@@ -51,6 +52,7 @@ class Socket:
 
 class Output:
     """A node's output: what inputs connect to."""
+    __slots__ = ("name", "type", "node")
 
     def __init__(self, name: str, type: str, node: "Node"):
         self.name = name
@@ -60,6 +62,8 @@ class Output:
 
 class Input:
     """A node's input: a value, a connection, a socket of an expanded body, or a public uniform."""
+    __slots__ = ("name", "type", "node", "value", "path", "connection", "socket", "meta", "authored", "public",
+                 "parameter", "default", "derived")
 
     def __init__(self, name: str, type: str, node: "Node", value: object = None, path: str | None = None,
                  meta: dict | None = None, authored: bool = False, default: object = None):
@@ -99,6 +103,8 @@ class Input:
 
 class Node:
     """A node of the graph: its definition, implementation and ports."""
+    __slots__ = ("name", "category", "type", "nodedef", "implementation", "path", "inputs", "outputs", "scope", "impl",
+                 "instance", "facts")
 
     def __init__(self, name: str, category: str, type: str, nodedef: Element, implementation: Element | None,
                  path: str, instance: "Instance | None" = None):
