@@ -13,8 +13,9 @@ statement inside it (a scope of which one lobe changed keeps the others).
 A statement whose typing could depend on anything but its structure and the library has no key:
 one that reads a name the generator left untyped (the checker types it by the scope). A call of a
 function the request wrote itself (a nodegraph's body, the light dispatch) is keyed by that
-function's structure. Shared statements are never changed: the checker skips them and the passes
-never edit main.
+function's structure, and the statements of its body are looked up as main's are. Shared
+statements are never changed: the checker skips them and the passes never edit main or the
+generated functions.
 
 Most of main is a node's call, or its output's declaration with the node's inline expression,
 built from names and values. Those the generator looks up before it builds them
@@ -83,6 +84,9 @@ class Memo:
         shared = Shared(self)
         body = [main]
         shared.place(body, keys.found)
+        for f in generated_functions:  # what main calls of them (the light dispatch, a nodegraph's body)
+            if id(f.body) in keys.found:
+                shared.place(f.body.body, keys.found)
         return body[0], shared
 
 

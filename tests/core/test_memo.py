@@ -155,19 +155,24 @@ def test_statements_from_the_memo_write_the_records_written_afresh(target, monke
     assert not memo.entries  # (made afresh)
 
 
-def main_of(gen: Generator, document) -> ir.Block:
-    """Main of `document`'s first element, as the code passes got it."""
+def code_of(gen: Generator, document) -> code_stage.StageCode:
+    """The pixel stage's code of `document`'s first element, as the code passes gave it."""
     got = []
     run = code_stage.run
 
     def keep(ctx, counts):
         code = run(ctx, counts)
-        got.append(code.main)
+        got.append(code)
         return code
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(generator.code_passes, "run", keep)
         gen.prepare(document).emit()
     return got[0]
+
+
+def main_of(gen: Generator, document) -> ir.Block:
+    """Main of `document`'s first element, as the code passes got it."""
+    return code_of(gen, document).main
 
 
 def statements_in(block: ir.Block) -> set[int]:
@@ -280,3 +285,16 @@ def test_what_a_statement_is_built_from_has_one_key_and_any_difference_another()
     # typed by the scope, or built from other expressions: keyed (if at all) once built
     assert alike_key(("call", "mx_f", build.name("y", "local"))) is None
     assert alike_key(("assign", "vec3", "a", build.binary("*", x, x))) is None
+
+
+def test_the_statements_of_a_function_main_calls_are_typed_once_for_each_shape():
+    gen = Generator(Library.load())
+    memo = gen.library.code().statements
+
+    def light_dispatch(document):
+        return next(f for f in code_of(gen, document).functions if getattr(f, "name", None) == "sampleLightSource")
+    first = light_dispatch(GOLDEN / "standard_surface_coated.mtlx")
+    again = light_dispatch(GOLDEN / "glass.mtlx")  # another material, the same lights
+    assert again is not first  # the request's own function, with the statements typed before
+    assert [id(s) for s in again.body.body] == [id(s) for s in first.body.body]
+    assert all(id(s) in {id(e.statement) for e in memo.entries.values()} for s in again.body.body)

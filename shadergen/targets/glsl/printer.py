@@ -102,7 +102,7 @@ class GlslPrinter:
             raise ValueError(f"dialect {dialect!r}: one of {DIALECTS}")
         self.dialect = dialect
         self.spell = spell
-        self.shared = None  # while main is printed: (id -> shared statement's Entry, the target's key)
+        self.shared = None  # while generated code is printed: (id -> shared statement's Entry, the target's key)
         self.convert_implicit = dialect == "essl"  # ESSL 3.00 has no implicit conversions
         # `line` prints what `render` prints on one line, in fewer calls; a printer that changes
         # how an expression is rendered (OSL's, the C family's) renders every part itself
@@ -287,8 +287,8 @@ class GlslPrinter:
         return lines
 
     def statement(self, s, depth: int, lines: list[str]) -> None:
-        """`s`'s lines, at `depth`; a statement of main shared across requests (code/statements.py)
-        is printed once per target and depth."""
+        """`s`'s lines, at `depth`; a statement of generated code shared across requests
+        (code/statements.py) is printed once per target and depth."""
         shared = self.shared
         entry = shared[0].get(id(s)) if shared is not None else None
         if entry is None:

@@ -75,10 +75,16 @@ class GlslTarget:
         for location, v in enumerate(ctx.pixel.blocks["Outputs"]):
             w.line(f"{self.io('out', location)} vec4 {v.name};")
         w.line()
-        for function in code.functions:
-            w.extend(self.item(function, library))
-            w.line()
-        self._main(code.main, w, code.shared)
+        # the statements of main and of the functions it calls that were typed once per shape
+        # (code/statements.py) are printed once per target (this class) and depth
+        self.printer.shared = (code.shared.hits, type(self)) if code.shared is not None else None
+        try:
+            for function in code.functions:
+                w.extend(self.item(function, library))
+                w.line()
+            self._main(code.main, w)
+        finally:
+            self.printer.shared = None
         return w.text()
 
     def assemble_vertex(self, ctx) -> str:
@@ -103,15 +109,9 @@ class GlslTarget:
         """A stage input's or output's qualifiers: GLSL matches them by name."""
         return direction
 
-    def _main(self, body: ir.Block, w: Writer, shared=None) -> None:
-        """`shared`: main's statements typed once per shape (code/statements.py), each printed
-        once per target (this class) and depth."""
+    def _main(self, body: ir.Block, w: Writer) -> None:
         w.line("void main()")
-        self.printer.shared = (shared.hits, type(self)) if shared is not None else None
-        try:
-            w.extend(self.printer.statements([body], 0))
-        finally:
-            self.printer.shared = None
+        w.extend(self.printer.statements([body], 0))
 
     def _uniforms(self, stage, w: Writer) -> None:
         for block in ("PrivateUniforms", "PublicUniforms"):
