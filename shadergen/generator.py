@@ -50,7 +50,11 @@ class Namer:
             name = "v_" + name
         if name.endswith(self.reserved_suffixes):
             name += "_v"
-        return _unique(name, lambda n: n in self.used or n in self.reserved or n in avoid, self.used)
+        used = self.used
+        if name not in used and name not in self.reserved and name not in avoid:  # (most names: free)
+            used.add(name)
+            return name
+        return _unique(name, lambda n: n in used or n in self.reserved or n in avoid, used)
 
     def claim(self, wanted: str) -> str:
         # a claimed name is the seed's (`u_time`, RESERVED for fresh names) or prefixed by its kind
