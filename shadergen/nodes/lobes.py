@@ -117,5 +117,7 @@ def _all(a: ir.Expr | None, b: ir.Expr | None) -> ir.Expr | None:
 def _any(conditions: list[ir.Expr | None]) -> ir.Expr | None:
     if None in conditions:
         return None
+    if len(conditions) == 1:  # (most closures are read once)
+        return conditions[0]
     unique = list({repr(c): c for c in conditions}.values())  # the same condition reached twice, once
     return unique[0] if len(unique) == 1 else build.any_of(unique)
