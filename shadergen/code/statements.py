@@ -134,24 +134,35 @@ class Shared:
         return entry.facts
 
 
+def leaf_key(n) -> object | None:
+    """The key of a node that holds no other node's structure: a typed name by its name, kind and
+    type; a literal by its value and text; a value by its identity (code/values.py makes one node
+    for an equal value). None for an untyped name (the checker types it by the scope) and for any
+    other node."""
+    cls = n.__class__
+    if cls is ir.Name:
+        return (cls, n.name, n.kind, n.type) if n.type is not None else None
+    if cls is ir.Literal:
+        value = n.value
+        return cls, value.__class__, value, n.type, n.text  # 1 == 1.0 == True, printed apart
+    if cls is ir.Construct and n.exact:
+        return n
+    return None
+
+
 def alike_key(parts: tuple) -> tuple | None:
     """What a statement is built from as a key (EmitContext.add_alike): its text and the
-    expressions it reads, each by what decides its structure (a typed name by its name, kind and
-    type; a literal by its value and text; a value by its identity, as `Keys`); None when one is
-    anything else (built from other expressions: keyed once built)."""
+    expressions it reads, each by its `leaf_key`; None when one has none (built from other
+    expressions: keyed once built)."""
     out = []
     for p in parts:
-        cls = p.__class__
-        if cls is str or p is None:
+        if p.__class__ is str or p is None:
             out.append(p)
-        elif cls is ir.Name and p.type is not None:
-            out.append((p.name, p.kind, p.type))
-        elif cls is ir.Literal:
-            out.append((cls, p.value.__class__, p.value, p.type, p.text))
-        elif cls is ir.Construct and p.exact:
-            out.append(p)
-        else:
+            continue
+        key = leaf_key(p)
+        if key is None:
             return None
+        out.append(key)
     return tuple(out)
 
 
@@ -240,15 +251,11 @@ def structure(generated: dict, keys: "Keys"):
 
     def node(n):
         cls = n.__class__
-        if cls is Name:
-            if n.type is None:
-                raise Unkeyed  # the checker types it by the scope
-            return cls, n.name, n.kind, n.type
-        if cls is Literal:
-            value = n.value
-            return cls, value.__class__, value, n.type, n.text  # 1 == 1.0 == True, printed apart
-        if cls is Construct and n.exact:
-            return n  # a value: one node for an equal value (code/values.py), by identity
+        if cls is Name or cls is Literal or (cls is Construct and n.exact):
+            key = leaf_key(n)
+            if key is None:
+                raise Unkeyed  # an untyped name
+            return key
         if cls is Call and n.name in generated:
             # the request's own function, by its structure: a call is typed by what it calls
             return cls, function(n.name), tuple([node(x) for x in n.args])
