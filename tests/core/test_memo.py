@@ -298,3 +298,20 @@ def test_the_statements_of_a_function_main_calls_are_typed_once_for_each_shape()
     assert again is not first  # the request's own function, with the statements typed before
     assert [id(s) for s in again.body.body] == [id(s) for s in first.body.body]
     assert all(id(s) in {id(e.statement) for e in memo.entries.values()} for s in again.body.body)
+
+
+def test_an_inline_expression_naming_no_input_fails_each_time_it_is_asked_for():
+    """Bad input on the path that takes statements built alike before (EmitContext.add_alike):
+    the expression is made only where nothing alike was typed, and its error is the document's."""
+    bad = doc('<nodedef name="ND_odd" node="odd"><input name="in" type="float" value="1"/>'
+              '<output name="out" type="float"/></nodedef>'
+              '<implementation name="IM_odd" nodedef="ND_odd" target="genglsl" sourcecode="{{nope}} * 2.0"/>'
+              '<texcoord name="t" type="vector2"/><extract name="x" type="float">'
+              '<input name="in" type="vector2" nodename="t"/></extract>'
+              '<odd name="o" type="float"><input name="in" type="float" nodename="x"/></odd>'
+              '<output name="out" type="float" nodename="o"/>')
+    gen = Generator(Library.load())
+    errors = [records(gen, bad)[0]["error"] for _ in range(2)]
+    assert errors[0]["code"] == "invalid_implementation" and "nope" in errors[0]["message"]
+    assert errors[1] == errors[0]
+    assert records(gen, MARBLE) == records(Generator(Library.load()), MARBLE)
