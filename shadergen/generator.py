@@ -433,7 +433,7 @@ def emit_shader(ctx: EmitContext, graph: Graph) -> dict[str, str]:
     ctx.emit_nodes(graph, ())
     assign_outputs(ctx, graph)
     finish(ctx, graph.interface_mode == "specialized", graph.passes)
-    stages = {VERTEX: code_passes.vertex_stage(ctx), PIXEL: ctx.target.assemble_pixel(ctx)}
+    stages = {VERTEX: code_passes.vertex_stage(ctx), PIXEL: code_passes.pixel_stage(ctx)}
     return {name: text for name, text in stages.items() if text is not None}  # OSL has no vertex stage
 
 

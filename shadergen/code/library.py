@@ -71,7 +71,7 @@ class CodeLibrary:
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
     __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls",
-                 "indexed", "resolved", "typed", "parsed", "makers", "generated", "statements")
+                 "indexed", "resolved", "typed", "parsed", "makers", "generated", "statements", "stages")
 
     def __init__(self, root: str, state: tuple):
         self.root = root
@@ -84,6 +84,7 @@ class CodeLibrary:
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
         self.generated = ({}, {})  # what typing generated code works out per library (code/generated.py)
         self.statements = Memo()  # main's statements, typed once per shape (code/statements.py)
+        self.stages: dict = {}  # pixel stages' code and text, per structure (code/stage.py)
 
     @classmethod
     def load(cls, library: Library, externals: dict[str, str]) -> "CodeLibrary":

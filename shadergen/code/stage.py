@@ -13,6 +13,10 @@ record's `"passes"`:
 result, a StageCode, is what every target's stage assembler prints: one mechanism for all. A
 library function a target writes its own way (its `own_functions`: OSL's image read) enters the
 passes without its body, so what only the library's body calls is not reached.
+
+Materials of one structure (and every request for one material) build one main: where main has
+a structure (code/statements.py: it is numbered), the passes' result for it is kept per library, by that number and everything else the passes read (`run`), and so is the
+stage's text, by that and what an assembler reads of the stage's variables (`pixel_stage`).
 """
 from functools import lru_cache
 
@@ -28,9 +32,9 @@ class StageCode:
     """What the passes kept of the pixel stage, in order: `structs`, `constants` (with the
     sections of macros left to the target that hold no function), `functions` (and the sections
     that do), then main, the vertex stage's main, and every name the pixel code reads."""
-    __slots__ = ("structs", "constants", "functions", "main", "vertex_main", "pixel_names", "shared")
+    __slots__ = ("structs", "constants", "functions", "main", "vertex_main", "pixel_names", "shared", "key")
 
-    def __init__(self, structs, constants, functions, main, vertex_main, pixel_names, shared=None):
+    def __init__(self, structs, constants, functions, main, vertex_main, pixel_names, shared=None, key=None):
         self.structs = structs
         self.constants = constants
         self.functions = functions
@@ -38,6 +42,12 @@ class StageCode:
         self.vertex_main = vertex_main
         self.pixel_names = pixel_names
         self.shared = shared  # main's statements typed once per shape, with their lines (code/statements.py)
+        self.key = key  # what the passes read, where main has a structure (`run`), else None
+
+    def copy(self) -> "StageCode":
+        """Its own, for a request (the vertex stage's main is set on it)."""
+        return StageCode(self.structs, self.constants, self.functions, self.main, self.vertex_main,
+                         self.pixel_names, self.shared, self.key)
 
 
 def vertex_main(ctx) -> ir.Block:
@@ -72,6 +82,15 @@ def run(ctx, counts: dict) -> StageCode:
     stage_variables = externals(ctx, PIXEL)
     generated = ctx.pixel.generated
     main, shared = code.statements.share(main, generated, ctx.pixel.alike_found, ctx.pixel.alike_fresh)
+    # what the passes read: the target (its own functions), main's structure and its functions',
+    # the library items the request asked for, the features, the decided macros, the variables
+    key = shared.key and (type(ctx.target), shared.key, tuple(map(id, ctx.pixel.items)), ctx.features, ctx.macros,
+                          tuple(stage_variables.items()))
+    known = code.stages.get(key) if key else None
+    if known is not None:
+        stage, passes = known
+        counts.update(passes)
+        return stage.copy()
     code.check_generated(generated, [main], stage_variables, shared.hits)
     shared.remember()
     # the structs a stage variable has (a uniform's, the light array's) are part of its layout
@@ -86,7 +105,47 @@ def run(ctx, counts: dict) -> StageCode:
     for i in reached.items:  # one look at each item (a section's is a walk of its body)
         (structs if isinstance(i, ir.Struct) else functions if has_function(i) else constants).append(i)
     functions += generated
-    return StageCode(structs, constants, functions, main, None, frozenset(reached.names), shared)
+    stage = StageCode(structs, constants, functions, main, None, frozenset(reached.names), shared, key)
+    if key:
+        keep(code.stages, key, (stage.copy(), passes))
+    return stage
+
+
+def pixel_stage(ctx) -> str:
+    """The pixel stage's text, once the code passes ran: printed once per library for what the
+    target's assembler reads, where main has a structure (its StageCode's `key`): the stage's
+    code, every stage's variables (`variables_key`) and the OSL texture filter width."""
+    code = ctx.pixel.code
+    if code.key is None:
+        return ctx.target.assemble_pixel(ctx)
+    ui = getattr(ctx.target, "writes_ui", False)
+    key = (code.key, tuple([variables_key(stage, ui) for stage in ctx.stages.values()]), ctx.texture_width)
+    memo = ctx.code.stages
+    text = memo.get(key)
+    if text is None:
+        text = ctx.target.assemble_pixel(ctx)
+        keep(memo, key, text)
+    return text
+
+
+def variables_key(stage, ui: bool = False) -> tuple:
+    """What a stage assembler may read of a stage's variables: each block's name, type and
+    initializer, and their ui metadata where the target `writes_ui` (OSL's parameter hints);
+    never a listing's value or path."""
+    if ui:
+        return tuple([(block.name, tuple([(v.name, v.type, repr(v.initializer), repr(v.ui)) for v in block]))
+                      for block in stage.blocks.values()])
+    return tuple([(block.name, tuple([(v.name, v.type, repr(v.initializer)) for v in block]))
+                  for block in stage.blocks.values()])
+
+
+MAX_STAGES = 512  # pixel stages' code and texts kept per library, vertex stages per process; oldest out first
+
+
+def keep(memo: dict, key, value) -> None:
+    if len(memo) >= MAX_STAGES:
+        memo.pop(next(iter(memo)), None)  # (another thread may have taken it out first)
+    memo[key] = value
 
 
 @lru_cache(maxsize=256)
@@ -102,8 +161,7 @@ def has_function(item) -> bool:
     return isinstance(item, ir.Function)
 
 
-VERTEX_STAGES: dict = {}  # vertex_stage's memo, key -> text; at most MAX_VERTEX_STAGES, oldest out first
-MAX_VERTEX_STAGES = 256
+VERTEX_STAGES: dict = {}  # vertex_stage's memo, key -> text
 
 
 def vertex_stage(ctx) -> str | None:
@@ -111,9 +169,7 @@ def vertex_stage(ctx) -> str | None:
     its main built, typed and printed. Many materials share one (the same vertex data for the same
     target), so it is made once per process for each key that covers what its text depends on: the
     target, the library (which types the code), the stage's variables and its main's statements."""
-    blocks = tuple((block.name, tuple((v.name, v.type, repr(v.value), repr(v.initializer)) for v in block))
-                   for block in ctx.vertex.blocks.values())
-    key = (type(ctx.target), ctx.code.key, blocks, ir.shape(list(ctx.vertex_main.values())))
+    key = (type(ctx.target), ctx.code.key, variables_key(ctx.vertex), ir.shape(list(ctx.vertex_main.values())))
     try:
         return VERTEX_STAGES[key]
     except KeyError:
@@ -122,7 +178,5 @@ def vertex_stage(ctx) -> str | None:
     ctx.code.check_generated([], [vertex], externals(ctx, VERTEX))
     ctx.pixel.code.vertex_main = vertex
     text = ctx.target.assemble_vertex(ctx)
-    if len(VERTEX_STAGES) >= MAX_VERTEX_STAGES:
-        del VERTEX_STAGES[next(iter(VERTEX_STAGES))]
-    VERTEX_STAGES[key] = text
+    keep(VERTEX_STAGES, key, text)
     return text

@@ -87,18 +87,27 @@ class Memo:
         for f in generated_functions:  # what main calls of them (the light dispatch, a nodegraph's body)
             if id(f.body) in keys.found:
                 shared.place(f.body.body, keys.found)
+        number = keys.found.get(id(main))
+        if number is not None:  # main has a structure: so has the code the passes keep of it
+            try:
+                shared.key = number, tuple([keys.function(name) for name in generated])
+            except Unkeyed:
+                pass
         return body[0], shared
 
 
 class Shared:
     """What one request shares: `hits` (id(statement) -> Entry) for the checker, the facts and
-    the printers; `fresh`, the (key, statement) pairs of its own, remembered once typed."""
-    __slots__ = ("memo", "hits", "fresh")
+    the printers; `fresh`, the (key, statement) pairs of its own, remembered once typed; `key`,
+    the structure of main and of the functions the request wrote (main's by its number), or None
+    where one has none."""
+    __slots__ = ("memo", "hits", "fresh", "key")
 
     def __init__(self, memo: Memo):
         self.memo = memo
         self.hits: dict[int, Entry] = {}
         self.fresh: list = []
+        self.key = None
 
     def place(self, body: list, found: dict) -> None:
         entries = self.memo.entries
@@ -197,7 +206,7 @@ class Keys:
     def __init__(self, generated: dict, memo: Memo):
         self.numbers, self.counter = memo.numbers, memo.counter
         self.found: dict[int, int] = {}
-        self.node = structure(generated, self)
+        self.node, self.function = structure(generated, self)
 
     def statements(self, body: list):
         keys = [self.statement(s) for s in body]  # every one: an inner statement may be shared alone
@@ -230,9 +239,10 @@ class Keys:
 
 
 def structure(generated: dict, keys: "Keys"):
-    """node -> its structure: a tuple of its class and its fields' (a statement's block by its
-    key, keyed first); raises Unkeyed. `generated`: name -> the functions the request wrote,
-    keyed by their structure when a statement calls them. (A closure over its names: it runs for
+    """(node -> its structure, name -> the structure of the request's functions of that name):
+    a node's is a tuple of its class and its fields' (a statement's block by its key, keyed
+    first); both raise Unkeyed. `generated`: name -> the functions the request wrote, keyed by
+    their structure when a statement calls them. (Closures over their names: `node` runs for
     every node of main in every request.)"""
     Name, Literal, Construct, Call, Block, Node = ir.Name, ir.Literal, ir.Construct, ir.Call, ir.Block, ir.Node
     slots, found, functions = ir.structure_slots, keys.found, {}
@@ -271,4 +281,4 @@ def structure(generated: dict, keys: "Keys"):
                 v = node(v)
             out.append(v)
         return tuple(out)
-    return node
+    return node, function

@@ -315,3 +315,57 @@ def test_an_inline_expression_naming_no_input_fails_each_time_it_is_asked_for():
     assert errors[0]["code"] == "invalid_implementation" and "nope" in errors[0]["message"]
     assert errors[1] == errors[0]
     assert records(gen, MARBLE) == records(Generator(Library.load()), MARBLE)
+
+
+# -- the pixel stage's code and text, once per structure (code/stage.py) ------------------------------
+def twin(value: str, uimin: str) -> str:
+    """Documents of one structure: a colour, its value and its ui metadata their own."""
+    return doc(f'<multiply name="m" type="color3"><input name="in1" type="color3" value="{value}"/>'
+               f'<input name="in2" type="float" value="2" uimin="{uimin}"/></multiply>'
+               '<output name="out" type="color3" nodename="m"/>')
+
+
+TWINS = [twin("0.1, 0.2, 0.3", "0"), twin("0.4, 0.5, 0.6", "0.25")]
+
+
+@pytest.mark.parametrize("target", ["glsl", "essl", "vulkan", "wgsl", "osl", "msl", "hlsl", "slang"])
+def test_pixel_stages_from_the_memo_are_the_ones_written_afresh(target, monkeypatch):
+    warm = Generator(Library.load())
+    code = warm.library.code()
+    documents = DOCUMENTS + TWINS
+    for values in ("listing", "source"):
+        first = [records(warm, document, target=target, values=values) for document in documents]
+        assert code.stages  # kept the first time
+        served = [records(warm, document, target=target, values=values) for document in documents]
+        monkeypatch.setattr(code, "stages", Forgetful())
+        assert served == first == [records(warm, document, target=target, values=values) for document in documents]
+        monkeypatch.undo()
+
+
+@pytest.mark.parametrize(("target", "values"), [("glsl", "source"), ("osl", "listing")])
+def test_the_pixel_stage_memo_tells_apart_what_an_assembler_reads_of_the_variables(target, values):
+    """One structure, one main: GLSL initialises a uniform to the document's value (values in the
+    source), OSL writes a parameter's ui metadata as its hints."""
+    warm = Generator(Library.load())
+    texts = [records(warm, twin_, target=target, values=values)[0]["stages"]["pixel"] for twin_ in TWINS]
+    assert texts[0] != texts[1]
+    assert texts == [records(Generator(Library.load()), twin_, target=target, values=values)[0]["stages"]["pixel"]
+                     for twin_ in TWINS]
+
+
+def test_a_structure_asked_for_again_runs_no_pass_and_prints_nothing(monkeypatch):
+    gen = Generator(Library.load())
+    first = records(gen, GOLDEN / "standard_surface_coated.mtlx")
+    calls = []
+
+    def counted(function):
+        def call(*args):
+            calls.append(function.__name__)
+            return function(*args)
+        return call
+    for owner, name in ((code_stage.stage_passes, "run"), (glsl_target.GlslTarget, "assemble_pixel")):
+        monkeypatch.setattr(owner, name, counted(getattr(owner, name)))
+    assert records(gen, GOLDEN / "standard_surface_coated.mtlx") == first
+    assert not calls
+    glass = records(gen, GOLDEN / "glass.mtlx")  # another structure: the passes run, the stage is printed
+    assert calls == ["run", "assemble_pixel"] and "error" not in glass[0]

@@ -81,6 +81,7 @@ class OslTarget:
     # an OSL function sees its arguments alone: a shader parameter (a texture) is no global of it
     functions_see_uniforms = False
     own_functions = frozenset(OWN_FUNCTIONS)  # written as above, not printed from the library (code/stage.py)
+    writes_ui = True  # a parameter's ui metadata are its hints: its stage's text depends on them (code/stage.py)
 
     def __init__(self):
         self.printer = OslPrinter(self.spell)
