@@ -6,8 +6,9 @@ loaded from (implementations name their sources relative to it), and the generat
 code. `output_key` hashes all three; the library's on-disk cache, the graph hash and the
 service's request digest all build on it, so editing any of those files moves every key.
 """
-import hashlib
 import os
+
+from .digest import sha256
 
 # Paths here are plain strings (any os.PathLike is accepted): a cold `generate` never imports
 # pathlib, which with what it imports costs a few milliseconds of every process start.
@@ -17,7 +18,7 @@ KEY_FORMAT = 2  # bump when the layout of what is hashed changes
 
 def generator_fingerprint(package: str = PACKAGE) -> str:
     """The generator's code: a new release must never be served records cached by the old one."""
-    h = hashlib.sha256()
+    h = sha256()
     for relative in _code_files(package):
         h.update(relative.encode() + b"\0" + _read(package, relative) + b"\0")
     return h.hexdigest()
@@ -55,7 +56,7 @@ def file_stamps(root: str | os.PathLike, package: str | os.PathLike = PACKAGE) -
     rewritten within the clock step of its last modification: a caller trusts stamps only of
     files that were older than that when it read them."""
     root, package = os.path.realpath(root), os.fspath(package)
-    h = hashlib.sha256(f"{root}\0{package}\0".encode())
+    h = sha256(f"{root}\0{package}\0".encode())
     newest = 0
     for folder, names in ((package, _code_files(package)), (root, _files_under(root))):
         for relative in names:
@@ -67,7 +68,7 @@ def file_stamps(root: str | os.PathLike, package: str | os.PathLike = PACKAGE) -
 
 def output_key(root: str | os.PathLike, package: str | os.PathLike = PACKAGE) -> str:
     root, package = os.path.realpath(root), os.fspath(package)
-    h = hashlib.sha256(f"shadergen-output-key-{KEY_FORMAT}\0".encode())
+    h = sha256(f"shadergen-output-key-{KEY_FORMAT}\0".encode())
     h.update(generator_fingerprint(package).encode() + b"\0")
     h.update(str(root).encode() + b"\0")
     for relative in _files_under(root):

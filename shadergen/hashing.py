@@ -9,9 +9,9 @@ cannot change the key. Document-local definitions are hashed by content.
 With structural names (naming.py) the source holds no element name, so the topology hash leaves
 the names out with the values: materials built alike from differently named nodes share it.
 """
-import hashlib
 import json
 
+from .digest import sha256
 from .element import Element
 from .graph import Graph
 
@@ -95,8 +95,8 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
     # in their names, with no public uniform to carry a path) still have records of their own
     values = _canonical([element, [p.value for p in graph.interface], named])
-    full = hashlib.sha256(structure + b"\0" + values).hexdigest()
-    return full, full if graph.values_in_source else hashlib.sha256(structure).hexdigest()
+    full = sha256(structure + b"\0" + values).hexdigest()
+    return full, full if graph.values_in_source else sha256(structure).hexdigest()
 
 
 # JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally;

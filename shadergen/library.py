@@ -7,7 +7,6 @@ instead of parsing XML. The cache names source files relative to the library fol
 nodedefs, implementations and nodegraph implementations: `Scope` layers a document over a library.
 """
 import gc
-import hashlib
 import json
 import os
 import time
@@ -15,6 +14,7 @@ import zlib
 from contextlib import contextmanager
 from functools import lru_cache
 
+from .digest import sha256
 from .document import parse_document
 from .element import Element
 from .errors import ShaderGenError
@@ -156,14 +156,14 @@ def remembered_output_key(root: str | os.PathLike, package: str | os.PathLike = 
     try:
         with open(path, encoding="ascii") as f:
             key, check = f.read().split()
-        if hashlib.sha256(key.encode()).hexdigest() == check:
+        if sha256(key.encode()).hexdigest() == check:
             return key
     except (OSError, ValueError):
         pass  # missing or damaged: computed again
     key = output_key(root, package)
     if newest < time.time_ns() - RECENT_NS:
         try:
-            write_atomically(path, f"{key} {hashlib.sha256(key.encode()).hexdigest()}\n".encode())
+            write_atomically(path, f"{key} {sha256(key.encode()).hexdigest()}\n".encode())
         except OSError:
             pass  # a read-only home is not fatal: the next process hashes again
     return key

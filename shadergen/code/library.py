@@ -14,11 +14,11 @@ damaged file is rebuilt.
 Paths are relative to the library folder (`pbrlib/genglsl/lib/mx_fresnel.glsl`): they are in
 every node's `where`, and the pickle does not depend on where the library lies.
 """
-import hashlib
 import os
 import re
 from collections import namedtuple
 
+from ..digest import sha256
 from ..errors import ShaderGenError
 from ..fingerprint import library_files
 from ..library import Library, cache_dir, collection_paused, read_checked, read_source, write_checked
@@ -47,7 +47,7 @@ def _running_ir() -> bytes:
     Library loads; a process that imported older files before a release was unpacked would write
     its pickle under the new files' name.)"""
     with open(ir.__file__, "rb") as f:
-        return hashlib.sha256(f.read()).digest()
+        return sha256(f.read()).digest()
 
 
 RUNNING_IR = _running_ir()
@@ -214,7 +214,7 @@ class CodeLibrary:
 
 
 def cache_key(library: Library, externals: dict[str, str]) -> str:
-    h = hashlib.sha256(CACHE_FORMAT + b"\0" + RUNNING_IR + b"\0" + library.content_hash.encode() + b"\0")
+    h = sha256(CACHE_FORMAT + b"\0" + RUNNING_IR + b"\0" + library.content_hash.encode() + b"\0")
     with open(PRELUDE_PATH, "rb") as f:  # a package file the generator's fingerprint (.py files) leaves out
         h.update(f.read() + b"\0")
     h.update(repr(sorted(externals.items())).encode())

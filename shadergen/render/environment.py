@@ -10,7 +10,6 @@ albedo a reflects a * texel.
 The procedural sky and computed irradiance maps are kept on disk (the cache folder), named by what
 they are computed from, so that a thumbnail process reads them instead of computing them.
 """
-import hashlib
 import io
 import os
 from dataclasses import dataclass
@@ -18,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..digest import sha256
 from .errors import RenderError
 from .imageio import read_image
 
@@ -63,7 +63,7 @@ def computed(name: str, compute) -> np.ndarray:
     is never served from an old file). A cache that cannot be read or written is computed past."""
     from shadergen.library import cache_dir, write_atomically  # the generator's cache, imported only here
 
-    digest = hashlib.sha256(Path(__file__).read_bytes() + name.encode()).hexdigest()[:24]
+    digest = sha256(Path(__file__).read_bytes() + name.encode()).hexdigest()[:24]
     path = os.path.join(cache_dir(), "environments", f"{digest}.npy")
     try:
         return np.load(path)

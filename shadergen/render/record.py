@@ -2,9 +2,9 @@
 whoever produced it (our generator, the reference oracle, a hand-written test), a record must
 name a target the renderer draws and carry both stage sources; uniform listings are optional (GLSL initialisers
 then supply the values)."""
-import hashlib
 from collections.abc import Iterator
 
+from ..digest import sha256
 from .errors import RenderError
 
 RENDERABLE_TARGETS = ("glsl", "essl")  # ESSL 3.00 compiles on desktop GL 4.3+ (ARB_ES3_compatibility)
@@ -46,7 +46,7 @@ def check_record(record, targets: tuple[str, ...] = RENDERABLE_TARGETS) -> tuple
 def source_digest(vertex: str, pixel: str) -> str:
     """The key of a compiled program: exactly what the program depends on, its source, so records
     of different interface modes or generators never share a program by accident."""
-    return hashlib.sha256(vertex.encode() + b"\0" + pixel.encode()).hexdigest()
+    return sha256(vertex.encode() + b"\0" + pixel.encode()).hexdigest()
 
 
 def uniform_variables(record: dict) -> Iterator[dict]:

@@ -13,10 +13,10 @@ it by the listing in any of them:
 - RESERVED holds the keywords and reserved words of each language, the built-in functions and
   types a name would shadow, and the names the targets and the libraries write themselves.
 """
-import hashlib
 import re
 from functools import lru_cache
 
+from ..digest import sha256
 from .cfamily.reserved import RESERVED_WORDS as CFAMILY_RESERVED
 from .wgsl.builtins import WGSL_RESERVED
 
@@ -136,7 +136,7 @@ def identifier(wanted: str) -> str:
     if not name.strip("_"):
         return "v"
     if len(name) > IDENTIFIER_LIMIT:
-        digest = hashlib.sha256(name.encode()).hexdigest()[:8]
+        digest = sha256(name.encode()).hexdigest()[:8]
         name = f"{name[:IDENTIFIER_LIMIT - 9].rstrip('_')}_{digest}"
     if name[0].isdigit():
         name = "v_" + name

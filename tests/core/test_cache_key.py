@@ -1,6 +1,7 @@
 """Every input that changes generated code moves the output key: library definitions, their GLSL
 sources, the folder they are loaded from and the generator's own code (fingerprint.py); the key a
 cold process remembers from those files' stamps follows every edit."""
+import hashlib
 import os
 import shutil
 import time
@@ -8,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from shadergen import library
+from shadergen import digest, library
 from shadergen.api import Generator
 from shadergen.fingerprint import PACKAGE, output_key
 from shadergen.library import DEFAULT_LIBRARY_ROOT, Library, remembered_output_key
@@ -120,3 +121,12 @@ def test_a_key_of_files_modified_just_now_is_not_kept(remembered):
     edited(root / FRACTAL_SOURCE, MARKER)  # a rewrite within its clock step could keep this stamp
     assert remembered_output_key(root, package) == output_key(root, package)
     assert not list(cache.glob("output-key-*.txt"))
+
+
+def test_the_generators_digest_is_sha256():
+    """shadergen/digest.py: CPython's own SHA-256, not hashlib's OpenSSL one; the same digests."""
+    for data in (b"", b"abc", bytes(range(256)) * 1000):
+        assert digest.sha256(data).hexdigest() == hashlib.sha256(data).hexdigest()
+    h = digest.sha256(b"ab")
+    h.update(b"c")
+    assert h.digest() == hashlib.sha256(b"abc").digest()

@@ -114,9 +114,10 @@ def test_generate_specialized_keeps_the_inputs_named(tmp_path):
 
 def test_a_cold_generate_imports_no_more_than_it_uses(tmp_path):
     """Pipelines start `generate` once per document, so its imports are part of every answer:
-    not the renderer or the web stack, and not pathlib or shutil (a few milliseconds each, more
-    than the work of a small document). Run without `site`, so that only the package's own
-    imports count, not what an installation's start-up files load."""
+    not the renderer or the web stack, not pathlib or shutil (a few milliseconds each, more
+    than the work of a small document), and not hashlib, which starts OpenSSL (shadergen/digest.py).
+    Run without `site`, so that only the package's own imports count, not what an installation's
+    start-up files load."""
     src = tmp_path / "d.mtlx"
     src.write_text(SIN)
     code = ("import sys; from shadergen.cli import main; code = main(sys.argv[1:]); "
@@ -128,4 +129,5 @@ def test_a_cold_generate_imports_no_more_than_it_uses(tmp_path):
     assert json.loads(p.stdout)["element"] == "o"
     loaded = set(p.stderr.split())
     assert "shadergen.api" in loaded
-    assert not loaded & {"pathlib", "shutil", "numpy", "pydantic", "fastapi", "moderngl", "shadergen.render"}
+    assert not loaded & {"pathlib", "shutil", "hashlib", "_hashlib", "numpy", "pydantic", "fastapi", "moderngl",
+                         "shadergen.render"}
