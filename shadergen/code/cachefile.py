@@ -3,7 +3,7 @@ the library code it uses.
 
 Most of the library's IR is in its functions' parameters, bodies and facts and a few large
 constants' values (the albedo and DFG tables), and a request uses a part of them. Each of those
-fields is pickled apart, as bytes inside the file, and unpickled the first time it is read
+fields is pickled apart, after the rest in the file, and unpickled the first time it is read
 (ir.Item's `pending`); the rest (every item's name, key and type, the modules, the symbol table) is
 read at once. A function's facts are apart from its body: the passes read the facts of every
 function they keep or drop, a request prints only some bodies (targets/printed.py holds the text of
@@ -13,8 +13,17 @@ reference from a deferred field to a library item (a callee) is written as the i
 the library's items, and one from a body to a statement its facts name (a member store) as its place
 among those; both are read back as the same objects. A forwarding function's facts hold its call's
 arguments: it is read whole, at once.
+
+The file is a line with the CRC-32 and the length of the state's pickle, that pickle, then the
+deferred fields' pickles one after another, each named in the state by its offset, length and
+CRC-32. A process checks the state's pickle when it reads the file and each field's when it
+first reads it (`Blobs`), not the megabyte of fields it never reads (checking and copying them
+out of the pickle was a third of a cold process's reading of the cache); a field found damaged has
+the file built and written again (`rebuild`: its bytes are the same, the state being built
+alike in any process), and it and every later field are read from that.
 """
 import io
+import zlib
 import _thread
 
 from . import ir, pickling
@@ -30,9 +39,15 @@ class _Items:
     """Stands, in the state's pickle, for the list of the library's items (filled once it is read)."""
 
 
-_ITEMS = _Items()
-_RESTORING = _thread.allocate_lock()  # two threads asking for one item's fields read them once (threading's
-# import costs a cold process more than the lock)
+class _Area:
+    """Stands, in the state's pickle, for the file's deferred fields (a Blobs once it is read)."""
+
+
+_ITEMS, _AREA = _Items(), _Area()
+# two threads asking for one item's fields read them once (threading's import costs a cold process
+# more than the lock); reentrant: rebuilding a damaged file may read other items' fields
+_RESTORING = _thread.RLock()
+_HEADER = len(b"%08x %08x\n" % (0, 0))
 
 
 def library_items(modules: dict) -> list:
@@ -54,46 +69,93 @@ def copies_in(items: list, resolutions: dict) -> list:
 
 
 def dumps(state, items: list) -> bytes:
-    """`state` pickled, the DEFERRED fields of `items` (library_items) apart."""
-    out = io.BytesIO()
-    _StateWriter(out, {id(item): n for n, item in enumerate(items)}).dump(state)
-    return out.getvalue()
+    """The file: `state` pickled, the DEFERRED fields of `items` (library_items) apart."""
+    out, area = io.BytesIO(), io.BytesIO()
+    _StateWriter(out, {id(item): n for n, item in enumerate(items)}, area).dump(state)
+    pickled = out.getvalue()
+    return b"%08x %08x\n" % (zlib.crc32(pickled), len(pickled)) + pickled + area.getvalue()
 
 
-def loads(data: bytes, items_of) -> object:
-    """What `dumps` wrote; `items_of(state)` gives its library_items (to resolve references by place)."""
+def loads(data: bytes, items_of, rebuild) -> object:
+    """What `dumps` wrote; `items_of(state)` gives its library_items (to resolve references by
+    place); `rebuild()` writes the file again and gives its bytes, where a field is found damaged.
+    Raises ValueError where the state's pickle is (and the pickle's errors)."""
+    size = _checked_state(data)
     items: list = []
-    reader = pickling.Unpickler(io.BytesIO(data))
-    reader.persistent_load = lambda pid: items if pid == "items" else _unknown(pid)
+    area = Blobs(data, _HEADER + size, rebuild)
+    reader = pickling.Unpickler(io.BytesIO(memoryview(data)[_HEADER:_HEADER + size]))
+    reader.persistent_load = lambda pid: items if pid == "items" else area if pid == "area" else _unknown(pid)
     state = reader.load()
     items.extend(items_of(state))
     return state
+
+
+def _checked_state(data: bytes) -> int:
+    """The length of the state's pickle in `data`, checked."""
+    if len(data) < _HEADER or data[8:9] != b" " or data[_HEADER - 1:_HEADER] != b"\n":
+        raise ValueError("not a cache file")
+    checksum, size = int(data[:8], 16), int(data[9:_HEADER - 1], 16)
+    if len(data) < _HEADER + size or zlib.crc32(memoryview(data)[_HEADER:_HEADER + size]) != checksum:
+        raise ValueError("damaged")
+    return size
 
 
 def _unknown(pid):
     raise pickling.UnpicklingError(f"unknown persistent id {pid!r}")
 
 
+class Blobs:
+    """The deferred fields of a file as it was read, each checked when read (see the module's doc)."""
+    __slots__ = ("data", "start", "rebuild")
+
+    def __init__(self, data: bytes, start: int, rebuild):
+        self.data, self.start, self.rebuild = data, start, rebuild
+
+    def read(self, location: tuple[int, int, int]) -> memoryview:
+        """A field's pickle, by its (offset, length, CRC-32) in the area."""
+        blob = self._blob(location)
+        if blob is None:  # damaged: the file built and written again, and read from then on
+            data = self.rebuild()
+            self.data, self.start = data, _HEADER + _checked_state(data)
+            blob = self._blob(location)
+            if blob is None:
+                raise pickling.UnpicklingError("the library's code cache was built again unlike before")
+        return blob
+
+    def _blob(self, location) -> memoryview | None:
+        offset, length, checksum = location
+        start = self.start + offset
+        blob = memoryview(self.data)[start:start + length]
+        return blob if len(blob) == length and zlib.crc32(blob) == checksum else None
+
+
+def _placed(area, blob: bytes) -> tuple[int, int, int]:
+    """`blob` appended to the `area` being written: its (offset, length, CRC-32) there."""
+    return area.tell(), area.write(blob), zlib.crc32(blob)
+
+
 class _StateWriter(pickling.Pickler):
-    def __init__(self, file, index: dict[int, int]):
+    def __init__(self, file, index: dict[int, int], area):
         super().__init__(file, protocol=pickling.PROTOCOL)
-        self.index = index
+        self.index, self.area = index, area
 
     def reducer_override(self, obj):
+        if obj.__class__ is Apart:
+            return Apart, ({}, {key: _placed(self.area, obj.pickled(key)) for key in obj.keys}, _AREA)
         fields = DEFERRED.get(obj.__class__)
         if fields is None or id(obj) not in self.index or obj.facts is None or obj.facts.forwards is not None:
             return NotImplemented
         state = obj.__getstate__()[1]
         stores = {id(store.statement): n for n, store in enumerate(obj.facts.stores)}
-        blobs = {}
+        locations = {}
         for name in fields:
             out = io.BytesIO()
             _FieldWriter(out, self.index, stores if name == "body" else {}).dump(state.pop(name))
-            blobs[name] = out.getvalue()
-        return _deferred, (obj.__class__, state, blobs, _ITEMS)
+            locations[name] = _placed(self.area, out.getvalue())
+        return _deferred, (obj.__class__, state, locations, _ITEMS, _AREA)
 
     def persistent_id(self, obj):
-        return "items" if obj is _ITEMS else None
+        return "items" if obj is _ITEMS else "area" if obj is _AREA else None
 
 
 class _FieldWriter(pickling.Pickler):
@@ -111,12 +173,12 @@ class _FieldWriter(pickling.Pickler):
         return None if store is None else (store,)
 
 
-def _deferred(cls, state: dict, blobs: dict[str, bytes], items: list):
-    """An item as the state's pickle reads it: its DEFERRED fields still in `blobs`."""
+def _deferred(cls, state: dict, locations: dict[str, tuple], items: list, area: Blobs):
+    """An item as the state's pickle reads it: its DEFERRED fields still in the `area`."""
     item = object.__new__(cls)
     for name, value in state.items():
         setattr(item, name, value)
-    item.pending = _Pending(blobs, items)
+    item.pending = _Pending(locations, items, area)
     return item
 
 
@@ -124,47 +186,50 @@ class Apart:
     """A table whose values are pickled apart in the file, each unpickled when first asked for
     (the library's inline templates: a request instantiates a few of its hundreds). Its values
     hold no library item."""
-    __slots__ = ("keys", "values", "blobs")
+    __slots__ = ("keys", "values", "locations", "area")
 
-    def __init__(self, values: dict, blobs: dict[str, bytes] | None = None):
-        self.keys = tuple(values) + tuple(blobs or ())  # in the order written
+    def __init__(self, values: dict, locations: dict[str, tuple] | None = None, area: Blobs | None = None):
+        self.keys = tuple(values) + tuple(locations or ())  # in the order written
         self.values = dict(values)  # read, or made in this process
-        self.blobs = dict(blobs or {})  # key -> its value's pickle, still unread
+        self.locations = dict(locations or {})  # key -> where its value's pickle is in the `area`, still unread
+        self.area = area
 
     def get(self, key):
         found = self.values.get(key)
-        if found is None and key in self.blobs:
+        if found is None and key in self.locations:
             with _RESTORING:
-                blob = self.blobs.pop(key, None)
-                if blob is not None:
-                    self.values[key] = pickling.loads(blob)
+                location = self.locations.pop(key, None)
+                if location is not None:
+                    self.values[key] = pickling.loads(self.area.read(location))
             found = self.values.get(key)
         return found
+
+    def pickled(self, key) -> bytes:
+        """A value's pickle (as the file holds it, if still unread)."""
+        if key in self.locations:
+            return bytes(self.area.read(self.locations[key]))
+        return pickling.dumps(self.values[key], pickling.PROTOCOL)
 
     def __iter__(self):
         return iter(self.keys)
 
-    def __reduce__(self):
-        blobs = {key: self.blobs[key] if key in self.blobs else pickling.dumps(self.values[key], pickling.PROTOCOL)
-                 for key in self.keys}
-        return Apart, ({}, blobs)
-
 
 class _Pending:
-    __slots__ = ("blobs", "items")
+    __slots__ = ("locations", "items", "area")
 
-    def __init__(self, blobs: dict[str, bytes], items: list):
-        self.blobs, self.items = dict(blobs), items
+    def __init__(self, locations: dict[str, tuple], items: list, area: Blobs):
+        self.locations, self.items, self.area = dict(locations), items, area
 
     def restore(self, item, name: str) -> None:
         """Reads `name` (and the field it NEEDS) into `item`, if still unread."""
         with _RESTORING:
-            if name not in self.blobs:
+            if name not in self.locations:
                 return  # not deferred, or another thread read it
             for field in (NEEDS.get(name), name):
-                blob = self.blobs.pop(field, None)
-                if blob is not None:
+                location = self.locations.get(field)
+                if location is not None:
                     stores = item.facts.stores if field == "body" else ()
-                    reader = pickling.Unpickler(io.BytesIO(blob))
+                    reader = pickling.Unpickler(io.BytesIO(self.area.read(location)))
                     reader.persistent_load = lambda pid: self.items[pid] if pid.__class__ is int else stores[pid[0]].statement
                     setattr(item, field, reader.load())
+                    del self.locations[field]

@@ -21,7 +21,7 @@ from collections import namedtuple
 from ..digest import sha256
 from ..errors import ShaderGenError
 from ..fingerprint import library_files
-from ..library import Library, cache_dir, collection_paused, read_checked, read_source, write_checked
+from ..library import Library, cache_dir, collection_paused, read_source, write_atomically
 from . import cachefile, ir, pickling
 from .check import check_expression, check_modules, flat_items, library_symbols
 from .externals import ENVIRONMENT_MACROS, environment_macros
@@ -35,7 +35,7 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-6"
+CACHE_FORMAT = b"shadergen-code-7"
 # an identifier as the libraries' sources spell one (comments and strings included: only ever more);
 # compiled where a library is built (re's cache), not by every process that imports this module
 _SOURCE_IDENTIFIER = r"(?a)\b[A-Za-z_]\w*"
@@ -93,11 +93,14 @@ class CodeLibrary:
         uniforms)."""
         key = cache_key(library, externals)
         path = os.path.join(cache_dir(), f"code-{key[:24]}.pickle")
+
+        def written() -> tuple[tuple, bytes]:
+            state = build(library, externals, key)
+            return state, write_cache(path, state, cachefile.library_items(state[1]))
         with collection_paused():
-            state = read_cache(path, key)
+            state = read_cache(path, key, lambda: written()[1])
             if state is None:
-                state = build(library, externals, key)
-                write_cache(path, state)
+                state = written()[0]
         return cls(library.root, state)
 
     def state(self) -> tuple:
@@ -140,12 +143,15 @@ class CodeLibrary:
         if self.resolved is None:
             items = self.items()[0]
             path = os.path.join(cache_dir(), f"resolutions-{self.key[:24]}.pickle")
+
+            def written() -> tuple[dict, bytes]:
+                table = resolutions_of(self.modules)
+                return table, write_cache(path, (self.key, table), items + cachefile.copies_in(items, table))
             state = read_state(path, lambda state: items + cachefile.copies_in(items, state[1]),
-                               lambda state: isinstance(state, tuple) and len(state) == 2 and state[0] == self.key)
-            table = state[1] if state is not None else resolutions_of(self.modules)
+                               lambda state: isinstance(state, tuple) and len(state) == 2 and state[0] == self.key,
+                               lambda: written()[1])
+            table = state[1] if state is not None else written()[0]
             self.resolved = Resolved(table, cachefile.copies_in(items, table))
-            if state is None:
-                write_checked(path, cachefile.dumps((self.key, table), items + self.resolved.copies))
         return self.resolved
 
     def calls_of(self, name: str) -> Calls:
@@ -330,24 +336,33 @@ def top_level_items(modules: dict[str, ir.Module]) -> dict[str, ir.Item]:
     return items
 
 
-def read_cache(path: str, key: str) -> tuple | None:
+def read_cache(path: str, key: str, rebuild) -> tuple | None:
     """The cached state, or None (missing, damaged, or another key's)."""
     return read_state(path, lambda state: cachefile.library_items(state[1]),
-                      lambda state: isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key)
+                      lambda state: isinstance(state, tuple) and len(state) == STATE_SIZE and state[0] == key, rebuild)
 
 
-def read_state(path: str, items_of, valid) -> object | None:
-    """What cachefile.dumps wrote into `path` (`items_of`: cachefile.loads'), where `valid(state)`;
-    None where the file is missing, damaged, or not `valid` (another library's)."""
-    body = read_checked(path)
-    if body is None:
+def read_state(path: str, items_of, valid, rebuild) -> object | None:
+    """What cachefile.dumps wrote into `path` (`items_of` and `rebuild`: cachefile.loads'), where
+    `valid(state)`; None where the file is missing, damaged, or not `valid` (another library's)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError:
         return None
     try:
-        state = cachefile.loads(body, items_of)
+        state = cachefile.loads(data, items_of, rebuild)
     except (pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
     return state if valid(state) else None
 
 
-def write_cache(path: str, state: tuple) -> None:
-    write_checked(path, cachefile.dumps(state, cachefile.library_items(state[1])))
+def write_cache(path: str, state, items: list) -> bytes:
+    """`state` as cachefile.dumps writes it (`items`: the places of references), written to `path`
+    (a read-only home is not fatal: the next process builds it again); its bytes."""
+    data = cachefile.dumps(state, items)
+    try:
+        write_atomically(path, data)
+    except OSError:
+        pass
+    return data

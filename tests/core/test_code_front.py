@@ -352,13 +352,40 @@ def test_a_reloaded_function_reads_its_params_facts_and_body_when_first_asked(li
     reloaded = CodeLibrary.load(library, EXTERNALS)
     key = next(f.key for f in built.functions("mx_dielectric_bsdf") if f.facts.stores)
     fn = next(f for f in reloaded.functions("mx_dielectric_bsdf") if f.key == key)
-    assert set(fn.pending.blobs) == {"params", "facts", "body"}  # nothing of any read yet
-    assert fn.facts.stores and set(fn.pending.blobs) == {"params", "body"}  # the facts alone
+    assert set(fn.pending.locations) == {"params", "facts", "body"}  # nothing of any read yet
+    assert fn.facts.stores and set(fn.pending.locations) == {"params", "body"}  # the facts alone
     # the body's member stores are the very statements the facts name (the fields pass removes them by identity)
     statements = {id(n) for n in ir.walk(fn.body)}
-    assert set(fn.pending.blobs) == {"params"} and all(id(store.statement) in statements for store in fn.facts.stores)
-    assert fn.key == fn.name + "(" + ",".join(p.type for p in fn.params) + ")" and not fn.pending.blobs
+    assert set(fn.pending.locations) == {"params"} and all(id(store.statement) in statements for store in fn.facts.stores)
+    assert fn.key == fn.name + "(" + ",".join(p.type for p in fn.params) + ")" and not fn.pending.locations
     assert printed(fn) == printed(next(f for f in built.functions("mx_dielectric_bsdf") if f.key == key))
+
+
+def test_a_field_damaged_in_the_file_is_read_from_the_file_built_again(library, tmp_path, monkeypatch):
+    """The state is checked when the file is read, each deferred field when it is first read: a
+    field damaged on disk, or cut off, has the file built and written again (the same bytes), and
+    it and every field read after it come from that."""
+    monkeypatch.setenv("SHADERGEN_CACHE_DIR", str(tmp_path))
+    built = CodeLibrary.load(library, EXTERNALS)
+    (cached,) = [p for p in tmp_path.iterdir() if p.name.startswith("code-")]
+    data = cached.read_bytes()
+    key = next(f.key for f in built.functions("mx_dielectric_bsdf") if f.facts.stores)
+
+    def function(code):
+        return next(f for f in code.functions("mx_dielectric_bsdf") if f.key == key)
+
+    def every_function(code):
+        return [printed(f) for f in library_items(code.modules) if isinstance(f, ir.Function)]
+    pending = function(CodeLibrary.load(library, EXTERNALS)).pending
+    middle = pending.area.start + pending.locations["body"][0] + pending.locations["body"][1] // 2
+    expected = every_function(built)
+    for damage in (data[:middle] + bytes([data[middle] ^ 0xFF]) + data[middle + 1:], data[:middle]):
+        cached.write_bytes(damage)
+        reloaded = CodeLibrary.load(library, EXTERNALS)  # its state is sound: read as it is
+        assert cached.read_bytes() == damage
+        assert printed(function(reloaded)) == printed(function(built))
+        assert cached.read_bytes() == data
+        assert every_function(reloaded) == expected
 
 
 def test_a_reloaded_librarys_inline_templates_are_read_when_first_asked(library, tmp_path, monkeypatch):
@@ -368,7 +395,7 @@ def test_a_reloaded_librarys_inline_templates_are_read_when_first_asked(library,
     text, *others = list(reloaded.templates)
     assert list(built.templates) == [text, *others] and not reloaded.templates.values
     template = reloaded.template(text)
-    assert list(reloaded.templates.values) == [text] and text not in reloaded.templates.blobs
+    assert list(reloaded.templates.values) == [text] and text not in reloaded.templates.locations
     assert reloaded.template(text) is template and ir.shape(template) == ir.shape(built.template(text))
 
 
