@@ -28,6 +28,7 @@ from .externals import ENVIRONMENT_MACROS, environment_macros
 from .facts import early_exit_at_zero_weight, facts, prepared_state, reads_constant, uses_derivatives
 from .generated import check_generated
 from .instantiate import maker
+from .kept import Kept
 from .passes import sections
 from .statements import Memo
 
@@ -53,6 +54,8 @@ def _running_ir() -> bytes:
 RUNNING_IR = _running_ir()
 STATE_SIZE = 7  # the fields of CodeLibrary.state()
 MAX_MEMO = 65536  # documents' own templates kept per library (their texts come from requests)
+MAX_STAGES = 4096  # pixel stages' code and texts kept per library (code/stage.py), and vertex stages per process
+MAX_STAGE_TEXT = 32 << 20  # characters of their texts (every TestSuite document's pixel stages: 14 MB)
 # What a node implementation calling a library function by name needs to know of its definitions
 # (nodes/base.py SourceFunctionImpl, the passes that read it): whether any takes derivatives, itself
 # or in what it calls; whether every one is a lobe empty at zero weight; whether any answers the
@@ -84,7 +87,7 @@ class CodeLibrary:
         self.makers: dict = {}  # (template, input types) -> its maker (code/instantiate.py)
         self.generated = ({}, {})  # what typing generated code works out per library (code/generated.py)
         self.statements = Memo()  # main's statements, typed once per shape (code/statements.py)
-        self.stages: dict = {}  # pixel stages' code and text, per structure (code/stage.py)
+        self.stages = Kept(MAX_STAGES, MAX_STAGE_TEXT)  # pixel stages' code and text, per structure (code/stage.py)
 
     @classmethod
     def load(cls, library: Library, externals: dict[str, str]) -> "CodeLibrary":

@@ -22,7 +22,8 @@ from functools import lru_cache
 
 from ..shader import PIXEL, VERTEX
 from . import build, ir
-from .library import PRELUDE  # the closure, shader and light structs every shader may name
+from .kept import Kept
+from .library import MAX_STAGE_TEXT, MAX_STAGES, PRELUDE  # (PRELUDE: the closure, shader and light structs)
 from .passes import stage as stage_passes
 from .types import ir_type
 
@@ -107,7 +108,7 @@ def run(ctx, counts: dict) -> StageCode:
     functions += generated
     stage = StageCode(structs, constants, functions, main, None, frozenset(reached.names), shared, key)
     if key:
-        keep(code.stages, key, (stage.copy(), passes))
+        code.stages.keep(key, (stage.copy(), passes))
     return stage
 
 
@@ -124,7 +125,7 @@ def pixel_stage(ctx) -> str:
     text = memo.get(key)
     if text is None:
         text = ctx.target.assemble_pixel(ctx)
-        keep(memo, key, text)
+        memo.keep(key, text, len(text))
     return text
 
 
@@ -137,15 +138,6 @@ def variables_key(stage, ui: bool = False) -> tuple:
                       for block in stage.blocks.values()])
     return tuple([(block.name, tuple([(v.name, v.type, repr(v.initializer)) for v in block]))
                   for block in stage.blocks.values()])
-
-
-MAX_STAGES = 512  # pixel stages' code and texts kept per library, vertex stages per process; oldest out first
-
-
-def keep(memo: dict, key, value) -> None:
-    if len(memo) >= MAX_STAGES:
-        memo.pop(next(iter(memo)), None)  # (another thread may have taken it out first)
-    memo[key] = value
 
 
 @lru_cache(maxsize=256)
@@ -161,7 +153,8 @@ def has_function(item) -> bool:
     return isinstance(item, ir.Function)
 
 
-VERTEX_STAGES: dict = {}  # vertex_stage's memo, key -> text
+VERTEX_STAGES = Kept(MAX_STAGES, MAX_STAGE_TEXT)  # vertex_stage's memo, key -> text (per process)
+UNKEPT = object()
 
 
 def vertex_stage(ctx) -> str | None:
@@ -170,13 +163,12 @@ def vertex_stage(ctx) -> str | None:
     target), so it is made once per process for each key that covers what its text depends on: the
     target, the library (which types the code), the stage's variables and its main's statements."""
     key = (type(ctx.target), ctx.code.key, variables_key(ctx.vertex), ir.shape(list(ctx.vertex_main.values())))
-    try:
-        return VERTEX_STAGES[key]
-    except KeyError:
-        pass
+    text = VERTEX_STAGES.get(key, UNKEPT)  # (None is a text: OSL has no vertex stage)
+    if text is not UNKEPT:
+        return text
     vertex = vertex_main(ctx)
     ctx.code.check_generated([], [vertex], externals(ctx, VERTEX))
     ctx.pixel.code.vertex_main = vertex
     text = ctx.target.assemble_vertex(ctx)
-    keep(VERTEX_STAGES, key, text)
+    VERTEX_STAGES.keep(key, text, len(text or ""))
     return text

@@ -11,6 +11,7 @@ from shadergen import generator
 from shadergen.api import Generator
 from shadergen.code import build, ir
 from shadergen.code import stage as code_stage
+from shadergen.code.kept import Kept
 from shadergen.library import DEFAULT_LIBRARY_ROOT, Library
 from shadergen.passes import expand
 from shadergen.targets.glsl import printer as glsl_printer
@@ -80,7 +81,7 @@ def test_a_vertex_stage_from_the_memo_is_the_one_built_afresh(target, monkeypatc
     served = [records(warm, document, interface="specialized", target=target) for document in DOCUMENTS]
     vertex_stages = {r["stages"].get("vertex") for rs in served for r in rs}
     assert target == "osl" or len(vertex_stages) > 1  # stages the memo could confuse (OSL has none)
-    monkeypatch.setattr(code_stage, "VERTEX_STAGES", Forgetful())
+    monkeypatch.setattr(code_stage, "VERTEX_STAGES", Kept(0, 0))  # (keeps nothing)
     assert served == [records(warm, document, interface="specialized", target=target) for document in DOCUMENTS]
 
 
@@ -337,7 +338,7 @@ def test_pixel_stages_from_the_memo_are_the_ones_written_afresh(target, monkeypa
         first = [records(warm, document, target=target, values=values) for document in documents]
         assert code.stages  # kept the first time
         served = [records(warm, document, target=target, values=values) for document in documents]
-        monkeypatch.setattr(code, "stages", Forgetful())
+        monkeypatch.setattr(code, "stages", Kept(0, 0))
         assert served == first == [records(warm, document, target=target, values=values) for document in documents]
         monkeypatch.undo()
 
@@ -369,3 +370,18 @@ def test_a_structure_asked_for_again_runs_no_pass_and_prints_nothing(monkeypatch
     assert not calls
     glass = records(gen, GOLDEN / "glass.mtlx")  # another structure: the passes run, the stage is printed
     assert calls == ["run", "assemble_pixel"] and "error" not in glass[0]
+
+
+def test_a_full_stage_memo_keeps_what_it_holds_and_takes_no_more():
+    """A walk over more structures than the memo holds, again and again, still finds the first
+    ones (a memo that let old entries go for new ones would find none)."""
+    kept = Kept(3, 10)
+    for round_ in range(2):
+        for n in range(6):
+            kept.keep(n, str(n) * 2, 2)
+    assert [kept.get(n) for n in range(6)] == ["00", "11", "22", None, None, None]
+    kept = Kept(3, 5)
+    kept.keep("a", "aaaa", 4)
+    kept.keep("b", "bb", 2)  # past the size: not taken
+    kept.keep("c", "c", 1)
+    assert (kept.get("a"), kept.get("b"), kept.get("c"), len(kept)) == ("aaaa", None, "c", 2)
