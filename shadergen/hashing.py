@@ -95,8 +95,11 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
     # in their names, with no public uniform to carry a path) still have records of their own
     values = _canonical([element, [p.value for p in graph.interface], named])
-    full = sha256(structure + b"\0" + values).hexdigest()
-    return full, full if graph.values_in_source else sha256(structure).hexdigest()
+    topology = sha256(structure)  # the structure hashed once for both: the hash goes on to the values
+    full = topology.copy()
+    full.update(b"\0" + values)
+    full = full.hexdigest()
+    return full, full if graph.values_in_source else topology.hexdigest()
 
 
 # JSON with sorted keys at every level (metadata dicts too), so equal content hashes equally;
