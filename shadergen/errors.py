@@ -17,3 +17,10 @@ class ShaderGenError(Exception):
 
     def __str__(self) -> str:
         return f"{self.code}: {self.message}" + (f" (at {self.where})" if self.where else "")
+
+
+def source_error(path: str, line: int, column: int, what: str) -> ShaderGenError:
+    """An error in a library's shader source, at `path`:`line`:`column` (the code IR's parser and
+    checker raise it; here, so that a process that reads its library from the cache and only
+    checks does not import the parser's lexer)."""
+    return ShaderGenError("invalid_source", f"{path}:{line}:{column}: {what}", path)

@@ -26,9 +26,9 @@ None is written where an operator takes mixed shapes itself: `vec3 * float`, `ma
 
 Errors are ShaderGenError("invalid_source", "<file>:<line>:<col>: <what>", <file>).
 """
+from ..errors import source_error
 from . import ir
 from .builtins import BUILTIN_VARIABLES, BUILTINS
-from .lex import source_error
 from .types import (GLSL_TYPES, array_element, array_of, array_size, column_of, is_array, is_matrix, is_numeric,
                     is_scalar, is_vector, scalar_of, size_of, vector_of)
 

@@ -10,7 +10,7 @@ token per line of a block comment. Errors name file:line:col.
 import re
 from collections import namedtuple
 
-from ..errors import ShaderGenError
+from ..errors import source_error
 
 __all__ = ["Token", "tokenize", "source_error"]
 
@@ -32,10 +32,6 @@ TOKEN = r"""(?xs)
   | (?P<id>[A-Za-z_]\w*)
   | (?P<op><<=|>>=|\+\+|--|\+=|-=|\*=|/=|%=|&=|\|=|\^=|==|!=|<=|>=|&&|\|\||<<|>>|[-+*/%<>=!~&|^?:;,.(){}\[\]])
 """
-
-
-def source_error(path: str, line: int, column: int, what: str) -> ShaderGenError:
-    return ShaderGenError("invalid_source", f"{path}:{line}:{column}: {what}", path)
 
 
 def tokenize(path: str, text: str, placeholders: bool = False, line: int = 1, column: int = 1) -> list[Token]:

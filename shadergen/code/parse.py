@@ -35,8 +35,9 @@ import copy
 import os
 import re
 
+from ..errors import source_error
 from . import ir
-from .lex import Token, source_error, tokenize
+from .lex import Token, tokenize
 from .types import GLSL_TYPES
 
 # `#pragma shadergen feature NAME [unless INPUT OP VALUE]` (features.py says what it means). The
