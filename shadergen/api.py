@@ -15,7 +15,7 @@ import os
 import time
 
 from .cms import system_for
-from .digest import sha256
+from .digest import graph_digest
 from .document import Document, parse_document, read_document
 from .element import Element
 from .errors import ShaderGenError
@@ -398,7 +398,7 @@ class Generator:
                    library_hash=self.library.content_hash, local_ids=local, names=names, cms=cms)
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
-            h, topology = (sha256(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
+            h, topology = (graph_digest(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()
                            for k in (h, topology))
         return Prepared(self, doc, doc.label(elem.path), target, options.interface, h, topology, graph, scope,
                         doc.warnings + graph.warnings, (time.perf_counter() - t0) * 1e3, names, working)

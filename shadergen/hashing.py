@@ -11,7 +11,7 @@ the names out with the values: materials built alike from differently named node
 """
 import json
 
-from .digest import sha256
+from .digest import graph_digest
 from .element import Element
 from .graph import Graph
 
@@ -95,7 +95,7 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     # the element's name: two elements whose prepared graphs are alike (nodegraphs that differ only
     # in their names, with no public uniform to carry a path) still have records of their own
     values = _canonical([element, [p.value for p in graph.interface], named])
-    topology = sha256(structure)  # the structure hashed once for both: the hash goes on to the values
+    topology = graph_digest(structure)  # the structure hashed once for both: the hash goes on to the values
     full = topology.copy()
     full.update(b"\0" + values)
     full = full.hexdigest()

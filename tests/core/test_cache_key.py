@@ -1,6 +1,7 @@
 """Every input that changes generated code moves the output key: library definitions, their GLSL
 sources, the folder they are loaded from and the generator's own code (fingerprint.py); the key a
 cold process remembers from those files' stamps follows every edit."""
+import functools
 import hashlib
 import os
 import shutil
@@ -123,10 +124,13 @@ def test_a_key_of_files_modified_just_now_is_not_kept(remembered):
     assert not list(cache.glob("output-key-*.txt"))
 
 
-def test_the_generators_digest_is_sha256():
-    """shadergen/digest.py: CPython's own SHA-256, not hashlib's OpenSSL one; the same digests."""
-    for data in (b"", b"abc", bytes(range(256)) * 1000):
-        assert digest.sha256(data).hexdigest() == hashlib.sha256(data).hexdigest()
-    h = digest.sha256(b"ab")
-    h.update(b"c")
-    assert h.digest() == hashlib.sha256(b"abc").digest()
+def test_the_generators_digests_are_sha256_and_blake2b():
+    """shadergen/digest.py: CPython's own SHA-256 and BLAKE2b-256, not hashlib's; the same digests."""
+    blake2b = functools.partial(hashlib.blake2b, digest_size=32)
+    for ours, theirs in ((digest.sha256, hashlib.sha256), (digest.graph_digest, blake2b)):
+        for data in (b"", b"abc", bytes(range(256)) * 1000):
+            assert ours(data).hexdigest() == theirs(data).hexdigest()
+        h = ours(b"ab")
+        copy = h.copy()
+        h.update(b"c")
+        assert h.digest() == theirs(b"abc").digest() and copy.digest() == theirs(b"ab").digest()
