@@ -36,7 +36,7 @@ __all__ = ["CodeLibrary", "PRELUDE", "PRELUDE_PATH"]
 
 PRELUDE = "prelude.glsl"  # the prelude's path among the modules (no library file is at the top)
 PRELUDE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "prelude.glsl")
-CACHE_FORMAT = b"shadergen-code-7"
+CACHE_FORMAT = b"shadergen-code-8"
 # an identifier as the libraries' sources spell one (comments and strings included: only ever more);
 # compiled where a library is built (re's cache), not by every process that imports this module
 _SOURCE_IDENTIFIER = r"(?a)\b[A-Za-z_]\w*"
@@ -70,7 +70,7 @@ PLAIN = Calls(False, False, False, None)
 
 class CodeLibrary:
     """The typed IR of a library's code, with its symbol table (see the module's doc), and every
-    identifier its sources spell (`identifiers`): WGSL reads a uniform through its buffer wherever
+    identifier its sources spell (`identifiers`, Identifiers): WGSL reads a uniform through its buffer wherever
     its name stands (`pu.name`), inside library functions too, so a uniform must not share a name
     with anything there."""
     __slots__ = ("root", "key", "modules", "symbols", "templates", "externals", "identifiers", "calls",
@@ -79,7 +79,7 @@ class CodeLibrary:
     def __init__(self, root: str, state: tuple):
         self.root = root
         self.key, self.modules, self.symbols, self.templates, self.externals, identifiers, self.calls = state
-        self.identifiers = frozenset(identifiers)
+        self.identifiers = Identifiers(identifiers)
         self.indexed = None  # (library_items, id(item) -> its place among them), made when first asked
         self.resolved = None  # Resolved: the resolutions, read from their file when first asked
         self.typed: dict = {}  # (template, placeholder types) -> typed expression (check.check_expression)
@@ -108,8 +108,7 @@ class CodeLibrary:
 
     def state(self) -> tuple:
         """What the cache holds (equal for equal libraries, whatever order they were read in)."""
-        # the identifiers as a sorted tuple: a set's order depends on how it was filled
-        return (self.key, self.modules, self.symbols, self.templates, self.externals, tuple(sorted(self.identifiers)),
+        return (self.key, self.modules, self.symbols, self.templates, self.externals, self.identifiers.table,
                 self.calls)
 
     # -- lookups -----------------------------------------------------------------------------------
@@ -272,9 +271,32 @@ def build(library: Library, externals: dict[str, str], key: str) -> tuple:
         for item in flat_items(module.items):
             facts(item)
     # WGSL spells a library name that is one of its reserved words `<name>_` (targets/wgsl)
-    identifiers = tuple(sorted(identifiers | {f"{n}_" for n in identifiers}))
-    state = (key, modules, symbols, cachefile.Apart(templates), dict(sorted(externals.items())), identifiers)
+    identifiers = identifiers | {f"{n}_" for n in identifiers}
+    by_initial: dict[str, list[str]] = {}
+    for name in sorted(identifiers):  # (sorted: a set's order depends on how it was filled)
+        by_initial.setdefault(name[0], []).append(name)
+    state = (key, modules, symbols, cachefile.Apart(templates), dict(sorted(externals.items())),
+             cachefile.Apart({initial: tuple(names) for initial, names in by_initial.items()}))
     return state + (calls_by_name(CodeLibrary(root, state + ({},))),)
+
+
+class Identifiers:
+    """Every identifier the library's sources spell, asked for by `name in`; read from the cache
+    by initial, when a name with that initial is first asked about: a structural uniform's name
+    (`u_n3_base`, the one question a request asks) needs those starting with `u`, not the five
+    thousand others."""
+    __slots__ = ("table", "read")
+
+    def __init__(self, table: cachefile.Apart):
+        self.table = table  # initial -> its identifiers (a tuple), in the cache's table
+        self.read: dict[str, frozenset] = {}
+
+    def __contains__(self, name: str) -> bool:
+        initial = name[:1]
+        names = self.read.get(initial)
+        if names is None:
+            names = self.read[initial] = frozenset(self.table.get(initial) or ())
+        return name in names
 
 
 class Resolved:
