@@ -16,11 +16,12 @@ arguments: it is read whole, at once.
 
 The file is a line with the CRC-32 and the length of the state's pickle, that pickle, then the
 deferred fields' pickles one after another, each named in the state by its offset, length and
-CRC-32. A process checks the state's pickle when it reads the file and each field's when it
-first reads it (`Blobs`), not the megabyte of fields it never reads (checking and copying them
-out of the pickle was a third of a cold process's reading of the cache); a field found damaged has
-the file built and written again (`rebuild`: its bytes are the same, the state being built
-alike in any process), and it and every later field are read from that.
+CRC-32. A process reads and checks the state's pickle when it loads the file, reads the area
+when it first needs a field, and checks each field when it first reads it (`Blobs`), not the
+megabyte of fields it never reads (checking and copying them out of the pickle was a third of a
+cold process's reading of the cache). A field found damaged has the file built and written
+again (`rebuild`: its bytes are the same, the state being built alike in any process), and it
+and every later field are read from that.
 """
 import io
 import zlib
@@ -76,28 +77,31 @@ def dumps(state, items: list) -> bytes:
     return b"%08x %08x\n" % (zlib.crc32(pickled), len(pickled)) + pickled + area.getvalue()
 
 
-def loads(data: bytes, items_of, rebuild) -> object:
-    """What `dumps` wrote; `items_of(state)` gives its library_items (to resolve references by
-    place); `rebuild()` writes the file again and gives its bytes, where a field is found damaged.
-    Raises ValueError where the state's pickle is (and the pickle's errors)."""
-    size = _checked_state(data)
+def load(path: str, items_of, rebuild) -> object:
+    """What `dumps` wrote into the file `path` (its area read when a field is first asked for);
+    `items_of(state)` gives its library_items (to resolve references by place); `rebuild()` writes
+    the file again and gives its bytes, where a field is found damaged. Raises OSError where the
+    file cannot be read, ValueError where the state's pickle is damaged (and the pickle's errors)."""
+    with open(path, "rb") as f:
+        header = f.read(_HEADER)
+        size = _state_size(header)
+        pickled = f.read(size)
+    if len(pickled) != size or zlib.crc32(pickled) != int(header[:8], 16):
+        raise ValueError("damaged")
     items: list = []
-    area = Blobs(data, _HEADER + size, rebuild)
-    reader = pickling.Unpickler(io.BytesIO(memoryview(data)[_HEADER:_HEADER + size]))
+    area = Blobs(path, _HEADER + size, rebuild)
+    reader = pickling.Unpickler(io.BytesIO(pickled))
     reader.persistent_load = lambda pid: items if pid == "items" else area if pid == "area" else _unknown(pid)
     state = reader.load()
     items.extend(items_of(state))
     return state
 
 
-def _checked_state(data: bytes) -> int:
-    """The length of the state's pickle in `data`, checked."""
-    if len(data) < _HEADER or data[8:9] != b" " or data[_HEADER - 1:_HEADER] != b"\n":
+def _state_size(header: bytes) -> int:
+    """The length of the state's pickle, as a file's header line gives it."""
+    if len(header) < _HEADER or header[8:9] != b" " or header[_HEADER - 1:_HEADER] != b"\n":
         raise ValueError("not a cache file")
-    checksum, size = int(data[:8], 16), int(data[9:_HEADER - 1], 16)
-    if len(data) < _HEADER + size or zlib.crc32(memoryview(data)[_HEADER:_HEADER + size]) != checksum:
-        raise ValueError("damaged")
-    return size
+    return int(header[9:_HEADER - 1], 16)
 
 
 def _unknown(pid):
@@ -105,24 +109,35 @@ def _unknown(pid):
 
 
 class Blobs:
-    """The deferred fields of a file as it was read, each checked when read (see the module's doc)."""
-    __slots__ = ("data", "start", "rebuild")
+    """The deferred fields of a file, each checked when read (see the module's doc). The area is
+    read from the file when a first field is asked for: a request whose nodes are all inline
+    expressions reads none (the file is named by its content's key, so whoever wrote it again in
+    between wrote the same bytes; a damaged one fails the fields' checks)."""
+    __slots__ = ("path", "data", "start", "rebuild")
 
-    def __init__(self, data: bytes, start: int, rebuild):
-        self.data, self.start, self.rebuild = data, start, rebuild
+    def __init__(self, path: str, start: int, rebuild):
+        self.path, self.start, self.rebuild = path, start, rebuild
+        self.data: bytes | None = None  # the area (from `start`), once read
 
     def read(self, location: tuple[int, int, int]) -> memoryview:
         """A field's pickle, by its (offset, length, CRC-32) in the area."""
         blob = self._blob(location)
         if blob is None:  # damaged: the file built and written again, and read from then on
             data = self.rebuild()
-            self.data, self.start = data, _HEADER + _checked_state(data)
+            self.data, self.start = data, _HEADER + _state_size(data)
             blob = self._blob(location)
             if blob is None:
                 raise pickling.UnpicklingError("the library's code cache was built again unlike before")
         return blob
 
     def _blob(self, location) -> memoryview | None:
+        if self.data is None:
+            try:
+                with open(self.path, "rb") as f:
+                    f.seek(self.start)
+                    self.data, self.start = f.read(), 0
+            except OSError:  # gone since: as damaged
+                return None
         offset, length, checksum = location
         start = self.start + offset
         blob = memoryview(self.data)[start:start + length]

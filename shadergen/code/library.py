@@ -368,16 +368,11 @@ def read_cache(path: str, key: str, rebuild) -> tuple | None:
 
 
 def read_state(path: str, items_of, valid, rebuild) -> object | None:
-    """What cachefile.dumps wrote into `path` (`items_of` and `rebuild`: cachefile.loads'), where
+    """What cachefile.dumps wrote into `path` (`items_of` and `rebuild`: cachefile.load's), where
     `valid(state)`; None where the file is missing, damaged, or not `valid` (another library's)."""
     try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError:
-        return None
-    try:
-        state = cachefile.loads(data, items_of, rebuild)
-    except (pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
+        state = cachefile.load(path, items_of, rebuild)
+    except (OSError, pickling.UnpicklingError, EOFError, AttributeError, ValueError, TypeError, IndexError):
         return None
     return state if valid(state) else None
 
