@@ -2,6 +2,7 @@
 one topology hash; the values live in the listing, and `values: "source"` writes them into the code."""
 import pytest
 
+from shadergen import hashing
 from shadergen.api import Generator
 from shadergen.errors import ShaderGenError
 
@@ -104,3 +105,29 @@ def test_elements_alike_but_for_their_names_have_records_of_their_own(interface)
     a, b = (GEN.prepare(graph.format(name), interface=interface).emit() for name in ("A", "B"))
     assert (a["element"], b["element"]) == ("A/out", "B/out")
     assert a["hash"] != b["hash"] and a["stages"] == b["stages"]
+
+
+def scaled(attributes: str) -> str:
+    return f"""<?xml version="1.0"?>
+<materialx version="1.39">
+  <multiply name="m" type="float"><input name="in1" type="float" value="0.8" {attributes}/></multiply>
+  <output name="o" type="float" nodename="m" />
+</materialx>"""
+
+
+@pytest.mark.parametrize("names", ["structural", "document"])
+def test_the_hashes_follow_metadata_not_the_order_of_its_attributes(names):
+    """A port's metadata (ui hints) is hashed by name and value, whatever order the document wrote
+    its attributes in, or code merged them in (hashing.py's `_ordered`: the bytes hashed write a
+    dict in its order)."""
+    assert hashing._canonical(hashing._ordered({"b": 1, "a": {"d": (2, 3), "c": "x"}})) == \
+        hashing._canonical(hashing._ordered({"a": {"c": "x", "d": (2, 3)}, "b": 1}))
+    assert hashing._canonical({"b": 1, "a": 2}) != hashing._canonical({"a": 2, "b": 1})
+    def hashes(attributes):
+        record = GEN.prepare(scaled(attributes), names=names).emit()
+        return record["hash"], record["topology_hash"]
+    ordered = hashes('uimin="0" uimax="2" uisoftmax="1" uiname="Amount"')
+    assert hashes('uiname="Amount" uisoftmax="1" uimax="2" uimin="0"') == ordered
+    other = hashes('uimin="0" uimax="3" uisoftmax="1" uiname="Amount"')
+    assert other[0] != ordered[0]  # the listing says it: the record differs
+    assert (other[1] == ordered[1]) == (names == "structural")  # the source holds it only by document names
