@@ -26,7 +26,7 @@ from .passes import Options, prepare
 from .hashing import graph_hashes
 from .library import Library, Scope, default_library
 from .naming import NAMES
-from .targets import target_for
+from .targets import target_class, target_for
 from .types import value_to_json
 from .usd import is_usd_path, parse_usd, read_usd
 
@@ -395,7 +395,8 @@ class Generator:
         # two documents of the same graph in different working spaces are different records
         cms = system.identity if working is None else f"{system.identity} working {working}"
         key = dict(element=doc.label(elem.path), target=target, interface=options.interface,
-                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=cms)
+                   library_hash=self.library.content_hash, local_ids=local, names=names, cms=cms,
+                   ui_in_source=getattr(target_class(target), "writes_ui", False))
         h, topology = graph_hashes(graph, **key)
         if doc.labels:  # records name elements and inputs by the labels (prim paths): they key the record too
             h, topology = (graph_digest(json.dumps([k, doc.labels], sort_keys=True).encode()).hexdigest()

@@ -26,7 +26,8 @@ def _element_digest(e: Element) -> list:
 
 
 def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, library_hash: str,
-                 local_ids: set[int], names: str = "structural", cms: str | None = None) -> tuple[str, str]:
+                 local_ids: set[int], names: str = "structural", cms: str | None = None,
+                 ui_in_source: bool = False) -> tuple[str, str]:
     """(hash, topology hash). `element`: the name path the record reports. `library_hash`: the
     library's output key (fingerprint.py), which covers the generator's code too. `local_ids`: ids
     of the implementation elements the document itself declares. The topology hash leaves out the
@@ -36,8 +37,10 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
     and uniforms' names and paths out of the topology hash too (the source does not hold them);
     "document" keeps them in it, as the source holds them. `cms`: the colour management system's
     identity (an OCIO config's name and content, cms/ocio.py); None for the built-in one, whose
-    keys stay what they were before systems existed."""
+    keys stay what they were before systems existed. `ui_in_source`: the target writes a uniform's
+    ui metadata into the source (OSL's parameter hints): then it is no listing's alone."""
     document_names = names == "document"
+    listing_only = LISTING_ONLY if not ui_in_source else tuple(k for k in LISTING_ONLY if k != "ui")
     index = {id(n): i for i, n in enumerate(graph.nodes)}
     public = {id(p): i for i, p in enumerate(graph.interface)}
 
@@ -58,9 +61,9 @@ def graph_hashes(graph: Graph, *, element: str, target: str, interface: str, lib
 
     def meta(port) -> tuple | None:
         m = port.meta
-        if not m or document_names or m.keys().isdisjoint(LISTING_ONLY):  # most metadata has none of them
+        if not m or document_names or m.keys().isdisjoint(listing_only):  # most metadata has none of them
             return _ordered(m)
-        return _ordered({k: v for k, v in m.items() if k not in LISTING_ONLY})
+        return _ordered({k: v for k, v in m.items() if k not in listing_only})
 
     uniforms = [[p.name, p.type, meta(p)] for p in graph.interface]
     nodes = []

@@ -14,12 +14,16 @@ TARGETS: dict[str, tuple[str, str]] = {"glsl": (".glsl.target", "GlslTarget"), "
 
 
 def target_for(name: str):
+    return target_class(name)()
+
+
+def target_class(name: str) -> type:
     try:
         module, cls = TARGETS[name]
     except KeyError:
         raise ShaderGenError("unsupported_target", f"unknown target '{name}'; supported: "
                              + ", ".join(sorted(TARGETS)), name) from None
-    return getattr(importlib.import_module(module, __package__), cls)()
+    return getattr(importlib.import_module(module, __package__), cls)
 
 
 def checker_for(name: str):

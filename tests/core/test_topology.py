@@ -131,3 +131,17 @@ def test_the_hashes_follow_metadata_not_the_order_of_its_attributes(names):
     other = hashes('uimin="0" uimax="3" uisoftmax="1" uiname="Amount"')
     assert other[0] != ordered[0]  # the listing says it: the record differs
     assert (other[1] == ordered[1]) == (names == "structural")  # the source holds it only by document names
+
+
+def test_a_target_that_writes_ui_into_its_source_keeps_it_in_the_topology_hash():
+    """OSL writes a parameter's ui metadata as its hints: two materials whose ui differ have
+    sources of their own, so one's record must not be rebound to the other (the service rebinds
+    by topology hash); GLSL leaves ui to the listing and shares one source."""
+    twins = [scaled(f'uimin="{low}"').replace('value="0.8"', f'value="{value}"')
+             for low, value in (("0", "0.8"), ("0.25", "0.3"))]
+    for target, shared in (("glsl", True), ("osl", False)):
+        a, b = (GEN.prepare(twin, target=target) for twin in twins)
+        first, second = a.emit(), b.emit()
+        assert (first["stages"] == second["stages"]) == shared == (a.topology_hash == b.topology_hash)
+        rebound = b.rebind(first)
+        assert (rebound["stages"] == second["stages"]) if shared else rebound is None
