@@ -233,7 +233,7 @@ class _Pending:
     __slots__ = ("locations", "items", "area")
 
     def __init__(self, locations: dict[str, tuple], items: list, area: Blobs):
-        self.locations, self.items, self.area = dict(locations), items, area
+        self.locations, self.items, self.area = locations, items, area  # (its own: unpickled for it)
 
     def restore(self, item, name: str) -> None:
         """Reads `name` (and the field it NEEDS) into `item`, if still unread."""
