@@ -8,9 +8,11 @@ BLAKE2b reads three times as fast as its SHA-256 (OpenSSL's SHA-256 is faster st
 that start-up)."""
 try:
     from _blake2 import blake2b as _blake2b
-    from _sha256 import sha256  # CPython 3.11
-except ImportError:  # pragma: no cover (3.12 renamed _sha256; any other Python: hashlib's)
+except ImportError:  # pragma: no cover (a Python without CPython's module: hashlib's)
     from hashlib import blake2b as _blake2b
+try:
+    from _sha256 import sha256  # CPython 3.11
+except ImportError:  # pragma: no cover (3.12 renamed it; any other Python: hashlib's)
     try:
         from _sha2 import sha256
     except ImportError:

@@ -12,7 +12,7 @@ from collections import namedtuple
 
 from ..errors import source_error
 
-__all__ = ["Token", "tokenize", "source_error"]
+__all__ = ["Token", "tokenize"]
 
 
 # (as the module's doc says; collections' namedtuple: typing's NamedTuple costs a cold process the
